@@ -1,0 +1,82 @@
+/**
+ * Ray–shape intersection without any fixed absolute epsilon.
+ *
+ * Spheres use the numerically robust quadratic of Haines et al. ("Precision
+ * Improvements for Ray/Sphere Intersection", Ray Tracing Gems 2019, ch. 7):
+ * the discriminant is r² − |f − (f·d)d|², which does not cancel
+ * catastrophically for huge spheres or distant origins, and the two roots
+ * come from the stable pair c/q, q. Quads intersect their plane and test
+ * the parallelogram coordinates. A ray parallel to a quad (n·d = 0) misses
+ * it outright rather than producing ±Inf or NaN.
+ *
+ * Self-intersection is avoided where rays are *spawned* (see spawn.ts), by
+ * an offset relative to the magnitude of the hit point, so `tMin` is 0.
+ */
+import { QUAD_STRIDE, Q_CORNER, Q_NORMAL, Q_PLANE, Q_SAXIS, Q_TAXIS, SPHERE_STRIDE } from './shapes.ts';
+
+/** Distance to the nearest hit of sphere i in (0, tMax), or Infinity. */
+export function intersectSphere(
+  spheres: Float64Array,
+  i: number,
+  ox: number,
+  oy: number,
+  oz: number,
+  dx: number,
+  dy: number,
+  dz: number,
+  tMax: number,
+): number {
+  const o = i * SPHERE_STRIDE;
+  const r = spheres[o + 3];
+  const fx = ox - spheres[o];
+  const fy = oy - spheres[o + 1];
+  const fz = oz - spheres[o + 2];
+  const b = fx * dx + fy * dy + fz * dz;
+  const lx = fx - b * dx;
+  const ly = fy - b * dy;
+  const lz = fz - b * dz;
+  const disc = r * r - (lx * lx + ly * ly + lz * lz);
+  if (disc < 0) return Infinity;
+  const c = fx * fx + fy * fy + fz * fz - r * r;
+  const q = b > 0 ? -b - Math.sqrt(disc) : -b + Math.sqrt(disc);
+  let t0 = c / q;
+  let t1 = q;
+  if (t0 > t1) {
+    const tmp = t0;
+    t0 = t1;
+    t1 = tmp;
+  }
+  if (t0 > 0 && t0 < tMax) return t0;
+  if (t1 > 0 && t1 < tMax) return t1;
+  return Infinity;
+}
+
+/** Distance to quad i in (0, tMax), or Infinity (also for rays parallel to it). */
+export function intersectQuad(
+  quads: Float64Array,
+  i: number,
+  ox: number,
+  oy: number,
+  oz: number,
+  dx: number,
+  dy: number,
+  dz: number,
+  tMax: number,
+): number {
+  const o = i * QUAD_STRIDE;
+  const nx = quads[o + Q_NORMAL];
+  const ny = quads[o + Q_NORMAL + 1];
+  const nz = quads[o + Q_NORMAL + 2];
+  const denom = nx * dx + ny * dy + nz * dz;
+  if (denom === 0) return Infinity;
+  const t = (quads[o + Q_PLANE] - (nx * ox + ny * oy + nz * oz)) / denom;
+  if (!(t > 0 && t < tMax)) return Infinity;
+  const qx = ox + t * dx - quads[o + Q_CORNER];
+  const qy = oy + t * dy - quads[o + Q_CORNER + 1];
+  const qz = oz + t * dz - quads[o + Q_CORNER + 2];
+  const s = qx * quads[o + Q_SAXIS] + qy * quads[o + Q_SAXIS + 1] + qz * quads[o + Q_SAXIS + 2];
+  if (s < 0 || s > 1) return Infinity;
+  const v = qx * quads[o + Q_TAXIS] + qy * quads[o + Q_TAXIS + 1] + qz * quads[o + Q_TAXIS + 2];
+  if (v < 0 || v > 1) return Infinity;
+  return t;
+}

@@ -1,0 +1,14 @@
+/**
+ * pathwise core: the DOM-free tracer. Runs in Node, in Web Workers and on
+ * the main thread alike.
+ */
+export * from './scene/types.ts';
+export { parseScene, validateScene, validateSettingsOverride, SceneError } from './scene/load.ts';
+export { compileScene, CompiledScene, BVH_THRESHOLD, type CompileOptions } from './scene/compile.ts';
+export { PathTracer, RenderStats, type Estimator, type TracerOptions } from './integrator/path-tracer.ts';
+export { Film } from './film/film.ts';
+export { Camera } from './camera/camera.ts';
+export { encodePfm, decodePfm, type PfmImage } from './io/pfm.ts';
+export { encodePng, zlibStored } from './io/png.ts';
+export { acesFilmic, srgbEncode, toDisplayByte, tonemapSums } from './io/tonemap.ts';
+export { pcgHash } from './rng/pcg.ts';

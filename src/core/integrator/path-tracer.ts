@@ -1,0 +1,370 @@
+/**
+ * Unidirectional path tracing (Kajiya 1986; pbr-book 4e §13.4). Two
+ * estimators share one loop:
+ * - 'nee-mis': next-event estimation on every emitter combined with BSDF
+ *   sampling by multiple importance sampling with the power heuristic
+ *   (Veach & Guibas 1995; pbr-book 4e §13.4 "PathIntegrator");
+ * - 'bsdf': BSDF sampling only, paths score emission where they land —
+ *   the estimator of the original WebGL demos, kept for comparison.
+ *
+ * `maxBounces` = B keeps exactly the light reaching the eye over paths with
+ * at most B scattering events. Russian roulette starts after the third
+ * bounce (pbr-book 3e §14.5.5); it changes noise, not the expected value.
+ *
+ * The hot loop allocates nothing: rays, hits and BSDF records are fields
+ * created once, and the scene is read from typed arrays copied into locals.
+ */
+import { bsdfEval, bsdfPdf, bsdfSample } from '../bsdf/bsdf.ts';
+import { MATERIAL_DIELECTRIC, MATERIAL_STRIDE, M_DELTA, M_EMISSION, M_EMISSIVE, M_TYPE } from '../bsdf/materials.ts';
+import { BsdfSample, BsdfValue } from '../bsdf/records.ts';
+import { Camera } from '../camera/camera.ts';
+import type { Film } from '../film/film.ts';
+import { Hit, Ray, SHAPE_QUAD, SHAPE_SPHERE } from '../geometry/ray.ts';
+import { QUAD_STRIDE, Q_CORNER, Q_NORMAL, Q_PLANE, Q_U, Q_V, SPHERE_STRIDE } from '../geometry/shapes.ts';
+import { intersectScene, occluded } from '../geometry/trace.ts';
+import { LightSample, lightPdf, sampleLight } from '../lights/lights.ts';
+import { Frame } from '../math/frame.ts';
+import {
+  DIM_BOUNCE,
+  DIM_BSDF,
+  DIM_BSDF_LOBE,
+  DIM_FILM,
+  DIM_LENS,
+  DIM_LIGHT_CHOICE,
+  DIM_LIGHT_POINT,
+  DIM_PER_BOUNCE,
+  DIM_ROULETTE,
+  IndependentSampler,
+} from '../sampling/sampler.ts';
+import type { CompiledScene } from '../scene/compile.ts';
+import type { CameraDesc } from '../scene/types.ts';
+
+export type Estimator = 'nee-mis' | 'bsdf';
+
+export interface TracerOptions {
+  width: number;
+  height: number;
+  maxBounces: number;
+  seed?: number;
+  estimator?: Estimator;
+  camera: CameraDesc;
+}
+
+/** Counters a render adds to; `segments` counts every ray traced (camera, bounce, shadow). */
+export class RenderStats {
+  paths = 0;
+  segments = 0;
+  rejected = 0;
+}
+
+/**
+ * Relative size of the offset that lifts a spawned ray off its surface:
+ * 2^-36 of the magnitude of the coordinates involved. Doubles carry 2^-52
+ * relative error, so this clears the rounding of the hit point by a factor
+ * of ~65,000 while staying far below any visible scale — and, being
+ * relative, it behaves the same for a scene scaled by 1e-4 or 1e4.
+ */
+const OFFSET_SCALE = 2 ** -36;
+/** Shadow rays stop this fraction short of the light point, so they do not hit the light itself. */
+const SHADOW_SHORTEN = 1 - 2 ** -30;
+/** Russian roulette begins once a path has scattered this many times. */
+const ROULETTE_DEPTH = 3;
+
+export class PathTracer {
+  readonly scene: CompiledScene;
+  readonly camera: Camera;
+  readonly width: number;
+  readonly height: number;
+  maxBounces: number;
+  readonly estimator: Estimator;
+  readonly sampler: IndependentSampler;
+  /** Radiance of the last `trace` call. */
+  lr = 0;
+  lg = 0;
+  lb = 0;
+  private readonly ray = new Ray();
+  private readonly shadowRay = new Ray();
+  private readonly hit = new Hit();
+  private readonly frame = new Frame();
+  private readonly bs = new BsdfSample();
+  private readonly fv = new BsdfValue();
+  private readonly ls = new LightSample();
+
+  constructor(scene: CompiledScene, options: TracerOptions) {
+    this.scene = scene;
+    this.width = options.width;
+    this.height = options.height;
+    this.maxBounces = options.maxBounces;
+    this.estimator = options.estimator ?? 'nee-mis';
+    this.sampler = new IndependentSampler(options.seed ?? 0);
+    this.camera = new Camera(options.camera, options.width, options.height);
+  }
+
+  setCamera(desc: CameraDesc): void {
+    this.camera.set(desc);
+  }
+
+  /** Adds samples [sampleStart, sampleEnd) of every pixel of rows [y0, y1) to the film. */
+  renderRows(film: Film, y0: number, y1: number, sampleStart: number, sampleEnd: number, stats: RenderStats): void {
+    for (let y = y0; y < y1; y++) this.renderRow(film, y, sampleStart, sampleEnd, stats);
+  }
+
+  /**
+   * Adds samples [sampleStart, sampleEnd) of every pixel of row y. Each
+   * pixel receives its samples in increasing order, so its Float32 sum is
+   * the same whichever worker renders the row.
+   */
+  renderRow(film: Film, y: number, sampleStart: number, sampleEnd: number, stats: RenderStats): void {
+    const width = this.width;
+    for (let s = sampleStart; s < sampleEnd; s++) {
+      for (let x = 0; x < width; x++) {
+        this.trace(x, y, s, stats);
+        if (!film.addSample(x, y, this.lr, this.lg, this.lb)) stats.rejected++;
+      }
+    }
+  }
+
+  /**
+   * Traces sample `sampleIndex` of pixel (px, py); the radiance lands in
+   * lr, lg, lb.
+   */
+  trace(px: number, py: number, sampleIndex: number, stats: RenderStats): void {
+    const scene = this.scene;
+    const materials = scene.materials;
+    const spheres = scene.spheres;
+    const quads = scene.quads;
+    const lights = scene.lights;
+    const sampler = this.sampler;
+    const ray = this.ray;
+    const hit = this.hit;
+    const frame = this.frame;
+    const bs = this.bs;
+    const fv = this.fv;
+    const nee = this.estimator === 'nee-mis' && lights !== null;
+    const maxBounces = this.maxBounces;
+
+    sampler.startPixelSample(py * this.width + px, sampleIndex);
+    this.camera.generateRay(
+      px + sampler.get1D(DIM_FILM),
+      py + sampler.get1D(DIM_FILM + 1),
+      sampler.get1D(DIM_LENS),
+      sampler.get1D(DIM_LENS + 1),
+      ray,
+    );
+    let segments = 1;
+    let lr = 0, lg = 0, lb = 0;
+    let br = 1, bg = 1, bb = 1;
+    let etaScale = 1;
+    // The camera ray counts as "specular": emission it finds is not light-sampled.
+    let specular = true;
+    let prevPdf = 0;
+    let prevX = 0, prevY = 0, prevZ = 0;
+
+    for (let depth = 0; ; depth++) {
+      if (!intersectScene(scene, ray, hit)) {
+        if (scene.hasEnvironment) {
+          lr += br * scene.envR;
+          lg += bg * scene.envG;
+          lb += bb * scene.envB;
+        }
+        break;
+      }
+      const t = hit.t;
+      const index = hit.index;
+      let x = ray.ox + t * ray.dx;
+      let y = ray.oy + t * ray.dy;
+      let z = ray.oz + t * ray.dz;
+      let nx: number, ny: number, nz: number;
+      let m: number;
+      let light: number;
+      let shapeScale: number;
+      if (hit.kind === SHAPE_SPHERE) {
+        const o = index * SPHERE_STRIDE;
+        const cx = spheres[o], cy = spheres[o + 1], cz = spheres[o + 2], r = spheres[o + 3];
+        // Re-project the hit point onto the sphere: removes the error that
+        // accumulated along a long ray (pbr-book 4e §6.8.5).
+        nx = x - cx;
+        ny = y - cy;
+        nz = z - cz;
+        const inv = 1 / Math.sqrt(nx * nx + ny * ny + nz * nz);
+        nx *= inv;
+        ny *= inv;
+        nz *= inv;
+        x = cx + r * nx;
+        y = cy + r * ny;
+        z = cz + r * nz;
+        m = scene.sphereMaterial[index];
+        light = scene.sphereLight[index];
+        shapeScale = Math.max(Math.abs(cx), Math.abs(cy), Math.abs(cz)) + r;
+      } else {
+        const o = index * QUAD_STRIDE;
+        nx = quads[o + Q_NORMAL];
+        ny = quads[o + Q_NORMAL + 1];
+        nz = quads[o + Q_NORMAL + 2];
+        // Re-project onto the plane for the same reason.
+        const off = nx * x + ny * y + nz * z - quads[o + Q_PLANE];
+        x -= off * nx;
+        y -= off * ny;
+        z -= off * nz;
+        m = scene.quadMaterial[index];
+        light = scene.quadLight[index];
+        shapeScale =
+          Math.max(Math.abs(quads[o + Q_CORNER]), Math.abs(quads[o + Q_CORNER + 1]), Math.abs(quads[o + Q_CORNER + 2])) +
+          Math.max(Math.abs(quads[o + Q_U]), Math.abs(quads[o + Q_U + 1]), Math.abs(quads[o + Q_U + 2])) +
+          Math.max(Math.abs(quads[o + Q_V]), Math.abs(quads[o + Q_V + 1]), Math.abs(quads[o + Q_V + 2]));
+      }
+      const mo = m * MATERIAL_STRIDE;
+      const wox = -ray.dx, woy = -ray.dy, woz = -ray.dz;
+      const cosO = nx * wox + ny * woy + nz * woz;
+
+      // Emission, front side only.
+      if (materials[mo + M_EMISSIVE] !== 0 && cosO > 0) {
+        let w = 1;
+        if (nee && !specular) {
+          const pl = lightPdf(lights!, spheres, quads, light, prevX, prevY, prevZ, t, cosO);
+          w = (prevPdf * prevPdf) / (prevPdf * prevPdf + pl * pl);
+        }
+        lr += br * materials[mo + M_EMISSION] * w;
+        lg += bg * materials[mo + M_EMISSION + 1] * w;
+        lb += bb * materials[mo + M_EMISSION + 2] * w;
+      }
+      if (depth >= maxBounces) break;
+
+      // Shading frame: glass needs the outward normal to know inside from
+      // outside; every other surface scatters on both sides, so its frame
+      // faces wo.
+      let sx = nx, sy = ny, sz = nz;
+      if (materials[mo + M_TYPE] !== MATERIAL_DIELECTRIC && cosO < 0) {
+        sx = -nx;
+        sy = -ny;
+        sz = -nz;
+      }
+      frame.setFromNormal(sx, sy, sz);
+      const lwox = wox * frame.sx + woy * frame.sy + woz * frame.sz;
+      const lwoy = wox * frame.tx + woy * frame.ty + woz * frame.tz;
+      const lwoz = wox * sx + woy * sy + woz * sz;
+      const scale = Math.max(Math.abs(x), Math.abs(y), Math.abs(z), shapeScale) * OFFSET_SCALE;
+      const base = DIM_BOUNCE + depth * DIM_PER_BOUNCE;
+
+      // Next-event estimation.
+      if (nee && materials[mo + M_DELTA] === 0) {
+        const ls = this.ls;
+        const l = lights!.choose(sampler.get1D(base + DIM_LIGHT_CHOICE));
+        if (
+          sampleLight(
+            lights!, spheres, quads, l, x, y, z,
+            sampler.get1D(base + DIM_LIGHT_POINT),
+            sampler.get1D(base + DIM_LIGHT_POINT + 1),
+            ls,
+          )
+        ) {
+          const wix = ls.wx, wiy = ls.wy, wiz = ls.wz;
+          const lwiz = wix * sx + wiy * sy + wiz * sz;
+          if (lwiz > 0) {
+            const lwix = wix * frame.sx + wiy * frame.sy + wiz * frame.sz;
+            const lwiy = wix * frame.tx + wiy * frame.ty + wiz * frame.tz;
+            bsdfEval(materials, m, lwox, lwoy, lwoz, lwix, lwiy, lwiz, fv);
+            if (fv.r !== 0 || fv.g !== 0 || fv.b !== 0) {
+              const sr = this.shadowRay;
+              sr.ox = x + sx * scale;
+              sr.oy = y + sy * scale;
+              sr.oz = z + sz * scale;
+              sr.dx = wix;
+              sr.dy = wiy;
+              sr.dz = wiz;
+              sr.tMax = ls.distance * SHADOW_SHORTEN;
+              segments++;
+              if (!occluded(scene, sr)) {
+                const lm =
+                  (lights!.kind[l] === SHAPE_QUAD
+                    ? scene.quadMaterial[lights!.shape[l]]
+                    : scene.sphereMaterial[lights!.shape[l]]) * MATERIAL_STRIDE;
+                const pb = bsdfPdf(materials, m, lwox, lwoy, lwoz, lwix, lwiy, lwiz);
+                const pl = ls.pdf;
+                const w = (pl / (pl * pl + pb * pb)) * lwiz;
+                lr += br * fv.r * materials[lm + M_EMISSION] * w;
+                lg += bg * fv.g * materials[lm + M_EMISSION + 1] * w;
+                lb += bb * fv.b * materials[lm + M_EMISSION + 2] * w;
+              }
+            }
+          }
+        }
+      }
+
+      // Continue the path by sampling the BSDF.
+      if (
+        !bsdfSample(
+          materials, m, lwox, lwoy, lwoz,
+          sampler.get1D(base + DIM_BSDF),
+          sampler.get1D(base + DIM_BSDF + 1),
+          sampler.get1D(base + DIM_BSDF_LOBE),
+          bs,
+        )
+      ) {
+        break;
+      }
+      br *= bs.weightR;
+      bg *= bs.weightG;
+      bb *= bs.weightB;
+      if (br === 0 && bg === 0 && bb === 0) break;
+      etaScale *= bs.etaScale;
+      const wix = bs.wx * frame.sx + bs.wy * frame.tx + bs.wz * sx;
+      const wiy = bs.wx * frame.sy + bs.wy * frame.ty + bs.wz * sy;
+      const wiz = bs.wx * frame.sz + bs.wy * frame.tz + bs.wz * sz;
+      specular = bs.isDelta;
+      prevPdf = bs.pdf;
+      prevX = x;
+      prevY = y;
+      prevZ = z;
+
+      if (depth + 1 >= ROULETTE_DEPTH) {
+        // Survival in proportion to throughput; etaScale undoes the (n1/n2)²
+        // of refraction so a path inside glass is not killed for it.
+        const rr = Math.max(br, bg, bb) * etaScale;
+        if (rr < 1) {
+          const q = Math.max(0.05, 1 - rr);
+          if (sampler.get1D(base + DIM_ROULETTE) < q) break;
+          const inv = 1 / (1 - q);
+          br *= inv;
+          bg *= inv;
+          bb *= inv;
+        }
+      }
+
+      // Spawn the next ray from the side of the surface it leaves by.
+      const side = wix * nx + wiy * ny + wiz * nz >= 0 ? scale : -scale;
+      ray.ox = x + nx * side;
+      ray.oy = y + ny * side;
+      ray.oz = z + nz * side;
+      // Renormalise: keeps long specular chains at unit length.
+      const inv = 1 / Math.sqrt(wix * wix + wiy * wiy + wiz * wiz);
+      ray.dx = wix * inv;
+      ray.dy = wiy * inv;
+      ray.dz = wiz * inv;
+      ray.tMax = Infinity;
+      segments++;
+    }
+    stats.paths++;
+    stats.segments += segments;
+    this.lr = lr;
+    this.lg = lg;
+    this.lb = lb;
+  }
+
+  /**
+   * Distance along the camera's forward axis to the surface seen through
+   * film point (filmX, filmY), or NaN where the ray escapes — what
+   * click-to-focus sets as the focus distance.
+   */
+  pick(filmX: number, filmY: number): number {
+    const cam = this.camera;
+    const aperture = cam.aperture;
+    cam.aperture = 0;
+    cam.generateRay(filmX, filmY, 0.5, 0.5, this.ray);
+    cam.aperture = aperture;
+    if (!intersectScene(this.scene, this.ray, this.hit)) return NaN;
+    const r = this.ray;
+    return this.hit.t * (r.dx * cam.fx + r.dy * cam.fy + r.dz * cam.fz);
+  }
+}
+

@@ -1,0 +1,237 @@
+/**
+ * The emitters of a scene, for next-event estimation: every emissive sphere
+ * and quad, chosen in proportion to its power (luminance of the emitted
+ * radiance times area) and then sampled on its surface:
+ * - quads uniformly by area (pbr-book 4e §6.5.1), converted to solid angle;
+ * - spheres seen from outside uniformly in the cone of directions they
+ *   subtend (pbr-book 3e §14.2.2, Sphere::Sample(ref)), which wastes no
+ *   samples on the hidden back side; from inside, uniformly by area.
+ * Emission leaves only the front side of a surface (outside of a sphere).
+ */
+import { QUAD_STRIDE, Q_AREA, Q_CORNER, Q_NORMAL, Q_U, Q_V, SPHERE_STRIDE } from '../geometry/shapes.ts';
+import { SHAPE_QUAD } from '../geometry/ray.ts';
+
+/** What `sampleLight` writes: direction, distance, radiance and solid-angle pdf. */
+export class LightSample {
+  wx = 0;
+  wy = 0;
+  wz = 0;
+  distance = 0;
+  /** The sampled point on the emitter (for the shadow ray's far end). */
+  px = 0;
+  py = 0;
+  pz = 0;
+  /** Solid-angle density including the probability of choosing this light. */
+  pdf = 0;
+  /** Index of the chosen light in the light list. */
+  light = -1;
+}
+
+export class LightList {
+  readonly count: number;
+  readonly kind: Int32Array;
+  readonly shape: Int32Array;
+  /** Probability of choosing each light. */
+  readonly prob: Float64Array;
+  /** Cumulative distribution over lights (count + 1 entries). */
+  readonly cdf: Float64Array;
+
+  constructor(kind: number[], shape: number[], power: number[]) {
+    this.count = kind.length;
+    this.kind = Int32Array.from(kind);
+    this.shape = Int32Array.from(shape);
+    const total = power.reduce((a, b) => a + b, 0);
+    this.prob = Float64Array.from(power, (p) => p / total);
+    this.cdf = new Float64Array(this.count + 1);
+    for (let i = 0; i < this.count; i++) this.cdf[i + 1] = this.cdf[i] + this.prob[i];
+    this.cdf[this.count] = 1;
+  }
+
+  /** Index of the light whose CDF interval contains u (binary search). */
+  choose(u: number): number {
+    let lo = 0;
+    let hi = this.count - 1;
+    const cdf = this.cdf;
+    while (lo < hi) {
+      const mid = (lo + hi) >> 1;
+      if (cdf[mid + 1] <= u) lo = mid + 1;
+      else hi = mid;
+    }
+    return lo;
+  }
+}
+
+/**
+ * Samples a point on light `l` as seen from (x, y, z). Writes `out` and
+ * returns false when the sample cannot contribute (back side, degenerate).
+ */
+export function sampleLight(
+  lights: LightList,
+  spheres: Float64Array,
+  quads: Float64Array,
+  l: number,
+  x: number,
+  y: number,
+  z: number,
+  u0: number,
+  u1: number,
+  out: LightSample,
+): boolean {
+  const s = lights.shape[l];
+  const choose = lights.prob[l];
+  out.light = l;
+  if (lights.kind[l] === SHAPE_QUAD) {
+    const o = s * QUAD_STRIDE;
+    const px = quads[o + Q_CORNER] + u0 * quads[o + Q_U] + u1 * quads[o + Q_V];
+    const py = quads[o + Q_CORNER + 1] + u0 * quads[o + Q_U + 1] + u1 * quads[o + Q_V + 1];
+    const pz = quads[o + Q_CORNER + 2] + u0 * quads[o + Q_U + 2] + u1 * quads[o + Q_V + 2];
+    return finishAreaSample(
+      x, y, z, px, py, pz,
+      quads[o + Q_NORMAL], quads[o + Q_NORMAL + 1], quads[o + Q_NORMAL + 2],
+      quads[o + Q_AREA], choose, out,
+    );
+  }
+  const o = s * SPHERE_STRIDE;
+  const cx = spheres[o];
+  const cy = spheres[o + 1];
+  const cz = spheres[o + 2];
+  const r = spheres[o + 3];
+  let wcx = cx - x;
+  let wcy = cy - y;
+  let wcz = cz - z;
+  const dc2 = wcx * wcx + wcy * wcy + wcz * wcz;
+  if (dc2 <= r * r) {
+    // Inside: uniform by area. The emitting side faces away from every
+    // interior point, so finishAreaSample finds cosθ ≤ 0 and returns false.
+    const zz = 1 - 2 * u0;
+    const rr = Math.sqrt(Math.max(0, 1 - zz * zz));
+    const phi = 2 * Math.PI * u1;
+    const nx = rr * Math.cos(phi);
+    const ny = rr * Math.sin(phi);
+    return finishAreaSample(x, y, z, cx + r * nx, cy + r * ny, cz + r * zz, nx, ny, zz, 4 * Math.PI * r * r, choose, out);
+  }
+  // Outside: uniform in the cone, then the point on the sphere by the law
+  // of cosines (pbrt-v3 Sphere::Sample(ref)).
+  const dc = Math.sqrt(dc2);
+  const inv = 1 / dc;
+  wcx *= inv;
+  wcy *= inv;
+  wcz *= inv;
+  const sin2Max = (r * r) / dc2;
+  const cosMax = Math.sqrt(Math.max(0, 1 - sin2Max));
+  // 1 − cosθmax without cancellation for small, distant spheres.
+  const oneMinusCosMax = sin2Max / (1 + cosMax);
+  let sin2 = sin2Max * u0;
+  let cosT = Math.sqrt(Math.max(0, 1 - sin2));
+  if (sin2Max >= 0.00068523) {
+    // Not small: the direct form is accurate.
+    cosT = 1 - u0 * oneMinusCosMax;
+    sin2 = Math.max(0, 1 - cosT * cosT);
+  }
+  // Distance along the sampled direction to the near side, then the angle
+  // at the sphere's center.
+  const ds = dc * cosT - Math.sqrt(Math.max(0, r * r - dc2 * sin2));
+  const cosAlpha = Math.min(1, Math.max(-1, (dc2 + r * r - ds * ds) / (2 * dc * r)));
+  const sinAlpha = Math.sqrt(Math.max(0, 1 - cosAlpha * cosAlpha));
+  const phi = 2 * Math.PI * u1;
+  // Frame around −wc (from the center toward the reference point).
+  const ax = -wcx;
+  const ay = -wcy;
+  const az = -wcz;
+  const sign = az >= 0 ? 1 : -1;
+  const a = -1 / (sign + az);
+  const b = ax * ay * a;
+  const s1x = 1 + sign * ax * ax * a;
+  const s1y = sign * b;
+  const s1z = -sign * ax;
+  const t1x = b;
+  const t1y = sign + ay * ay * a;
+  const t1z = -ay;
+  const cp = Math.cos(phi) * sinAlpha;
+  const sp = Math.sin(phi) * sinAlpha;
+  const nx = cp * s1x + sp * t1x + cosAlpha * ax;
+  const ny = cp * s1y + sp * t1y + cosAlpha * ay;
+  const nz = cp * s1z + sp * t1z + cosAlpha * az;
+  const px = cx + r * nx;
+  const py = cy + r * ny;
+  const pz = cz + r * nz;
+  let wx = px - x;
+  let wy = py - y;
+  let wz = pz - z;
+  const dist = Math.sqrt(wx * wx + wy * wy + wz * wz);
+  if (!(dist > 0)) return false;
+  wx /= dist;
+  wy /= dist;
+  wz /= dist;
+  out.wx = wx;
+  out.wy = wy;
+  out.wz = wz;
+  out.distance = dist;
+  out.px = px;
+  out.py = py;
+  out.pz = pz;
+  out.pdf = choose / (2 * Math.PI * oneMinusCosMax);
+  return true;
+}
+
+function finishAreaSample(
+  x: number, y: number, z: number,
+  px: number, py: number, pz: number,
+  nx: number, ny: number, nz: number,
+  area: number, choose: number, out: LightSample,
+): boolean {
+  let wx = px - x;
+  let wy = py - y;
+  let wz = pz - z;
+  const d2 = wx * wx + wy * wy + wz * wz;
+  if (!(d2 > 0)) return false;
+  const dist = Math.sqrt(d2);
+  wx /= dist;
+  wy /= dist;
+  wz /= dist;
+  const cosLight = -(nx * wx + ny * wy + nz * wz);
+  if (cosLight <= 0) return false;
+  out.wx = wx;
+  out.wy = wy;
+  out.wz = wz;
+  out.distance = dist;
+  out.px = px;
+  out.py = py;
+  out.pz = pz;
+  out.pdf = (choose * d2) / (area * cosLight);
+  return true;
+}
+
+/**
+ * Solid-angle pdf with which `sampleLight` would have produced the point of
+ * light l hit from (x, y, z) at distance t with emitter cosine cosLight —
+ * the density MIS needs when a BSDF-sampled ray lands on an emitter.
+ */
+export function lightPdf(
+  lights: LightList,
+  spheres: Float64Array,
+  quads: Float64Array,
+  l: number,
+  x: number,
+  y: number,
+  z: number,
+  t: number,
+  cosLight: number,
+): number {
+  const s = lights.shape[l];
+  const choose = lights.prob[l];
+  if (lights.kind[l] === SHAPE_QUAD) {
+    return (choose * t * t) / (quads[s * QUAD_STRIDE + Q_AREA] * cosLight);
+  }
+  const o = s * SPHERE_STRIDE;
+  const r = spheres[o + 3];
+  const dx = spheres[o] - x;
+  const dy = spheres[o + 1] - y;
+  const dz = spheres[o + 2] - z;
+  const dc2 = dx * dx + dy * dy + dz * dz;
+  if (dc2 <= r * r) return (choose * t * t) / (4 * Math.PI * r * r * cosLight);
+  const sin2Max = (r * r) / dc2;
+  const cosMax = Math.sqrt(Math.max(0, 1 - sin2Max));
+  return choose / ((2 * Math.PI * sin2Max) / (1 + cosMax));
+}
+

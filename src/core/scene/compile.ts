@@ -1,0 +1,97 @@
+/**
+ * Compiles a validated scene into the flat typed arrays the tracer reads.
+ * Only what the scene has is built: no sphere buffer without spheres, no
+ * light list without emitters, no BVH below the measured crossover (see
+ * BVH_THRESHOLD), so the hot loops never pay for kinds that are absent.
+ */
+import { buildBvh, type Bvh } from '../accel/bvh.ts';
+import { compileMaterials, MATERIAL_STRIDE, M_EMISSION, M_EMISSIVE } from '../bsdf/materials.ts';
+import { SHAPE_QUAD, SHAPE_SPHERE } from '../geometry/ray.ts';
+import { compileQuads, compileSpheres, QUAD_STRIDE, Q_AREA, SPHERE_STRIDE } from '../geometry/shapes.ts';
+import { LightList } from '../lights/lights.ts';
+import type { QuadDesc, Scene, SphereDesc } from './types.ts';
+
+/**
+ * Shape count from which a BVH beats the plain loop over all shapes,
+ * measured with `node bench/bvh-crossover.mjs` (see BENCHMARKS.md).
+ */
+export const BVH_THRESHOLD = 12;
+
+export interface CompileOptions {
+  /** Force (true) or forbid (false) the BVH; default: by BVH_THRESHOLD. */
+  bvh?: boolean;
+}
+
+export class CompiledScene {
+  readonly materials: Float64Array;
+  readonly sphereCount: number;
+  readonly spheres: Float64Array;
+  readonly sphereMaterial: Int32Array;
+  /** Light index of each sphere, −1 when it does not emit. */
+  readonly sphereLight: Int32Array;
+  readonly quadCount: number;
+  readonly quads: Float64Array;
+  readonly quadMaterial: Int32Array;
+  readonly quadLight: Int32Array;
+  readonly lights: LightList | null;
+  readonly envR: number;
+  readonly envG: number;
+  readonly envB: number;
+  readonly hasEnvironment: boolean;
+  readonly bvh: Bvh | null;
+
+  constructor(scene: Scene, options: CompileOptions = {}) {
+    const names = Object.keys(scene.materials);
+    const materialIndex = new Map(names.map((n, i) => [n, i]));
+    this.materials = compileMaterials(names.map((n) => scene.materials[n]));
+    const spheres = scene.shapes.filter((s): s is SphereDesc => s.type === 'sphere');
+    const quads = scene.shapes.filter((s): s is QuadDesc => s.type === 'quad');
+    this.sphereCount = spheres.length;
+    this.quadCount = quads.length;
+    this.spheres = compileSpheres(spheres);
+    this.quads = compileQuads(quads);
+    this.sphereMaterial = Int32Array.from(spheres, (s) => materialIndex.get(s.material)!);
+    this.quadMaterial = Int32Array.from(quads, (s) => materialIndex.get(s.material)!);
+    this.sphereLight = new Int32Array(this.sphereCount).fill(-1);
+    this.quadLight = new Int32Array(this.quadCount).fill(-1);
+
+    const kinds: number[] = [];
+    const shapes: number[] = [];
+    const power: number[] = [];
+    const emitted = (m: number): number => {
+      const o = m * MATERIAL_STRIDE;
+      if (this.materials[o + M_EMISSIVE] === 0) return 0;
+      const e = this.materials;
+      // Selection weight: luminance, floored so a pure-blue emitter is still chosen.
+      const lum = 0.2126 * e[o + M_EMISSION] + 0.7152 * e[o + M_EMISSION + 1] + 0.0722 * e[o + M_EMISSION + 2];
+      return Math.max(lum, 1e-6 * Math.max(e[o + M_EMISSION], e[o + M_EMISSION + 1], e[o + M_EMISSION + 2]));
+    };
+    for (let i = 0; i < this.sphereCount; i++) {
+      const lum = emitted(this.sphereMaterial[i]);
+      if (lum === 0) continue;
+      const r = this.spheres[i * SPHERE_STRIDE + 3];
+      this.sphereLight[i] = kinds.length;
+      kinds.push(SHAPE_SPHERE);
+      shapes.push(i);
+      power.push(lum * 4 * Math.PI * r * r);
+    }
+    for (let i = 0; i < this.quadCount; i++) {
+      const lum = emitted(this.quadMaterial[i]);
+      if (lum === 0) continue;
+      this.quadLight[i] = kinds.length;
+      kinds.push(SHAPE_QUAD);
+      shapes.push(i);
+      power.push(lum * this.quads[i * QUAD_STRIDE + Q_AREA]);
+    }
+    this.lights = kinds.length > 0 ? new LightList(kinds, shapes, power) : null;
+    [this.envR, this.envG, this.envB] = scene.environment;
+    this.hasEnvironment = this.envR > 0 || this.envG > 0 || this.envB > 0;
+    const total = this.sphereCount + this.quadCount;
+    const useBvh = options.bvh ?? total >= BVH_THRESHOLD;
+    this.bvh = useBvh && total > 0 ? buildBvh(this.spheres, this.sphereCount, this.quads, this.quadCount) : null;
+  }
+}
+
+export function compileScene(scene: Scene, options?: CompileOptions): CompiledScene {
+  return new CompiledScene(scene, options);
+}

@@ -1,0 +1,408 @@
+/**
+ * Loader and validator of the scene format `pathwise-scene/1` (docs: scene-format.md).
+ *
+ * A file that breaks any rule is rejected as a whole, never silently repaired: every problem
+ * found in one pass is collected, each naming its JSON path and the offending value, and a
+ * single SceneError carries them all. A valid file yields a fresh Scene with every optional
+ * key filled with its documented default, so no consumer re-derives a default.
+ */
+
+import {
+  DEFAULT_SETTINGS,
+  LIMITS,
+  type CameraDesc,
+  type MaterialDesc,
+  type Scene,
+  type SettingsDesc,
+  type ShapeDesc,
+  type Vec3,
+} from './types.ts';
+import {
+  NON_NEGATIVE,
+  POSITIVE,
+  UNIT_INTERVAL,
+  childPath,
+  closest,
+  cross,
+  describe,
+  expectInteger,
+  expectKnownKeys,
+  expectNumber,
+  expectObject,
+  expectOneOf,
+  expectString,
+  expectVec3,
+  formatVec,
+  indexPath,
+  length,
+  normalize,
+  sub,
+  type Problems,
+  utf8Length,
+} from './validate-helpers.ts';
+
+const FORMAT = 'pathwise-scene/1';
+
+export class SceneError extends Error {
+  /** Every violation found, each a sentence that starts with the offending JSON path. */
+  readonly problems: string[];
+
+  constructor(problems: string[]) {
+    const more = problems.length - 1;
+    const suffix = more > 0 ? ` (and ${more} more problem${more === 1 ? '' : 's'})` : '';
+    super((problems[0] ?? 'invalid scene') + suffix);
+    this.name = 'SceneError';
+    this.problems = problems;
+  }
+}
+
+/** Parses and validates the text of a scene file. Throws SceneError. */
+export function parseScene(text: string): Scene {
+  const bytes = utf8Length(text, LIMITS.fileBytes);
+  if (bytes > LIMITS.fileBytes) {
+    const size = bytes === Infinity ? `at least ${text.length}` : String(bytes);
+    throw new SceneError([
+      `scene file must be at most ${LIMITS.fileBytes} bytes (16 MiB), got ${size} bytes`,
+    ]);
+  }
+  let value: unknown;
+  try {
+    // A leading byte-order mark is an artefact of the text encoding, not of the scene.
+    value = JSON.parse(text.charCodeAt(0) === 0xfeff ? text.slice(1) : text);
+  } catch (e) {
+    throw new SceneError([`scene file is not valid JSON: ${(e as Error).message}`]);
+  }
+  return validateScene(value);
+}
+
+const TOP_KEYS = ['format', 'name', 'camera', 'settings', 'materials', 'shapes', 'environment'];
+
+/** Validates a parsed scene (or any JS value) and returns a fresh Scene with defaults filled. */
+export function validateScene(value: unknown): Scene {
+  const problems: Problems = [];
+  const root = expectObject(value, 'scene', problems);
+  if (root === undefined) throw new SceneError(problems);
+
+  // The format comes first: if it is wrong, that is the problem to lead with.
+  expectOneOf(root.format, 'format', [FORMAT], problems);
+  expectKnownKeys(root, '', TOP_KEYS, problems);
+
+  const name = root.name === undefined ? '' : expectString(root.name, 'name', problems);
+  const camera = checkCamera(root.camera, problems);
+  const settings = checkSceneSettings(root.settings, problems);
+  const materials = checkMaterials(root.materials, problems);
+  const shapes = checkShapes(root.shapes, materials, problems);
+  const environment =
+    root.environment === undefined
+      ? ([0, 0, 0] as Vec3)
+      : expectVec3(root.environment, 'environment', problems, NON_NEGATIVE);
+
+  if (problems.length > 0) throw new SceneError(problems);
+  // No problem was recorded, so every part validated and is defined.
+  return {
+    format: FORMAT,
+    name: name!,
+    camera: camera!,
+    settings: settings!,
+    materials: Object.fromEntries(materials!),
+    shapes: shapes!,
+    environment: environment!,
+  };
+}
+
+const CAMERA_KEYS = ['position', 'target', 'up', 'fovY', 'aperture', 'focusDistance'];
+
+function checkCamera(value: unknown, problems: Problems): CameraDesc | undefined {
+  const obj = expectObject(value, 'camera', problems);
+  if (obj === undefined) return undefined;
+  const before = problems.length;
+  expectKnownKeys(obj, 'camera', CAMERA_KEYS, problems);
+  const position = expectVec3(obj.position, 'camera.position', problems);
+  const target = expectVec3(obj.target, 'camera.target', problems);
+  const up = expectVec3(obj.up, 'camera.up', problems);
+  const fovY = expectNumber(obj.fovY, 'camera.fovY', problems, {
+    ok: (x) => x > 0 && x < 180,
+    rule: 'be in (0, 180) degrees',
+  });
+  const aperture =
+    obj.aperture === undefined
+      ? 0
+      : expectNumber(obj.aperture, 'camera.aperture', problems, NON_NEGATIVE);
+  const focus =
+    obj.focusDistance === undefined
+      ? undefined
+      : expectNumber(obj.focusDistance, 'camera.focusDistance', problems, POSITIVE);
+
+  // The frame (forward, right, upImage) must exist: forward needs position != target, and
+  // right = normalize(cross(forward, up)) needs up non-zero and not parallel to forward.
+  // Parallelism is tested on unit vectors, so it does not depend on the scene's scale.
+  const upUnit = up === undefined ? undefined : normalize(up);
+  if (up !== undefined && upUnit === undefined) {
+    problems.push(`camera.up must be non-zero, got ${formatVec(up)}`);
+  }
+  let distance: number | undefined;
+  if (position !== undefined && target !== undefined) {
+    const forward = sub(target, position);
+    distance = length(forward);
+    if (distance === 0) {
+      problems.push(
+        `camera.target must differ from camera.position, both are ${formatVec(target)}`,
+      );
+    } else if (!Number.isFinite(distance)) {
+      problems.push(`camera.target - camera.position must be finite, got ${formatVec(forward)}`);
+    } else if (upUnit !== undefined && length(cross(normalize(forward)!, upUnit)) < 1e-6) {
+      problems.push(
+        `camera.up must not be parallel to camera.target - camera.position, got up ` +
+          `${formatVec(up!)} and target - position ${formatVec(forward)}`,
+      );
+    }
+  }
+  if (problems.length > before) return undefined;
+  return {
+    position: position!,
+    target: target!,
+    up: up!,
+    fovY: fovY!,
+    aperture: aperture!,
+    focusDistance: focus ?? distance!,
+  };
+}
+
+const SETTING_KEYS = ['width', 'height', 'maxBounces', 'spp'] as const;
+type SettingKey = (typeof SETTING_KEYS)[number];
+
+function checkSceneSettings(value: unknown, problems: Problems): SettingsDesc | undefined {
+  if (value === undefined) return { ...DEFAULT_SETTINGS };
+  const obj = expectObject(value, 'settings', problems);
+  if (obj === undefined) return undefined;
+  expectKnownKeys(obj, 'settings', SETTING_KEYS, problems);
+  const merged = { ...DEFAULT_SETTINGS };
+  for (const key of SETTING_KEYS) if (obj[key] !== undefined) merged[key] = obj[key] as number;
+  return checkSettings(merged, (key) => `settings.${key}`, problems);
+}
+
+/** The rules of settings, shared by scene files and command-line overrides. */
+function checkSettings(
+  s: Record<SettingKey, unknown>,
+  label: (key: SettingKey) => string,
+  problems: Problems,
+): SettingsDesc | undefined {
+  const before = problems.length;
+  const width = checkDimension(s.width, label('width'), problems);
+  const height = checkDimension(s.height, label('height'), problems);
+  const maxBounces = expectInteger(
+    s.maxBounces,
+    label('maxBounces'),
+    problems,
+    0,
+    LIMITS.maxBounces,
+  );
+  const spp = expectInteger(s.spp, label('spp'), problems, 1, LIMITS.spp);
+  if (width !== undefined && height !== undefined && width * height > LIMITS.pixels) {
+    problems.push(
+      `${label('width')} * ${label('height')} must be at most ${LIMITS.pixels} pixels, ` +
+        `got ${width} * ${height} = ${width * height}`,
+    );
+  }
+  if (problems.length > before) return undefined;
+  return { width: width!, height: height!, maxBounces: maxBounces!, spp: spp! };
+}
+
+function checkDimension(value: unknown, path: string, problems: Problems): number | undefined {
+  return expectInteger(value, path, problems, 1, Infinity);
+}
+
+/** How option names appear in messages: a prefix (default `--`) or a function of the key. */
+export type SettingLabel = string | ((key: keyof SettingsDesc) => string);
+
+/**
+ * Applies command-line overrides to validated settings under the same rules and limits,
+ * e.g. `--spp must be an integer in [1, 1048576], got 0`. Keys that are undefined in
+ * `override` keep their base value. Throws SceneError.
+ */
+export function validateSettingsOverride(
+  base: SettingsDesc,
+  override: Partial<SettingsDesc>,
+  where: SettingLabel = '--',
+): SettingsDesc {
+  const label = typeof where === 'string' ? (key: SettingKey) => where + key : where;
+  const problems: Problems = [];
+  const merged: Record<SettingKey, unknown> = { ...base };
+  for (const [key, value] of Object.entries(override)) {
+    if (value === undefined) continue;
+    if ((SETTING_KEYS as readonly string[]).includes(key)) merged[key as SettingKey] = value;
+    else problems.push(`${typeof where === 'string' ? where + key : key} is not a known setting`);
+  }
+  const settings = checkSettings(merged, label, problems);
+  if (problems.length > 0 || settings === undefined) throw new SceneError(problems);
+  return settings;
+}
+
+const MATERIAL_TYPES = ['diffuse', 'conductor', 'dielectric'] as const;
+const MATERIAL_KEYS: Record<MaterialDesc['type'], string[]> = {
+  diffuse: ['type', 'albedo', 'emission'],
+  conductor: ['type', 'color', 'roughness', 'emission'],
+  dielectric: ['type', 'ior', 'color', 'roughness', 'emission'],
+};
+
+/**
+ * Returns the materials as entries (so that a material named `__proto__` stays an own key
+ * when the caller builds the record with Object.fromEntries). The names are returned even
+ * when a material is invalid, so that shapes are only blamed for names that do not exist.
+ */
+function checkMaterials(value: unknown, problems: Problems): Map<string, MaterialDesc> | undefined {
+  const obj = expectObject(value, 'materials', problems);
+  if (obj === undefined) return undefined;
+  const out = new Map<string, MaterialDesc>();
+  for (const name of Object.keys(obj)) {
+    const material = checkMaterial(obj[name], childPath('materials', name), problems);
+    // Placeholder for an invalid material: the scene is rejected anyway, but the name exists.
+    out.set(name, material ?? ({} as MaterialDesc));
+  }
+  return out;
+}
+
+function checkMaterial(value: unknown, path: string, problems: Problems): MaterialDesc | undefined {
+  const obj = expectObject(value, path, problems);
+  if (obj === undefined) return undefined;
+  const type = expectOneOf(obj.type, childPath(path, 'type'), MATERIAL_TYPES, problems);
+  if (type === undefined) return undefined; // the allowed keys depend on the type
+  const before = problems.length;
+  expectKnownKeys(obj, path, MATERIAL_KEYS[type], problems);
+  const at = (key: string) => childPath(path, key);
+  const emission =
+    obj.emission === undefined
+      ? ([0, 0, 0] as Vec3)
+      : expectVec3(obj.emission, at('emission'), problems, NON_NEGATIVE);
+
+  let material: MaterialDesc | undefined;
+  if (type === 'diffuse') {
+    const albedo = expectVec3(obj.albedo, at('albedo'), problems, UNIT_INTERVAL);
+    material = { type, albedo: albedo!, emission: emission! };
+  } else if (type === 'conductor') {
+    const color = expectVec3(obj.color, at('color'), problems, UNIT_INTERVAL);
+    const roughness = expectNumber(obj.roughness, at('roughness'), problems, UNIT_INTERVAL);
+    material = { type, color: color!, roughness: roughness!, emission: emission! };
+  } else {
+    const ior = expectNumber(obj.ior, at('ior'), problems, POSITIVE);
+    const color =
+      obj.color === undefined
+        ? ([1, 1, 1] as Vec3)
+        : expectVec3(obj.color, at('color'), problems, UNIT_INTERVAL);
+    const roughness =
+      obj.roughness === undefined
+        ? 0
+        : expectNumber(obj.roughness, at('roughness'), problems, UNIT_INTERVAL);
+    // The spec makes rough glass optional; this renderer lacks it, so it must say so.
+    if (roughness !== undefined && roughness > 0) {
+      problems.push(
+        `${at('roughness')}: rough dielectric (roughness > 0) is not supported by pathwise; ` +
+          `use roughness 0, got ${roughness}`,
+      );
+    }
+    material = { type, ior: ior!, color: color!, roughness: roughness!, emission: emission! };
+  }
+  return problems.length > before ? undefined : material;
+}
+
+const SHAPE_TYPES = ['sphere', 'quad'] as const;
+const SHAPE_KEYS: Record<ShapeDesc['type'], string[]> = {
+  sphere: ['type', 'center', 'radius', 'material'],
+  quad: ['type', 'corner', 'u', 'v', 'material'],
+};
+
+function checkShapes(
+  value: unknown,
+  materials: Map<string, MaterialDesc> | undefined,
+  problems: Problems,
+): ShapeDesc[] | undefined {
+  if (value === undefined) {
+    problems.push('shapes is required but missing (an array)');
+    return undefined;
+  }
+  if (!Array.isArray(value)) {
+    problems.push(`shapes must be an array, got ${describe(value)}`);
+    return undefined;
+  }
+  // The limit bounds the work of loading and building the scene, so past it the shapes
+  // themselves are not examined: the scene is rejected on the count alone.
+  if (value.length > LIMITS.shapes) {
+    problems.push(`shapes has ${value.length} entries, more than the limit of ${LIMITS.shapes}`);
+    return undefined;
+  }
+  const before = problems.length;
+  const known = materials === undefined ? undefined : new MaterialNames(materials);
+  const out = value.map((shape, i) => checkShape(shape, indexPath('shapes', i), known, problems));
+  return problems.length > before ? undefined : (out as ShapeDesc[]);
+}
+
+function checkShape(
+  value: unknown,
+  path: string,
+  materials: MaterialNames | undefined,
+  problems: Problems,
+): ShapeDesc | undefined {
+  const obj = expectObject(value, path, problems);
+  if (obj === undefined) return undefined;
+  const type = expectOneOf(obj.type, `${path}.type`, SHAPE_TYPES, problems);
+  if (type === undefined) return undefined; // the allowed keys depend on the type
+  expectKnownKeys(obj, path, SHAPE_KEYS[type], problems);
+  const material = checkMaterialRef(obj.material, `${path}.material`, materials, problems);
+  if (type === 'sphere') {
+    const center = expectVec3(obj.center, `${path}.center`, problems);
+    const radius = expectNumber(obj.radius, `${path}.radius`, problems, POSITIVE);
+    return { type, center: center!, radius: radius!, material: material! };
+  }
+  const corner = expectVec3(obj.corner, `${path}.corner`, problems);
+  const u = expectVec3(obj.u, `${path}.u`, problems);
+  const v = expectVec3(obj.v, `${path}.v`, problems);
+  // Degenerate (zero-area) quads have no normal. The test is on unit vectors, i.e. relative
+  // to |u||v|, so that it neither overflows for huge quads nor accepts nearly parallel edges.
+  if (u !== undefined && v !== undefined) {
+    const uUnit = normalize(u);
+    const vUnit = normalize(v);
+    if (uUnit === undefined || vUnit === undefined || length(cross(uUnit, vUnit)) <= 1e-12) {
+      problems.push(
+        `${path} is a degenerate quad: u and v are parallel or zero (area 0), ` +
+          `got u ${formatVec(u)} and v ${formatVec(v)}`,
+      );
+    }
+  }
+  return { type, corner: corner!, u: u!, v: v!, material: material! };
+}
+
+/** The material names, with "did you mean" suggestions memoized: many shapes may share a typo. */
+class MaterialNames {
+  private readonly materials: Map<string, MaterialDesc>;
+  private readonly suggestions = new Map<string, string | undefined>();
+
+  constructor(materials: Map<string, MaterialDesc>) {
+    this.materials = materials;
+  }
+
+  has(name: string): boolean {
+    return this.materials.has(name);
+  }
+
+  suggest(name: string): string | undefined {
+    if (!this.suggestions.has(name)) {
+      this.suggestions.set(name, closest(name, this.materials.keys()));
+    }
+    return this.suggestions.get(name);
+  }
+}
+
+function checkMaterialRef(
+  value: unknown,
+  path: string,
+  materials: MaterialNames | undefined,
+  problems: Problems,
+): string | undefined {
+  const name = expectString(value, path, problems);
+  // If `materials` itself is broken, that is reported once there, not again per shape.
+  if (name === undefined || materials === undefined || materials.has(name)) return name;
+  const guess = materials.suggest(name);
+  const hint = guess === undefined ? '' : ` (did you mean ${describe(guess)}?)`;
+  problems.push(`${path} names unknown material ${describe(name)}${hint}`);
+  return undefined;
+}

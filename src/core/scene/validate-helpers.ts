@@ -1,0 +1,257 @@
+/**
+ * Small building blocks of the scene validator (load.ts). Each `expect*` helper checks one
+ * value, records a problem naming its JSON path and the offending value when it fails, and
+ * returns the checked value or `undefined`. They never throw: the loader collects every
+ * problem in one pass and throws once, so a user can fix a file in one round trip.
+ */
+
+import type { Vec3 } from './types.ts';
+
+/** The problems found so far, each a complete sentence that starts with a JSON path. */
+export type Problems = string[];
+
+/** A rule on a number: `ok` decides, `rule` completes "<path> must ...", e.g. "be > 0". */
+export interface NumberRule {
+  ok: (x: number) => boolean;
+  rule: string;
+}
+
+export const POSITIVE: NumberRule = { ok: (x) => x > 0, rule: 'be > 0' };
+export const NON_NEGATIVE: NumberRule = { ok: (x) => x >= 0, rule: 'be >= 0' };
+export const UNIT_INTERVAL: NumberRule = { ok: (x) => x >= 0 && x <= 1, rule: 'be in [0, 1]' };
+
+/** Describes a value for "got ..." in a message: numbers and strings as written in JSON. */
+export function describe(value: unknown): string {
+  if (value === null) return 'null';
+  if (value === undefined) return 'undefined';
+  if (typeof value === 'number') return String(value);
+  if (typeof value === 'string') {
+    const shown = value.length > 60 ? value.slice(0, 57) + '...' : value;
+    return JSON.stringify(shown);
+  }
+  if (typeof value === 'boolean') return String(value);
+  if (Array.isArray(value)) {
+    // Short arrays of numbers are shown in full; they are the usual vector mistakes.
+    if (value.length <= 4 && value.every((x) => typeof x === 'number')) {
+      return `[${value.join(', ')}]`;
+    }
+    return `an array of length ${value.length}`;
+  }
+  if (typeof value === 'object') return 'an object';
+  return `a ${typeof value}`;
+}
+
+export function formatVec(v: Vec3): string {
+  return `[${v[0]}, ${v[1]}, ${v[2]}]`;
+}
+
+/** `materials` + `red` → `materials.red`; keys that are not identifiers are quoted. */
+export function childPath(base: string, key: string): string {
+  if (/^[A-Za-z_$][A-Za-z0-9_$]*$/.test(key)) return base === '' ? key : `${base}.${key}`;
+  return `${base}[${JSON.stringify(key)}]`;
+}
+
+export function indexPath(base: string, index: number): string {
+  return `${base}[${index}]`;
+}
+
+/** Levenshtein distance, for "did you mean" suggestions only (short strings). */
+function editDistance(a: string, b: string): number {
+  let previous = Array.from({ length: b.length + 1 }, (_, j) => j);
+  for (let i = 1; i <= a.length; i++) {
+    const current = [i];
+    for (let j = 1; j <= b.length; j++) {
+      const substitution = previous[j - 1] + (a[i - 1] === b[j - 1] ? 0 : 1);
+      current.push(Math.min(previous[j] + 1, current[j - 1] + 1, substitution));
+    }
+    previous = current;
+  }
+  return previous[b.length];
+}
+
+/** The candidate a misspelt `word` most likely meant, if any is close enough. */
+export function closest(word: string, candidates: Iterable<string>): string | undefined {
+  if (word.length > 64) return undefined; // not a typo; avoid quadratic work on huge keys
+  let best: string | undefined;
+  let bestDistance = Infinity;
+  for (const candidate of candidates) {
+    if (Math.abs(candidate.length - word.length) > 2) continue; // too far apart to be a typo
+    const distance =
+      candidate.toLowerCase() === word.toLowerCase() ? 0 : editDistance(word, candidate);
+    const allowed = Math.min(2, Math.floor(candidate.length / 3));
+    if (distance <= allowed && distance < bestDistance) {
+      best = candidate;
+      bestDistance = distance;
+    }
+  }
+  return best;
+}
+
+/** A JSON object (not null, not an array), or a problem. */
+export function expectObject(
+  value: unknown,
+  path: string,
+  problems: Problems,
+): Record<string, unknown> | undefined {
+  if (typeof value === 'object' && value !== null && !Array.isArray(value)) {
+    return value as Record<string, unknown>;
+  }
+  if (missing(value, path, problems, 'an object')) return undefined;
+  problems.push(`${path} must be an object, got ${describe(value)}`);
+  return undefined;
+}
+
+/**
+ * Unknown keys are errors at every level, so that a misspelt optional key (which would
+ * otherwise silently take its default) cannot pass unnoticed. Missing required keys are
+ * reported by the expect* helper that reads them (undefined counts as missing).
+ */
+export function expectKnownKeys(
+  obj: Record<string, unknown>,
+  path: string,
+  known: readonly string[],
+  problems: Problems,
+): void {
+  for (const key of Object.keys(obj)) {
+    if (known.includes(key)) continue;
+    const guess = closest(key, known);
+    const hint = guess === undefined ? '' : ` (did you mean ${guess}?)`;
+    problems.push(`${childPath(path, key)} is not a known key${hint}`);
+  }
+}
+
+/** Records the problem of a missing value; true if `value` is missing. */
+function missing(value: unknown, path: string, problems: Problems, what: string): boolean {
+  if (value !== undefined) return false;
+  problems.push(`${path} is required but missing (${what})`);
+  return true;
+}
+
+/** One of a few fixed strings (a type tag or the format), or a problem. */
+export function expectOneOf<T extends string>(
+  value: unknown,
+  path: string,
+  options: readonly T[],
+  problems: Problems,
+): T | undefined {
+  if (options.includes(value as T)) return value as T;
+  const list = options.map((o) => JSON.stringify(o)).join(', ');
+  const what = options.length === 1 ? list : `one of ${list}`;
+  if (!missing(value, path, problems, what)) {
+    problems.push(`${path} must be ${what}, got ${describe(value)}`);
+  }
+  return undefined;
+}
+
+/** Why a non-number failed: a quoted number gets a specific hint, it is a common mistake. */
+function notANumber(value: unknown, path: string, what: string): string {
+  const quoted =
+    typeof value === 'string' && value.trim() !== '' && Number.isFinite(Number(value))
+      ? ' (numbers must not be quoted)'
+      : '';
+  return `${path} must be ${what}, got ${describe(value)}${quoted}`;
+}
+
+/** A finite number (NaN and ±Infinity can arrive through validateScene), or a problem. */
+export function expectNumber(
+  value: unknown,
+  path: string,
+  problems: Problems,
+  rule?: NumberRule,
+): number | undefined {
+  if (typeof value !== 'number' || !Number.isFinite(value)) {
+    if (missing(value, path, problems, 'a number')) return undefined;
+    problems.push(notANumber(value, path, 'a finite number'));
+    return undefined;
+  }
+  if (rule !== undefined && !rule.ok(value)) {
+    problems.push(`${path} must ${rule.rule}, got ${describe(value)}`);
+    return undefined;
+  }
+  return value;
+}
+
+/** An integer in [min, max]; the message states the whole rule, whatever part failed. */
+export function expectInteger(
+  value: unknown,
+  path: string,
+  problems: Problems,
+  min: number,
+  max: number,
+): number | undefined {
+  if (typeof value === 'number' && Number.isInteger(value) && value >= min && value <= max) {
+    return value;
+  }
+  const what = max === Infinity ? `an integer >= ${min}` : `an integer in [${min}, ${max}]`;
+  if (missing(value, path, problems, what)) return undefined;
+  problems.push(notANumber(value, path, what));
+  return undefined;
+}
+
+export function expectString(value: unknown, path: string, problems: Problems): string | undefined {
+  if (typeof value === 'string') return value;
+  if (missing(value, path, problems, 'a string')) return undefined;
+  problems.push(`${path} must be a string, got ${describe(value)}`);
+  return undefined;
+}
+
+/** Exactly three finite numbers, each obeying `rule` if given; a fresh copy, or a problem. */
+export function expectVec3(
+  value: unknown,
+  path: string,
+  problems: Problems,
+  rule?: NumberRule,
+): Vec3 | undefined {
+  if (!Array.isArray(value) || value.length !== 3) {
+    if (missing(value, path, problems, 'an array of 3 numbers')) return undefined;
+    problems.push(`${path} must be an array of 3 numbers, got ${describe(value)}`);
+    return undefined;
+  }
+  const before = problems.length;
+  const out = value.map((x, i) => expectNumber(x, indexPath(path, i), problems, rule));
+  return problems.length === before ? (out as Vec3) : undefined;
+}
+
+export function sub(a: Vec3, b: Vec3): Vec3 {
+  return [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+}
+
+export function cross(a: Vec3, b: Vec3): Vec3 {
+  return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+}
+
+/** Math.hypot avoids overflow and underflow of the squares for extreme coordinates. */
+export function length(a: Vec3): number {
+  return Math.hypot(a[0], a[1], a[2]);
+}
+
+/** The unit vector along `a`, or undefined if `a` is zero (or its length is not finite). */
+export function normalize(a: Vec3): Vec3 | undefined {
+  const len = length(a);
+  if (len === 0 || !Number.isFinite(len)) return undefined;
+  return [a[0] / len, a[1] / len, a[2] / len];
+}
+
+/**
+ * UTF-8 length of `text` as TextEncoder would produce it (lone surrogates become U+FFFD, 3
+ * bytes). TextEncoder itself is not in the ES2022 lib that src/core compiles against.
+ * Returns Infinity without counting when the length is certainly over `limit`.
+ */
+export function utf8Length(text: string, limit: number): number {
+  if (text.length > limit) return Infinity; // every UTF-16 code unit is at least one byte
+  let bytes = 0;
+  for (let i = 0; i < text.length; i++) {
+    const c = text.charCodeAt(i);
+    if (c < 0x80) bytes += 1;
+    else if (c < 0x800) bytes += 2;
+    else if (c >= 0xd800 && c <= 0xdbff && isLowSurrogate(text.charCodeAt(i + 1))) {
+      bytes += 4;
+      i++;
+    } else bytes += 3;
+  }
+  return bytes;
+}
+
+function isLowSurrogate(c: number): boolean {
+  return c >= 0xdc00 && c <= 0xdfff;
+}
