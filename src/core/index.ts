@@ -4,11 +4,22 @@
  */
 export * from './scene/types.ts';
 export { parseScene, validateScene, validateSettingsOverride, SceneError } from './scene/load.ts';
-export { compileScene, CompiledScene, BVH_THRESHOLD, type CompileOptions } from './scene/compile.ts';
-export { PathTracer, RenderStats, type Estimator, type TracerOptions } from './integrator/path-tracer.ts';
+export {
+  compileScene,
+  CompiledScene,
+  BVH_THRESHOLD,
+  type CompileOptions,
+} from './scene/compile.ts';
+export {
+  PathTracer,
+  RenderStats,
+  type Estimator,
+  type TracerOptions,
+} from './integrator/path-tracer.ts';
 export { Film } from './film/film.ts';
 export { Camera } from './camera/camera.ts';
 export { encodePfm, decodePfm, type PfmImage } from './io/pfm.ts';
 export { encodePng, zlibStored } from './io/png.ts';
 export { acesFilmic, srgbEncode, toDisplayByte, tonemapSums } from './io/tonemap.ts';
 export { pcgHash } from './rng/pcg.ts';
+export { Sampler, SAMPLER_KINDS, type SamplerKind } from './sampling/sampler.ts';

@@ -25,7 +25,13 @@ export class Bvh {
   /** Traversal stack, sized for the tree's depth. */
   readonly stack: Int32Array;
 
-  constructor(bounds: Float64Array, nodes: Int32Array, primIds: Int32Array, nodeCount: number, depth: number) {
+  constructor(
+    bounds: Float64Array,
+    nodes: Int32Array,
+    primIds: Int32Array,
+    nodeCount: number,
+    depth: number,
+  ) {
     this.bounds = bounds;
     this.nodes = nodes;
     this.primIds = primIds;
@@ -64,12 +70,20 @@ function primitiveBounds(
     }
   }
   for (let i = 0; i < n; i++) {
-    for (let a = 0; a < 3; a++) centroids[i * 3 + a] = 0.5 * (boxes[i * 6 + a] + boxes[i * 6 + 3 + a]);
+    for (let a = 0; a < 3; a++)
+      centroids[i * 3 + a] = 0.5 * (boxes[i * 6 + a] + boxes[i * 6 + 3 + a]);
   }
   return { boxes, centroids };
 }
 
-function halfArea(minX: number, minY: number, minZ: number, maxX: number, maxY: number, maxZ: number): number {
+function halfArea(
+  minX: number,
+  minY: number,
+  minZ: number,
+  maxX: number,
+  maxY: number,
+  maxZ: number,
+): number {
   const dx = maxX - minX;
   const dy = maxY - minY;
   const dz = maxZ - minZ;
@@ -99,10 +113,18 @@ export function buildBvh(
   const build = (start: number, end: number, depth: number): number => {
     const node = nodeCount++;
     if (depth > maxDepth) maxDepth = depth;
-    let minX = Infinity, minY = Infinity, minZ = Infinity;
-    let maxX = -Infinity, maxY = -Infinity, maxZ = -Infinity;
-    let cMinX = Infinity, cMinY = Infinity, cMinZ = Infinity;
-    let cMaxX = -Infinity, cMaxY = -Infinity, cMaxZ = -Infinity;
+    let minX = Infinity,
+      minY = Infinity,
+      minZ = Infinity;
+    let maxX = -Infinity,
+      maxY = -Infinity,
+      maxZ = -Infinity;
+    let cMinX = Infinity,
+      cMinY = Infinity,
+      cMinZ = Infinity;
+    let cMaxX = -Infinity,
+      cMaxY = -Infinity,
+      cMaxZ = -Infinity;
     for (let k = start; k < end; k++) {
       const p = primIds[k];
       minX = Math.min(minX, boxes[p * 6]);
@@ -156,8 +178,12 @@ export function buildBvh(
       }
     }
     // Sweep from the right to know the area and count right of each plane.
-    let rx0 = Infinity, ry0 = Infinity, rz0 = Infinity;
-    let rx1 = -Infinity, ry1 = -Infinity, rz1 = -Infinity;
+    let rx0 = Infinity,
+      ry0 = Infinity,
+      rz0 = Infinity;
+    let rx1 = -Infinity,
+      ry1 = -Infinity,
+      rz1 = -Infinity;
     let rc = 0;
     for (let b = BINS - 1; b > 0; b--) {
       rx0 = Math.min(rx0, binBox[b * 6]);
@@ -170,8 +196,12 @@ export function buildBvh(
       rightCount[b] = rc;
       rightArea[b] = rc > 0 ? halfArea(rx0, ry0, rz0, rx1, ry1, rz1) : 0;
     }
-    let lx0 = Infinity, ly0 = Infinity, lz0 = Infinity;
-    let lx1 = -Infinity, ly1 = -Infinity, lz1 = -Infinity;
+    let lx0 = Infinity,
+      ly0 = Infinity,
+      lz0 = Infinity;
+    let lx1 = -Infinity,
+      ly1 = -Infinity,
+      lz1 = -Infinity;
     let lc = 0;
     let bestCost = Infinity;
     let bestPlane = -1;
@@ -195,7 +225,9 @@ export function buildBvh(
     const leafCost = count;
     const splitCost = TRAVERSAL_COST + (parentArea > 0 ? bestCost / parentArea : count);
     if (bestPlane < 0) {
-      return count <= BVH_MAX_LEAF ? makeLeaf() : interior(node, start, start + (count >> 1), end, axis, depth);
+      return count <= BVH_MAX_LEAF
+        ? makeLeaf()
+        : interior(node, start, start + (count >> 1), end, axis, depth);
     }
     if (count <= BVH_MAX_LEAF && leafCost <= splitCost) return makeLeaf();
     // Partition primIds[start, end) by bin.
@@ -214,7 +246,14 @@ export function buildBvh(
     return interior(node, start, i, end, axis, depth);
   };
 
-  const interior = (node: number, start: number, mid: number, end: number, axis: number, depth: number): number => {
+  const interior = (
+    node: number,
+    start: number,
+    mid: number,
+    end: number,
+    axis: number,
+    depth: number,
+  ): number => {
     build(start, mid, depth + 1);
     const right = build(mid, end, depth + 1);
     nodes[node * 3] = right;
@@ -224,5 +263,11 @@ export function buildBvh(
   };
 
   if (n > 0) build(0, n, 0);
-  return new Bvh(bounds.slice(0, nodeCount * 6), nodes.slice(0, nodeCount * 3), primIds, nodeCount, maxDepth);
+  return new Bvh(
+    bounds.slice(0, nodeCount * 6),
+    nodes.slice(0, nodeCount * 3),
+    primIds,
+    nodeCount,
+    maxDepth,
+  );
 }

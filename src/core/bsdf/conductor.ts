@@ -39,8 +39,7 @@ export function conductorEval(
   hy /= hl;
   hz /= hl;
   const cosOH = wox * hx + woy * hy + woz * hz;
-  const common =
-    (ggxD(hz, alpha) * ggxG1(woz, alpha) * ggxG1(wiz, alpha)) / (4 * woz * wiz);
+  const common = (ggxD(hz, alpha) * ggxG1(woz, alpha) * ggxG1(wiz, alpha)) / (4 * woz * wiz);
   const w = schlickWeight(cosOH);
   const r0 = materials[o + M_COLOR];
   const g0 = materials[o + M_COLOR + 1];

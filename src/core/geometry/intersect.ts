@@ -12,7 +12,15 @@
  * Self-intersection is avoided where rays are *spawned* (see spawn.ts), by
  * an offset relative to the magnitude of the hit point, so `tMin` is 0.
  */
-import { QUAD_STRIDE, Q_CORNER, Q_NORMAL, Q_PLANE, Q_SAXIS, Q_TAXIS, SPHERE_STRIDE } from './shapes.ts';
+import {
+  QUAD_STRIDE,
+  Q_CORNER,
+  Q_NORMAL,
+  Q_PLANE,
+  Q_SAXIS,
+  Q_TAXIS,
+  SPHERE_STRIDE,
+} from './shapes.ts';
 
 /** Distance to the nearest hit of sphere i in (0, tMax), or Infinity. */
 export function intersectSphere(

@@ -9,8 +9,12 @@ import { intersectQuad, intersectSphere } from './intersect.ts';
 import { SHAPE_QUAD, SHAPE_SPHERE, type Hit, type Ray } from './ray.ts';
 
 export function intersectScene(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
-  const ox = ray.ox, oy = ray.oy, oz = ray.oz;
-  const dx = ray.dx, dy = ray.dy, dz = ray.dz;
+  const ox = ray.ox,
+    oy = ray.oy,
+    oz = ray.oz;
+  const dx = ray.dx,
+    dy = ray.dy,
+    dz = ray.dz;
   let tBest = ray.tMax;
   let kind = -1;
   let index = -1;
@@ -43,8 +47,12 @@ export function intersectScene(scene: CompiledScene, ray: Ray, hit: Hit): boolea
     const spheres = scene.spheres;
     const quads = scene.quads;
     // 1/0 = ±Infinity keeps the slab test correct for axis-parallel rays.
-    const ix = 1 / dx, iy = 1 / dy, iz = 1 / dz;
-    const negX = ix < 0, negY = iy < 0, negZ = iz < 0;
+    const ix = 1 / dx,
+      iy = 1 / dy,
+      iz = 1 / dz;
+    const negX = ix < 0,
+      negY = iy < 0,
+      negZ = iz < 0;
     let sp = 0;
     let node = 0;
     for (;;) {
@@ -109,8 +117,12 @@ export function intersectScene(scene: CompiledScene, ray: Ray, hit: Hit): boolea
 
 /** Whether anything lies on the ray in (0, ray.tMax). */
 export function occluded(scene: CompiledScene, ray: Ray): boolean {
-  const ox = ray.ox, oy = ray.oy, oz = ray.oz;
-  const dx = ray.dx, dy = ray.dy, dz = ray.dz;
+  const ox = ray.ox,
+    oy = ray.oy,
+    oz = ray.oz;
+  const dx = ray.dx,
+    dy = ray.dy,
+    dz = ray.dz;
   const tMax = ray.tMax;
   const bvh = scene.bvh;
   if (bvh === null) {
@@ -131,8 +143,12 @@ export function occluded(scene: CompiledScene, ray: Ray): boolean {
   const sphereCount = scene.sphereCount;
   const spheres = scene.spheres;
   const quads = scene.quads;
-  const ix = 1 / dx, iy = 1 / dy, iz = 1 / dz;
-  const negX = ix < 0, negY = iy < 0, negZ = iz < 0;
+  const ix = 1 / dx,
+    iy = 1 / dy,
+    iz = 1 / dz;
+  const negX = ix < 0,
+    negY = iy < 0,
+    negZ = iz < 0;
   let sp = 0;
   let node = 0;
   for (;;) {

@@ -15,12 +15,27 @@
  * created once, and the scene is read from typed arrays copied into locals.
  */
 import { bsdfEval, bsdfPdf, bsdfSample } from '../bsdf/bsdf.ts';
-import { MATERIAL_DIELECTRIC, MATERIAL_STRIDE, M_DELTA, M_EMISSION, M_EMISSIVE, M_TYPE } from '../bsdf/materials.ts';
+import {
+  MATERIAL_DIELECTRIC,
+  MATERIAL_STRIDE,
+  M_DELTA,
+  M_EMISSION,
+  M_EMISSIVE,
+  M_TYPE,
+} from '../bsdf/materials.ts';
 import { BsdfSample, BsdfValue } from '../bsdf/records.ts';
 import { Camera } from '../camera/camera.ts';
 import type { Film } from '../film/film.ts';
 import { Hit, Ray, SHAPE_QUAD, SHAPE_SPHERE } from '../geometry/ray.ts';
-import { QUAD_STRIDE, Q_CORNER, Q_NORMAL, Q_PLANE, Q_U, Q_V, SPHERE_STRIDE } from '../geometry/shapes.ts';
+import {
+  QUAD_STRIDE,
+  Q_CORNER,
+  Q_NORMAL,
+  Q_PLANE,
+  Q_U,
+  Q_V,
+  SPHERE_STRIDE,
+} from '../geometry/shapes.ts';
 import { intersectScene, occluded } from '../geometry/trace.ts';
 import { LightSample, lightPdf, sampleLight } from '../lights/lights.ts';
 import { Frame } from '../math/frame.ts';
@@ -34,8 +49,10 @@ import {
   DIM_LIGHT_POINT,
   DIM_PER_BOUNCE,
   DIM_ROULETTE,
-  IndependentSampler,
+  Sampler,
+  type SamplerKind,
 } from '../sampling/sampler.ts';
+import { SOBOL_IMPLEMENTED } from '../sampling/sobol.ts';
 import type { CompiledScene } from '../scene/compile.ts';
 import type { CameraDesc } from '../scene/types.ts';
 
@@ -47,6 +64,7 @@ export interface TracerOptions {
   maxBounces: number;
   seed?: number;
   estimator?: Estimator;
+  sampler?: SamplerKind;
   camera: CameraDesc;
 }
 
@@ -77,7 +95,7 @@ export class PathTracer {
   readonly height: number;
   maxBounces: number;
   readonly estimator: Estimator;
-  readonly sampler: IndependentSampler;
+  readonly sampler: Sampler;
   /** Radiance of the last `trace` call. */
   lr = 0;
   lg = 0;
@@ -96,7 +114,10 @@ export class PathTracer {
     this.height = options.height;
     this.maxBounces = options.maxBounces;
     this.estimator = options.estimator ?? 'nee-mis';
-    this.sampler = new IndependentSampler(options.seed ?? 0);
+    if (options.sampler === 'sobol' && !SOBOL_IMPLEMENTED) {
+      throw new Error('the sobol sampler is not implemented yet');
+    }
+    this.sampler = new Sampler(options.seed ?? 0, options.sampler ?? 'independent');
     this.camera = new Camera(options.camera, options.width, options.height);
   }
 
@@ -105,7 +126,14 @@ export class PathTracer {
   }
 
   /** Adds samples [sampleStart, sampleEnd) of every pixel of rows [y0, y1) to the film. */
-  renderRows(film: Film, y0: number, y1: number, sampleStart: number, sampleEnd: number, stats: RenderStats): void {
+  renderRows(
+    film: Film,
+    y0: number,
+    y1: number,
+    sampleStart: number,
+    sampleEnd: number,
+    stats: RenderStats,
+  ): void {
     for (let y = y0; y < y1; y++) this.renderRow(film, y, sampleStart, sampleEnd, stats);
   }
 
@@ -114,7 +142,13 @@ export class PathTracer {
    * pixel receives its samples in increasing order, so its Float32 sum is
    * the same whichever worker renders the row.
    */
-  renderRow(film: Film, y: number, sampleStart: number, sampleEnd: number, stats: RenderStats): void {
+  renderRow(
+    film: Film,
+    y: number,
+    sampleStart: number,
+    sampleEnd: number,
+    stats: RenderStats,
+  ): void {
     const width = this.width;
     for (let s = sampleStart; s < sampleEnd; s++) {
       for (let x = 0; x < width; x++) {
@@ -152,13 +186,19 @@ export class PathTracer {
       ray,
     );
     let segments = 1;
-    let lr = 0, lg = 0, lb = 0;
-    let br = 1, bg = 1, bb = 1;
+    let lr = 0,
+      lg = 0,
+      lb = 0;
+    let br = 1,
+      bg = 1,
+      bb = 1;
     let etaScale = 1;
     // The camera ray counts as "specular": emission it finds is not light-sampled.
     let specular = true;
     let prevPdf = 0;
-    let prevX = 0, prevY = 0, prevZ = 0;
+    let prevX = 0,
+      prevY = 0,
+      prevZ = 0;
 
     for (let depth = 0; ; depth++) {
       if (!intersectScene(scene, ray, hit)) {
@@ -180,7 +220,10 @@ export class PathTracer {
       let shapeScale: number;
       if (hit.kind === SHAPE_SPHERE) {
         const o = index * SPHERE_STRIDE;
-        const cx = spheres[o], cy = spheres[o + 1], cz = spheres[o + 2], r = spheres[o + 3];
+        const cx = spheres[o],
+          cy = spheres[o + 1],
+          cz = spheres[o + 2],
+          r = spheres[o + 3];
         // Re-project the hit point onto the sphere: removes the error that
         // accumulated along a long ray (pbr-book 4e §6.8.5).
         nx = x - cx;
@@ -209,12 +252,26 @@ export class PathTracer {
         m = scene.quadMaterial[index];
         light = scene.quadLight[index];
         shapeScale =
-          Math.max(Math.abs(quads[o + Q_CORNER]), Math.abs(quads[o + Q_CORNER + 1]), Math.abs(quads[o + Q_CORNER + 2])) +
-          Math.max(Math.abs(quads[o + Q_U]), Math.abs(quads[o + Q_U + 1]), Math.abs(quads[o + Q_U + 2])) +
-          Math.max(Math.abs(quads[o + Q_V]), Math.abs(quads[o + Q_V + 1]), Math.abs(quads[o + Q_V + 2]));
+          Math.max(
+            Math.abs(quads[o + Q_CORNER]),
+            Math.abs(quads[o + Q_CORNER + 1]),
+            Math.abs(quads[o + Q_CORNER + 2]),
+          ) +
+          Math.max(
+            Math.abs(quads[o + Q_U]),
+            Math.abs(quads[o + Q_U + 1]),
+            Math.abs(quads[o + Q_U + 2]),
+          ) +
+          Math.max(
+            Math.abs(quads[o + Q_V]),
+            Math.abs(quads[o + Q_V + 1]),
+            Math.abs(quads[o + Q_V + 2]),
+          );
       }
       const mo = m * MATERIAL_STRIDE;
-      const wox = -ray.dx, woy = -ray.dy, woz = -ray.dz;
+      const wox = -ray.dx,
+        woy = -ray.dy,
+        woz = -ray.dz;
       const cosO = nx * wox + ny * woy + nz * woz;
 
       // Emission, front side only.
@@ -233,7 +290,9 @@ export class PathTracer {
       // Shading frame: glass needs the outward normal to know inside from
       // outside; every other surface scatters on both sides, so its frame
       // faces wo.
-      let sx = nx, sy = ny, sz = nz;
+      let sx = nx,
+        sy = ny,
+        sz = nz;
       if (materials[mo + M_TYPE] !== MATERIAL_DIELECTRIC && cosO < 0) {
         sx = -nx;
         sy = -ny;
@@ -252,13 +311,21 @@ export class PathTracer {
         const l = lights!.choose(sampler.get1D(base + DIM_LIGHT_CHOICE));
         if (
           sampleLight(
-            lights!, spheres, quads, l, x, y, z,
+            lights!,
+            spheres,
+            quads,
+            l,
+            x,
+            y,
+            z,
             sampler.get1D(base + DIM_LIGHT_POINT),
             sampler.get1D(base + DIM_LIGHT_POINT + 1),
             ls,
           )
         ) {
-          const wix = ls.wx, wiy = ls.wy, wiz = ls.wz;
+          const wix = ls.wx,
+            wiy = ls.wy,
+            wiz = ls.wz;
           const lwiz = wix * sx + wiy * sy + wiz * sz;
           if (lwiz > 0) {
             const lwix = wix * frame.sx + wiy * frame.sy + wiz * frame.sz;
@@ -294,7 +361,11 @@ export class PathTracer {
       // Continue the path by sampling the BSDF.
       if (
         !bsdfSample(
-          materials, m, lwox, lwoy, lwoz,
+          materials,
+          m,
+          lwox,
+          lwoy,
+          lwoz,
           sampler.get1D(base + DIM_BSDF),
           sampler.get1D(base + DIM_BSDF + 1),
           sampler.get1D(base + DIM_BSDF_LOBE),
@@ -367,4 +438,3 @@ export class PathTracer {
     return this.hit.t * (r.dx * cam.fx + r.dy * cam.fy + r.dz * cam.fz);
   }
 }
-

@@ -9,7 +9,8 @@ export function encodePfm(width: number, height: number, rgb: Float32Array): Uin
   if (rgb.length !== width * height * 3) {
     throw new RangeError(`PFM data has ${rgb.length} floats, expected ${width * height * 3}`);
   }
-  const header = new TextEncoder().encode(`PF\n${width} ${height}\n-1.0\n`);
+  // ASCII header; TextEncoder is not part of the core's ES2022 lib.
+  const header = Uint8Array.from(`PF\n${width} ${height}\n-1.0\n`, (c) => c.charCodeAt(0));
   const out = new Uint8Array(header.length + rgb.length * 4);
   out.set(header, 0);
   const view = new DataView(out.buffer, header.length);
@@ -49,11 +50,18 @@ export function decodePfm(bytes: Uint8Array): PfmImage {
   const width = Number(ws);
   const height = Number(hs);
   const scale = Number(ss);
-  if (!(Number.isInteger(width) && Number.isInteger(height) && width > 0 && height > 0 && scale !== 0)) {
+  if (!(
+    Number.isInteger(width) &&
+    Number.isInteger(height) &&
+    width > 0 &&
+    height > 0 &&
+    scale !== 0
+  )) {
     throw new Error(`bad PFM header: ${tokens.join(' ')}`);
   }
   const need = width * height * 12;
-  if (bytes.length - pos < need) throw new Error(`PFM truncated: ${bytes.length - pos} of ${need} data bytes`);
+  if (bytes.length - pos < need)
+    throw new Error(`PFM truncated: ${bytes.length - pos} of ${need} data bytes`);
   const little = scale < 0;
   const view = new DataView(bytes.buffer, bytes.byteOffset + pos, need);
   const rgb = new Float32Array(width * height * 3);

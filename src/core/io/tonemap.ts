@@ -27,7 +27,11 @@ export function toDisplayByte(linear: number, exposure: number): number {
  * Tone maps accumulated sums (RGBA, A = sample count) to RGBA8 pixels.
  * Pixels with no sample yet are black. `out` must hold width·height·4 bytes.
  */
-export function tonemapSums(sums: Float32Array, exposure: number, out: Uint8ClampedArray | Uint8Array): void {
+export function tonemapSums(
+  sums: Float32Array,
+  exposure: number,
+  out: Uint8ClampedArray | Uint8Array,
+): void {
   for (let i = 0, n = sums.length; i < n; i += 4) {
     const count = sums[i + 3];
     const inv = count > 0 ? 1 / count : 0;

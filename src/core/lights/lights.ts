@@ -8,7 +8,15 @@
  *   samples on the hidden back side; from inside, uniformly by area.
  * Emission leaves only the front side of a surface (outside of a sphere).
  */
-import { QUAD_STRIDE, Q_AREA, Q_CORNER, Q_NORMAL, Q_U, Q_V, SPHERE_STRIDE } from '../geometry/shapes.ts';
+import {
+  QUAD_STRIDE,
+  Q_AREA,
+  Q_CORNER,
+  Q_NORMAL,
+  Q_U,
+  Q_V,
+  SPHERE_STRIDE,
+} from '../geometry/shapes.ts';
 import { SHAPE_QUAD } from '../geometry/ray.ts';
 
 /** What `sampleLight` writes: direction, distance, radiance and solid-angle pdf. */
@@ -86,9 +94,18 @@ export function sampleLight(
     const py = quads[o + Q_CORNER + 1] + u0 * quads[o + Q_U + 1] + u1 * quads[o + Q_V + 1];
     const pz = quads[o + Q_CORNER + 2] + u0 * quads[o + Q_U + 2] + u1 * quads[o + Q_V + 2];
     return finishAreaSample(
-      x, y, z, px, py, pz,
-      quads[o + Q_NORMAL], quads[o + Q_NORMAL + 1], quads[o + Q_NORMAL + 2],
-      quads[o + Q_AREA], choose, out,
+      x,
+      y,
+      z,
+      px,
+      py,
+      pz,
+      quads[o + Q_NORMAL],
+      quads[o + Q_NORMAL + 1],
+      quads[o + Q_NORMAL + 2],
+      quads[o + Q_AREA],
+      choose,
+      out,
     );
   }
   const o = s * SPHERE_STRIDE;
@@ -108,7 +125,20 @@ export function sampleLight(
     const phi = 2 * Math.PI * u1;
     const nx = rr * Math.cos(phi);
     const ny = rr * Math.sin(phi);
-    return finishAreaSample(x, y, z, cx + r * nx, cy + r * ny, cz + r * zz, nx, ny, zz, 4 * Math.PI * r * r, choose, out);
+    return finishAreaSample(
+      x,
+      y,
+      z,
+      cx + r * nx,
+      cy + r * ny,
+      cz + r * zz,
+      nx,
+      ny,
+      zz,
+      4 * Math.PI * r * r,
+      choose,
+      out,
+    );
   }
   // Outside: uniform in the cone, then the point on the sphere by the law
   // of cosines (pbrt-v3 Sphere::Sample(ref)).
@@ -175,10 +205,18 @@ export function sampleLight(
 }
 
 function finishAreaSample(
-  x: number, y: number, z: number,
-  px: number, py: number, pz: number,
-  nx: number, ny: number, nz: number,
-  area: number, choose: number, out: LightSample,
+  x: number,
+  y: number,
+  z: number,
+  px: number,
+  py: number,
+  pz: number,
+  nx: number,
+  ny: number,
+  nz: number,
+  area: number,
+  choose: number,
+  out: LightSample,
 ): boolean {
   let wx = px - x;
   let wy = py - y;
@@ -234,4 +272,3 @@ export function lightPdf(
   const cosMax = Math.sqrt(Math.max(0, 1 - sin2Max));
   return choose / ((2 * Math.PI * sin2Max) / (1 + cosMax));
 }
-

@@ -12,6 +12,7 @@
  *   point (2), BSDF direction (2), BSDF lobe, Russian roulette.
  */
 import { hashToUnit, sampleKey } from '../rng/pcg.ts';
+import { SOBOL_DIMENSIONS, sobolSample } from './sobol.ts';
 
 export const DIM_FILM = 0;
 export const DIM_LENS = 2;
@@ -23,22 +24,40 @@ export const DIM_BSDF = 3;
 export const DIM_BSDF_LOBE = 5;
 export const DIM_ROULETTE = 6;
 
-export type SamplerKind = 'independent';
+export type SamplerKind = 'independent' | 'sobol';
+export const SAMPLER_KINDS: readonly SamplerKind[] = ['independent', 'sobol'];
 
-/** Independent uniform samples from the PCG hash. */
-export class IndependentSampler {
+/**
+ * The sampler of a tracer. 'independent' draws every dimension from the
+ * PCG hash; 'sobol' draws the leading dimensions (camera, lens, first
+ * bounce) from a low-discrepancy sequence randomised per pixel (see
+ * sobol.ts) and the rest from the PCG hash. One class with a kind tag keeps
+ * the call sites in the tracer monomorphic.
+ */
+export class Sampler {
   readonly seed: number;
+  readonly kind: SamplerKind;
+  private readonly lowDiscrepancy: boolean;
   private key = 0;
+  private pixelIndex = 0;
+  private sampleIndex = 0;
 
-  constructor(seed: number) {
+  constructor(seed: number, kind: SamplerKind = 'independent') {
     this.seed = seed >>> 0;
+    this.kind = kind;
+    this.lowDiscrepancy = kind === 'sobol';
   }
 
   startPixelSample(pixelIndex: number, sampleIndex: number): void {
     this.key = sampleKey(this.seed, pixelIndex, sampleIndex);
+    this.pixelIndex = pixelIndex;
+    this.sampleIndex = sampleIndex;
   }
 
   get1D(dimension: number): number {
+    if (this.lowDiscrepancy && dimension < SOBOL_DIMENSIONS) {
+      return sobolSample(this.seed, this.pixelIndex, this.sampleIndex, dimension);
+    }
     return hashToUnit(this.key, dimension);
   }
 }

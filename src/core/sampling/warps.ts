@@ -113,7 +113,12 @@ export function uniformSphereToSquare(x: number, y: number, z: number, out: Vec2
  * Uniform direction in the cone of half-angle acos(cosThetaMax) around +z
  * (pbr-book 4e §A.5.4). Used to sample a spherical light from outside.
  */
-export function squareToUniformCone(u0: number, u1: number, cosThetaMax: number, out: Vec3Out): void {
+export function squareToUniformCone(
+  u0: number,
+  u1: number,
+  cosThetaMax: number,
+  out: Vec3Out,
+): void {
   const cosTheta = 1 - u0 * (1 - cosThetaMax);
   const sinTheta = Math.sqrt(Math.max(0, 1 - cosTheta * cosTheta));
   const phi = 2 * PI * u1;

@@ -7,7 +7,13 @@
 import { buildBvh, type Bvh } from '../accel/bvh.ts';
 import { compileMaterials, MATERIAL_STRIDE, M_EMISSION, M_EMISSIVE } from '../bsdf/materials.ts';
 import { SHAPE_QUAD, SHAPE_SPHERE } from '../geometry/ray.ts';
-import { compileQuads, compileSpheres, QUAD_STRIDE, Q_AREA, SPHERE_STRIDE } from '../geometry/shapes.ts';
+import {
+  compileQuads,
+  compileSpheres,
+  QUAD_STRIDE,
+  Q_AREA,
+  SPHERE_STRIDE,
+} from '../geometry/shapes.ts';
 import { LightList } from '../lights/lights.ts';
 import type { QuadDesc, Scene, SphereDesc } from './types.ts';
 
@@ -63,8 +69,14 @@ export class CompiledScene {
       if (this.materials[o + M_EMISSIVE] === 0) return 0;
       const e = this.materials;
       // Selection weight: luminance, floored so a pure-blue emitter is still chosen.
-      const lum = 0.2126 * e[o + M_EMISSION] + 0.7152 * e[o + M_EMISSION + 1] + 0.0722 * e[o + M_EMISSION + 2];
-      return Math.max(lum, 1e-6 * Math.max(e[o + M_EMISSION], e[o + M_EMISSION + 1], e[o + M_EMISSION + 2]));
+      const lum =
+        0.2126 * e[o + M_EMISSION] +
+        0.7152 * e[o + M_EMISSION + 1] +
+        0.0722 * e[o + M_EMISSION + 2];
+      return Math.max(
+        lum,
+        1e-6 * Math.max(e[o + M_EMISSION], e[o + M_EMISSION + 1], e[o + M_EMISSION + 2]),
+      );
     };
     for (let i = 0; i < this.sphereCount; i++) {
       const lum = emitted(this.sphereMaterial[i]);
@@ -88,7 +100,10 @@ export class CompiledScene {
     this.hasEnvironment = this.envR > 0 || this.envG > 0 || this.envB > 0;
     const total = this.sphereCount + this.quadCount;
     const useBvh = options.bvh ?? total >= BVH_THRESHOLD;
-    this.bvh = useBvh && total > 0 ? buildBvh(this.spheres, this.sphereCount, this.quads, this.quadCount) : null;
+    this.bvh =
+      useBvh && total > 0
+        ? buildBvh(this.spheres, this.sphereCount, this.quads, this.quadCount)
+        : null;
   }
 }
 

@@ -1,0 +1,143 @@
+/**
+ * Command-line parsing for `pathwise render`. Every problem is a
+ * UsageError with a one-line message; the caller exits with status 2.
+ */
+import { SAMPLER_KINDS, type Estimator, type SamplerKind } from '../core/index.ts';
+
+export class UsageError extends Error {
+  override name = 'UsageError';
+}
+
+export interface RenderArgs {
+  scenePath: string;
+  out: string;
+  spp?: number;
+  width?: number;
+  height?: number;
+  bounces?: number;
+  seed: number;
+  threads?: number;
+  exposure: number;
+  estimator: Estimator;
+  sampler: SamplerKind;
+  json: boolean;
+  stripeRows?: number;
+}
+
+export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png [options]
+  --spp N             samples per pixel (default: the scene's settings.spp)
+  --width W --height H  image size (default: the scene's settings)
+  --bounces B         maximum scattering events per path (default: settings.maxBounces)
+  --seed S            random seed, an integer in [0, 2^32) (default 0)
+  --threads T         worker threads (default: available cores)
+  --exposure E        PNG exposure multiplier (default 1)
+  --estimator nee-mis|bsdf  next-event estimation with MIS (default) or BSDF sampling only
+  --sampler independent|sobol  random numbers: independent PCG hash, or low-discrepancy for the leading dimensions
+  --stripe-rows R     rows per work stripe (default: automatic; the image does not depend on it)
+  --json              print one JSON line of statistics on stdout`;
+
+const INTEGER_OPTIONS = new Set([
+  'spp',
+  'width',
+  'height',
+  'bounces',
+  'seed',
+  'threads',
+  'stripe-rows',
+]);
+
+function parseInteger(name: string, text: string, min: number, max: number): number {
+  const value = Number(text);
+  if (!/^-?\d+$/.test(text) || !Number.isSafeInteger(value) || value < min || value > max) {
+    throw new UsageError(
+      `--${name} must be an integer in [${min}, ${max}], got ${JSON.stringify(text)}`,
+    );
+  }
+  return value;
+}
+
+export function parseRenderArgs(argv: string[]): RenderArgs {
+  const positional: string[] = [];
+  const options = new Map<string, string | true>();
+  for (let i = 0; i < argv.length; i++) {
+    const a = argv[i];
+    if (!a.startsWith('--')) {
+      positional.push(a);
+      continue;
+    }
+    const eq = a.indexOf('=');
+    const name = eq >= 0 ? a.slice(2, eq) : a.slice(2);
+    if (options.has(name)) throw new UsageError(`--${name} is given twice`);
+    if (name === 'json' || name === 'help') {
+      options.set(name, true);
+      continue;
+    }
+    const value = eq >= 0 ? a.slice(eq + 1) : argv[++i];
+    if (value === undefined) throw new UsageError(`--${name} needs a value`);
+    options.set(name, value);
+  }
+  const known = new Set([
+    ...INTEGER_OPTIONS,
+    'out',
+    'exposure',
+    'estimator',
+    'sampler',
+    'json',
+    'help',
+  ]);
+  for (const name of options.keys()) {
+    if (!known.has(name)) throw new UsageError(`unknown option --${name}`);
+  }
+  if (positional.length !== 1) {
+    throw new UsageError(
+      positional.length === 0
+        ? 'missing the scene file'
+        : `expected one scene file, got ${positional.length}: ${positional.join(' ')}`,
+    );
+  }
+  const out = options.get('out');
+  if (typeof out !== 'string') throw new UsageError('missing --out FILE.pfm|FILE.png');
+  if (!/\.(pfm|png)$/i.test(out))
+    throw new UsageError(`--out must end in .pfm or .png, got ${JSON.stringify(out)}`);
+  const int = (name: string, min: number, max: number): number | undefined => {
+    const v = options.get(name);
+    return typeof v === 'string' ? parseInteger(name, v, min, max) : undefined;
+  };
+  const exposureText = options.get('exposure');
+  let exposure = 1;
+  if (typeof exposureText === 'string') {
+    exposure = Number(exposureText);
+    if (exposureText.trim() === '' || !Number.isFinite(exposure) || exposure <= 0) {
+      throw new UsageError(
+        `--exposure must be a finite number > 0, got ${JSON.stringify(exposureText)}`,
+      );
+    }
+  }
+  const estimator = options.get('estimator') ?? 'nee-mis';
+  if (estimator !== 'nee-mis' && estimator !== 'bsdf') {
+    throw new UsageError(`--estimator must be nee-mis or bsdf, got ${JSON.stringify(estimator)}`);
+  }
+  const sampler = options.get('sampler') ?? 'independent';
+  if (!SAMPLER_KINDS.includes(sampler as SamplerKind)) {
+    throw new UsageError(
+      `--sampler must be one of ${SAMPLER_KINDS.join(', ')}, got ${JSON.stringify(sampler)}`,
+    );
+  }
+  return {
+    scenePath: positional[0],
+    out,
+    // Range checks of spp/size/bounces against the scene limits happen in
+    // validateSettingsOverride, with the same messages as the loader.
+    spp: int('spp', -Number.MAX_SAFE_INTEGER, Number.MAX_SAFE_INTEGER),
+    width: int('width', -Number.MAX_SAFE_INTEGER, Number.MAX_SAFE_INTEGER),
+    height: int('height', -Number.MAX_SAFE_INTEGER, Number.MAX_SAFE_INTEGER),
+    bounces: int('bounces', -Number.MAX_SAFE_INTEGER, Number.MAX_SAFE_INTEGER),
+    seed: int('seed', 0, 2 ** 32 - 1) ?? 0,
+    threads: int('threads', 1, 256),
+    exposure,
+    estimator,
+    sampler: sampler as SamplerKind,
+    json: options.has('json'),
+    stripeRows: int('stripe-rows', 1, 1 << 24),
+  };
+}

@@ -1,0 +1,60 @@
+/**
+ * The stripe scheme shared by the Node command line and the browser pool:
+ * the image is cut into horizontal stripes of `stripeRows` rows, and
+ * workers claim stripes from a shared atomic counter. Because every pixel's
+ * samples depend only on (seed, pixel, sample) and are added in sample
+ * order, the result is bit-identical for any stripe height and any number
+ * of workers.
+ */
+import {
+  Film,
+  PathTracer,
+  RenderStats,
+  compileScene,
+  type Estimator,
+  type SamplerKind,
+  type Scene,
+} from '../src/core/index.ts';
+
+export interface StripeJob {
+  scene: Scene;
+  width: number;
+  height: number;
+  maxBounces: number;
+  seed: number;
+  estimator: Estimator;
+  sampler: SamplerKind;
+  stripeRows: number;
+}
+
+export function stripeCount(height: number, stripeRows: number): number {
+  return Math.ceil(height / stripeRows);
+}
+
+/** Builds the tracer for a job (each worker does this once). */
+export function createTracer(job: StripeJob): PathTracer {
+  return new PathTracer(compileScene(job.scene), {
+    width: job.width,
+    height: job.height,
+    maxBounces: job.maxBounces,
+    seed: job.seed,
+    estimator: job.estimator,
+    sampler: job.sampler,
+    camera: job.scene.camera,
+  });
+}
+
+/** Renders samples [sampleStart, sampleEnd) of stripe `stripe` into `film`. */
+export function renderStripe(
+  tracer: PathTracer,
+  film: Film,
+  job: StripeJob,
+  stripe: number,
+  sampleStart: number,
+  sampleEnd: number,
+  stats: RenderStats,
+): void {
+  const y0 = stripe * job.stripeRows;
+  const y1 = Math.min(job.height, y0 + job.stripeRows);
+  tracer.renderRows(film, y0, y1, sampleStart, sampleEnd, stats);
+}
