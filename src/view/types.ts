@@ -1,0 +1,107 @@
+/**
+ * The browser-side API shared by the demo (src/app) and the widget
+ * (src/widget): `createPathTracer(canvas, options)` returns a
+ * PathTracerController. This file is the contract; src/view implements it.
+ */
+import type { CameraDesc, Scene } from '../core/index.ts';
+
+export type DisplayMode = 'webgl2' | 'canvas2d';
+export type ComputeMode = 'shared' | 'transfer';
+
+export interface FallbackInfo {
+  display: DisplayMode;
+  compute: ComputeMode;
+  /** Plain words: why this mode runs (e.g. "page is not cross-origin isolated"). */
+  reason: string;
+}
+
+export interface ProgressInfo {
+  spp: number;
+  target: number;
+  /** Segments (camera, bounce and shadow rays) per second, recent average. */
+  raysPerSecond: number;
+  /** Relative standard error of the image mean luminance, from per-pixel variance. */
+  noise: number;
+}
+
+export interface RenderStatsInfo extends ProgressInfo {
+  fps: number;
+  /** Main-thread milliseconds per frame for upload + display. */
+  frameMs: number;
+  width: number;
+  height: number;
+  workers: number;
+  memoryBytes: number;
+  rejected: number;
+  paused: boolean;
+}
+
+export interface PathTracerOptions {
+  /** A scene object (validated on load) or a URL to fetch. */
+  scene?: unknown;
+  src?: string;
+  /** Target samples per pixel; tracing stops there (default 512). */
+  spp?: number;
+  /** Max bounces; default from the scene. */
+  bounces?: number;
+  /** Display exposure (linear gain), default 1; never resets accumulation. */
+  exposure?: number;
+  seed?: number;
+  /** Render resolution relative to canvas CSS size × devicePixelRatio (default 1). */
+  renderScale?: number;
+  /** Fixed render size; overrides the canvas-derived size (tests, benchmarks). */
+  width?: number;
+  height?: number;
+  /** Worker count; default navigator.hardwareConcurrency. */
+  workers?: number;
+  display?: 'auto' | DisplayMode;
+  /** 'off' forces the transferable-stripe fallback even when isolated. */
+  shared?: 'auto' | 'off';
+  /** Where the worker script is, or a factory, for bundlers/CDNs that break the default URL. */
+  workerUrl?: string | URL;
+  workerFactory?: () => Worker;
+  autoplay?: boolean;
+  /** Orbit on drag, dolly on wheel. */
+  cameraControls?: boolean;
+}
+
+export interface PathTracerEventMap {
+  load: CustomEvent<{ scene: Scene }>;
+  progress: CustomEvent<ProgressInfo>;
+  converged: CustomEvent<ProgressInfo>;
+  error: CustomEvent<{ message: string }>;
+  fallback: CustomEvent<FallbackInfo>;
+}
+
+export interface PathTracerController extends EventTarget {
+  readonly canvas: HTMLCanvasElement;
+  readonly mode: FallbackInfo;
+  readonly scene: Scene | null;
+  /** Validates and loads a scene object; rejects with the loader's message, keeping the current scene. */
+  setScene(scene: unknown): Promise<void>;
+  load(url: string): Promise<void>;
+  reset(): void;
+  pause(): void;
+  resume(): void;
+  readonly paused: boolean;
+  setTargetSpp(spp: number): void;
+  setBounces(bounces: number): void;
+  setExposure(exposure: number): void;
+  setSeed(seed: number): void;
+  setRenderScale(scale: number): void;
+  setWorkers(count: number): Promise<void>;
+  getCamera(): CameraDesc;
+  setCamera(camera: CameraDesc): void;
+  /** Orbit around the target by pixel deltas; dolly by a factor. */
+  orbit(dxPixels: number, dyPixels: number): void;
+  dolly(factor: number): void;
+  setAperture(aperture: number): void;
+  /** Sets the focus distance to the surface under canvas point (x, y) in CSS pixels. */
+  focusAt(x: number, y: number): boolean;
+  stats(): RenderStatsInfo;
+  /** Linear mean radiance, RGB float32, row 0 at the top. */
+  readLinear(): { width: number; height: number; rgb: Float32Array };
+  toBlob(): Promise<Blob>;
+  toPFM(): Uint8Array;
+  destroy(): void;
+}
