@@ -23,3 +23,4 @@ export { encodePng, zlibStored } from './io/png.ts';
 export { acesFilmic, srgbEncode, toDisplayByte, tonemapSums } from './io/tonemap.ts';
 export { pcgHash } from './rng/pcg.ts';
 export { Sampler, SAMPLER_KINDS, type SamplerKind } from './sampling/sampler.ts';
+export { estimateNoise, type NoiseInput } from './film/noise.ts';

@@ -88,6 +88,15 @@ const SHADOW_SHORTEN = 1 - 2 ** -30;
 /** Russian roulette begins once a path has scattered this many times. */
 const ROULETTE_DEPTH = 3;
 
+/**
+ * Draws `count` numbers from `dimension` on into `out`. Writing into a
+ * typed array, rather than returning each number, keeps doubles unboxed
+ * across the (too large to inline) tracing loop: no allocation per sample.
+ */
+function fillSamples(sampler: Sampler, dimension: number, count: number, out: Float64Array): void {
+  for (let k = 0; k < count; k++) out[k] = sampler.get1D(dimension + k);
+}
+
 export class PathTracer {
   readonly scene: CompiledScene;
   readonly camera: Camera;
@@ -107,6 +116,8 @@ export class PathTracer {
   private readonly bs = new BsdfSample();
   private readonly fv = new BsdfValue();
   private readonly ls = new LightSample();
+  /** This bounce's random numbers (see fillSamples). */
+  private readonly u = new Float64Array(DIM_PER_BOUNCE);
 
   constructor(scene: CompiledScene, options: TracerOptions) {
     this.scene = scene;
@@ -177,14 +188,10 @@ export class PathTracer {
     const nee = this.estimator === 'nee-mis' && lights !== null;
     const maxBounces = this.maxBounces;
 
+    const u = this.u;
     sampler.startPixelSample(py * this.width + px, sampleIndex);
-    this.camera.generateRay(
-      px + sampler.get1D(DIM_FILM),
-      py + sampler.get1D(DIM_FILM + 1),
-      sampler.get1D(DIM_LENS),
-      sampler.get1D(DIM_LENS + 1),
-      ray,
-    );
+    fillSamples(sampler, DIM_FILM, 4, u);
+    this.camera.generateRay(px + u[0], py + u[1], u[2], u[3], ray);
     let segments = 1;
     let lr = 0,
       lg = 0,
@@ -303,12 +310,12 @@ export class PathTracer {
       const lwoy = wox * frame.tx + woy * frame.ty + woz * frame.tz;
       const lwoz = wox * sx + woy * sy + woz * sz;
       const scale = Math.max(Math.abs(x), Math.abs(y), Math.abs(z), shapeScale) * OFFSET_SCALE;
-      const base = DIM_BOUNCE + depth * DIM_PER_BOUNCE;
+      fillSamples(sampler, DIM_BOUNCE + depth * DIM_PER_BOUNCE, DIM_PER_BOUNCE, u);
 
       // Next-event estimation.
       if (nee && materials[mo + M_DELTA] === 0) {
         const ls = this.ls;
-        const l = lights!.choose(sampler.get1D(base + DIM_LIGHT_CHOICE));
+        const l = lights!.choose(u[DIM_LIGHT_CHOICE]);
         if (
           sampleLight(
             lights!,
@@ -318,8 +325,8 @@ export class PathTracer {
             x,
             y,
             z,
-            sampler.get1D(base + DIM_LIGHT_POINT),
-            sampler.get1D(base + DIM_LIGHT_POINT + 1),
+            u[DIM_LIGHT_POINT],
+            u[DIM_LIGHT_POINT + 1],
             ls,
           )
         ) {
@@ -366,9 +373,9 @@ export class PathTracer {
           lwox,
           lwoy,
           lwoz,
-          sampler.get1D(base + DIM_BSDF),
-          sampler.get1D(base + DIM_BSDF + 1),
-          sampler.get1D(base + DIM_BSDF_LOBE),
+          u[DIM_BSDF],
+          u[DIM_BSDF + 1],
+          u[DIM_BSDF_LOBE],
           bs,
         )
       ) {
@@ -394,7 +401,7 @@ export class PathTracer {
         const rr = Math.max(br, bg, bb) * etaScale;
         if (rr < 1) {
           const q = Math.max(0.05, 1 - rr);
-          if (sampler.get1D(base + DIM_ROULETTE) < q) break;
+          if (u[DIM_ROULETTE] < q) break;
           const inv = 1 / (1 - q);
           br *= inv;
           bg *= inv;

@@ -1,16 +1,168 @@
 /**
- * Low-discrepancy samples for the leading dimensions (placeholder: see
- * issue "Speed against error"). Not yet implemented: a tracer built with
- * sampler 'sobol' is refused in the PathTracer constructor until it is.
+ * Owen-scrambled Sobol samples for the leading dimensions of a path, after
+ * Burley, "Practical Hash-based Owen Scrambling" (JCGT 9(4), 2020).
+ *
+ * For each pixel and each *group* of dimensions (a 2D pair such as the film
+ * position, or a single dimension such as the light choice):
+ *   1. the sample index is shuffled by a nested uniform (Owen) scramble keyed
+ *      by a PCG hash of (seed, pixel, group). Owen-scrambling an index keeps
+ *      every aligned block of 2^k indices inside one aligned block, so the
+ *      first 2^k samples of a pixel are still a whole (0,k,2)-net — the
+ *      shuffle only decorrelates the groups from each other (Burley §4,
+ *      "padding" in the sense of Kollig & Keller 2002);
+ *   2. the shuffled index selects a point of the 2D Sobol (0,2)-sequence
+ *      (dimension 0 = van der Corput, dimension 1 = the Pascal-matrix
+ *      dimension), or of van der Corput alone for a 1D group;
+ *   3. each coordinate is Owen-scrambled with its own hash key, which keeps
+ *      the net property (Owen 1995) and makes the estimator unbiased.
+ * Only the first two Sobol dimensions are ever used: they form a
+ * (0,2)-sequence, so every power-of-two prefix is stratified in every
+ * elementary interval, which higher Sobol dimensions do not guarantee.
+ *
+ * Everything is a pure function of (seed, pixel, sample, dimension), like
+ * the PCG hash sampler, so the image does not depend on thread count or
+ * stripe layout.
  */
-export const SOBOL_DIMENSIONS = 0;
-export const SOBOL_IMPLEMENTED = false;
+import { INV_2_32, hashToUnit, pcgHash, sampleKey } from '../rng/pcg.ts';
 
+/**
+ * Dimensions [0, SOBOL_DIMENSIONS) come from this module: the camera (film
+ * 0–1, lens 2–3) and the first bounce (4–11, see sampler.ts). Deeper
+ * bounces carry little of the variance after the first has been
+ * stratified, and the PCG hash is cheaper.
+ */
+export const SOBOL_DIMENSIONS = 12;
+export const SOBOL_IMPLEMENTED = true;
+
+/**
+ * How the leading dimensions are grouped, following the layout of
+ * sampler.ts: film (0,1), lens (2,3), then first bounce from DIM_BOUNCE = 4:
+ * light choice (4), light point (5,6), BSDF direction (7,8), BSDF lobe (9),
+ * Russian roulette (10). Dimension 11 is not used by the tracer and stays
+ * on the hash. A group of size 2 is a 2D Sobol pair; size 1 is van der
+ * Corput. Each entry: [first dimension, size].
+ */
+export const SOBOL_GROUPS: readonly (readonly [number, number])[] = [
+  [0, 2],
+  [2, 2],
+  [4, 1],
+  [5, 2],
+  [7, 2],
+  [9, 1],
+  [10, 1],
+];
+
+/** Reverses the 32 bits of x (returns an unsigned 32-bit integer). */
+export function reverseBits32(x: number): number {
+  x = ((x >>> 1) & 0x55555555) | ((x & 0x55555555) << 1);
+  x = ((x >>> 2) & 0x33333333) | ((x & 0x33333333) << 2);
+  x = ((x >>> 4) & 0x0f0f0f0f) | ((x & 0x0f0f0f0f) << 4);
+  x = ((x >>> 8) & 0x00ff00ff) | ((x & 0x00ff00ff) << 8);
+  return ((x >>> 16) | (x << 16)) >>> 0;
+}
+
+/**
+ * Nested uniform scramble of a 32-bit fixed-point number (bit 31 = first
+ * binary digit). Burley's construction: reverse the bits, apply a
+ * Laine–Karras-style permutation (each output bit depends only on the same
+ * and lower input bits), reverse back — so the flip of each digit depends
+ * only on the digits before it, which is Owen's scramble. The permutation
+ * constants are Vegdahl's improved hash ("Building a Better LK Hash", 2021),
+ * which fixes the weak high bits of Burley's original constants.
+ */
+export function owenScramble(x: number, seed: number): number {
+  x = reverseBits32(x);
+  x ^= Math.imul(x, 0x3d20adea);
+  x = (x + seed) | 0;
+  x = Math.imul(x, (seed >>> 16) | 1);
+  x ^= Math.imul(x, 0x05526c56);
+  x ^= Math.imul(x, 0x53a22864);
+  return reverseBits32(x);
+}
+
+/**
+ * Second Sobol dimension (primitive polynomial x + 1; its generator is the
+ * Pascal matrix mod 2): direction v_0 = 2^31, v_i = v_{i−1} ^ (v_{i−1} >> 1).
+ * Tabulated per byte of the index so one point costs four lookups.
+ */
+const SOBOL1_TABLE = (() => {
+  const dirs = new Uint32Array(32);
+  dirs[0] = 0x80000000;
+  for (let i = 1; i < 32; i++) dirs[i] = dirs[i - 1] ^ (dirs[i - 1] >>> 1);
+  const table = new Uint32Array(4 * 256);
+  for (let b = 0; b < 4; b++) {
+    for (let v = 0; v < 256; v++) {
+      let x = 0;
+      for (let bit = 0; bit < 8; bit++) if (v & (1 << bit)) x ^= dirs[b * 8 + bit];
+      table[b * 256 + v] = x >>> 0;
+    }
+  }
+  return table;
+})();
+
+/** Sobol dimension 1 of index i, as a 32-bit fixed-point number. */
+export function sobol1(i: number): number {
+  const t = SOBOL1_TABLE;
+  return (
+    (t[i & 255] ^
+      t[256 + ((i >>> 8) & 255)] ^
+      t[512 + ((i >>> 16) & 255)] ^
+      t[768 + (i >>> 24)]) >>>
+    0
+  );
+}
+
+/** Key of one (seed, pixel) pair; the group keys derive from it. */
+export function pixelKey(seed: number, pixel: number): number {
+  return pcgHash((seed + pcgHash(pixel >>> 0)) >>> 0);
+}
+
+/**
+ * Fills out[0 .. SOBOL_DIMENSIONS) with the low-discrepancy numbers of one
+ * (pixel, sample); `key` is pixelKey(seed, pixel), and `sampleKey` is the
+ * PCG sample key used for the dimensions no group covers.
+ */
+export function sobolFill(
+  key: number,
+  sample: number,
+  sampleKeyValue: number,
+  out: Float64Array,
+): void {
+  for (let g = 0; g < SOBOL_GROUPS.length; g++) {
+    const first = SOBOL_GROUPS[g][0];
+    const size = SOBOL_GROUPS[g][1];
+    // One hash chain per group: shuffle key, then one scramble key per
+    // coordinate. The odd multipliers only spread the small integers.
+    const groupKey = pcgHash((key + Math.imul(g + 1, 0x9e3779b9)) >>> 0);
+    const index = owenScramble(sample >>> 0, groupKey);
+    const k0 = pcgHash(groupKey ^ 0x68e31da4);
+    out[first] = owenScramble(reverseBits32(index), k0) * INV_2_32;
+    if (size === 2) {
+      const k1 = pcgHash(groupKey ^ 0xb5297a4d);
+      out[first + 1] = owenScramble(sobol1(index), k1) * INV_2_32;
+    }
+  }
+  // Dimension 11 is in no group.
+  out[11] = hashToUnit(sampleKeyValue, 11);
+}
+
+/**
+ * The number of dimension `dimension` < SOBOL_DIMENSIONS of sample `sample`
+ * of pixel `pixel`: the reference form, used by tests; the sampler calls
+ * sobolFill once per (pixel, sample) instead.
+ */
 export function sobolSample(
-  _seed: number,
-  _pixel: number,
-  _sample: number,
-  _dimension: number,
+  seed: number,
+  pixel: number,
+  sample: number,
+  dimension: number,
 ): number {
-  throw new Error('the sobol sampler is not implemented yet');
+  if (dimension < 0 || dimension >= SOBOL_DIMENSIONS || !Number.isInteger(dimension)) {
+    throw new RangeError(`sobol dimension ${dimension} outside [0, ${SOBOL_DIMENSIONS})`);
+  }
+  const out = new Float64Array(SOBOL_DIMENSIONS);
+  const seedU = seed >>> 0;
+  // The fallback dimension uses the same sample key as the hash sampler.
+  sobolFill(pixelKey(seedU, pixel), sample, sampleKey(seedU, pixel, sample), out);
+  return out[dimension];
 }

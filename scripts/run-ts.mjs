@@ -1,0 +1,28 @@
+// Runs a TypeScript entry point on plain Node: bundles it with esbuild into
+// a temporary .mjs (so imports of the core resolve as in the app) and
+// imports that. Usage: node scripts/run-ts.mjs FILE.ts [args…]
+import { build } from 'esbuild';
+import { mkdtempSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join, resolve } from 'node:path';
+import { pathToFileURL } from 'node:url';
+
+const [entry, ...args] = process.argv.slice(2);
+if (!entry) {
+  process.stderr.write('usage: node scripts/run-ts.mjs FILE.ts [args…]\n');
+  process.exit(2);
+}
+const outfile = join(mkdtempSync(join(tmpdir(), 'pathwise-run-')), 'entry.mjs');
+await build({
+  entryPoints: [resolve(entry)],
+  outfile,
+  bundle: true,
+  platform: 'node',
+  format: 'esm',
+  target: 'node20',
+  logLevel: 'warning',
+  // Keep node_modules external so relative asset paths keep working.
+  packages: 'external',
+});
+process.argv = [process.argv[0], resolve(entry), ...args];
+await import(pathToFileURL(outfile).href);

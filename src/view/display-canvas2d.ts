@@ -1,0 +1,53 @@
+/**
+ * Canvas 2D display: the fallback for a weak or missing GPU. The core's
+ * tonemapSums runs on the main thread into an ImageData, so the picture
+ * equals the WebGL2 one within 1/255 per channel.
+ */
+import { tonemapSums } from '../core/index.ts';
+import type { Display, DisplayPixels } from './display.ts';
+
+export class Canvas2DDisplay implements Display {
+  readonly mode = 'canvas2d' as const;
+  private readonly canvas: HTMLCanvasElement;
+  private readonly ctx: CanvasRenderingContext2D;
+  private image: ImageData | null = null;
+  /** Holds a preview film's pixels before they are scaled onto the canvas. */
+  private scratch: HTMLCanvasElement | null = null;
+
+  constructor(canvas: HTMLCanvasElement) {
+    const ctx = canvas.getContext('2d', { alpha: false });
+    if (!ctx) throw new Error('Canvas 2D is unavailable');
+    this.canvas = canvas;
+    this.ctx = ctx;
+  }
+
+  draw(sums: Float32Array, filmWidth: number, filmHeight: number, exposure: number): void {
+    if (!this.image || this.image.width !== filmWidth || this.image.height !== filmHeight) {
+      this.image = new ImageData(filmWidth, filmHeight);
+    }
+    tonemapSums(sums.subarray(0, filmWidth * filmHeight * 4), exposure, this.image.data);
+    const { width, height } = this.canvas;
+    if (filmWidth === width && filmHeight === height) {
+      this.ctx.putImageData(this.image, 0, 0);
+      return;
+    }
+    this.scratch ??= document.createElement('canvas');
+    this.scratch.width = filmWidth;
+    this.scratch.height = filmHeight;
+    this.scratch.getContext('2d')!.putImageData(this.image, 0, 0);
+    // Nearest neighbours, as the WebGL2 path samples the preview.
+    this.ctx.imageSmoothingEnabled = false;
+    this.ctx.drawImage(this.scratch, 0, 0, width, height);
+  }
+
+  readPixels(): DisplayPixels {
+    const { width, height } = this.canvas;
+    const data = this.ctx.getImageData(0, 0, width, height).data;
+    return { width, height, rgba: new Uint8Array(data.buffer, data.byteOffset, data.byteLength) };
+  }
+
+  destroy(): void {
+    this.image = null;
+    this.scratch = null;
+  }
+}

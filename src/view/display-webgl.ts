@@ -1,0 +1,138 @@
+/**
+ * WebGL2 display: every frame the film's sums go up as an RGBA32F texture
+ * and a fragment shader divides by the sample count and tone maps
+ * (shaders/display.frag.glsl, the same transform as the core's
+ * tonemapSums). The main thread's cost is one texSubImage2D and one draw.
+ */
+import fragmentSource from '../../shaders/display.frag.glsl?raw';
+import vertexSource from '../../shaders/display.vert.glsl?raw';
+import type { Display, DisplayPixels } from './display.ts';
+
+function compile(gl: WebGL2RenderingContext, type: number, source: string): WebGLShader {
+  const shader = gl.createShader(type)!;
+  gl.shaderSource(shader, source);
+  gl.compileShader(shader);
+  if (!gl.getShaderParameter(shader, gl.COMPILE_STATUS)) {
+    throw new Error(`display shader: ${gl.getShaderInfoLog(shader) ?? 'compile error'}`);
+  }
+  return shader;
+}
+
+export class WebGLDisplay implements Display {
+  readonly mode = 'webgl2' as const;
+  private readonly canvas: HTMLCanvasElement;
+  private readonly gl: WebGL2RenderingContext;
+  private readonly program: WebGLProgram;
+  private readonly texture: WebGLTexture;
+  private readonly uExposure: WebGLUniformLocation | null;
+  private readonly uCanvasSize: WebGLUniformLocation | null;
+  private texWidth = 0;
+  private texHeight = 0;
+  /**
+   * Browsers that refuse a SharedArrayBuffer view in texSubImage2D get the
+   * sums through this ordinary copy instead.
+   */
+  private staging: Float32Array | null = null;
+  private sharedUploadFails = false;
+
+  /** Throws, with the reason in plain words, when WebGL2 or float textures are unavailable. */
+  constructor(canvas: HTMLCanvasElement) {
+    const gl = canvas.getContext('webgl2', {
+      alpha: false,
+      antialias: false,
+      depth: false,
+      stencil: false,
+      preserveDrawingBuffer: false,
+    });
+    if (!gl) throw new Error('WebGL2 is unavailable');
+    this.canvas = canvas;
+    this.gl = gl;
+    const program = gl.createProgram()!;
+    gl.attachShader(program, compile(gl, gl.VERTEX_SHADER, vertexSource));
+    gl.attachShader(program, compile(gl, gl.FRAGMENT_SHADER, fragmentSource));
+    gl.linkProgram(program);
+    if (!gl.getProgramParameter(program, gl.LINK_STATUS)) {
+      throw new Error(`display shader: ${gl.getProgramInfoLog(program) ?? 'link error'}`);
+    }
+    this.program = program;
+    this.uExposure = gl.getUniformLocation(program, 'u_exposure');
+    this.uCanvasSize = gl.getUniformLocation(program, 'u_canvasSize');
+    this.texture = gl.createTexture()!;
+    gl.bindTexture(gl.TEXTURE_2D, this.texture);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
+    // Probe: a 1×1 float texture must upload without error.
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, 1, 1, 0, gl.RGBA, gl.FLOAT, new Float32Array(4));
+    if (gl.getError() !== gl.NO_ERROR) throw new Error('float textures are unavailable');
+    this.texWidth = 1;
+    this.texHeight = 1;
+  }
+
+  draw(sums: Float32Array, filmWidth: number, filmHeight: number, exposure: number): void {
+    const gl = this.gl;
+    gl.bindTexture(gl.TEXTURE_2D, this.texture);
+    // Tightly packed rows of 16-byte texels.
+    gl.pixelStorei(gl.UNPACK_ALIGNMENT, 4);
+    const data = sums.subarray(0, filmWidth * filmHeight * 4);
+    if (filmWidth !== this.texWidth || filmHeight !== this.texHeight) {
+      gl.texImage2D(
+        gl.TEXTURE_2D,
+        0,
+        gl.RGBA32F,
+        filmWidth,
+        filmHeight,
+        0,
+        gl.RGBA,
+        gl.FLOAT,
+        null,
+      );
+      this.texWidth = filmWidth;
+      this.texHeight = filmHeight;
+    }
+    this.upload(data, filmWidth, filmHeight);
+    gl.viewport(0, 0, this.canvas.width, this.canvas.height);
+    gl.useProgram(this.program);
+    gl.uniform1f(this.uExposure, exposure);
+    gl.uniform2f(this.uCanvasSize, this.canvas.width, this.canvas.height);
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+  }
+
+  private upload(data: Float32Array, w: number, h: number): void {
+    const gl = this.gl;
+    if (!this.sharedUploadFails) {
+      try {
+        gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, w, h, gl.RGBA, gl.FLOAT, data);
+        return;
+      } catch {
+        this.sharedUploadFails = true;
+      }
+    }
+    if (!this.staging || this.staging.length < data.length)
+      this.staging = new Float32Array(data.length);
+    const staging = this.staging.subarray(0, data.length);
+    staging.set(data);
+    gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, w, h, gl.RGBA, gl.FLOAT, staging);
+  }
+
+  readPixels(): DisplayPixels {
+    // Without preserveDrawingBuffer the canvas may be cleared after a frame
+    // is presented, so callers redraw right before reading (the controller does).
+    const gl = this.gl;
+    const { width, height } = this.canvas;
+    const raw = new Uint8Array(width * height * 4);
+    gl.readPixels(0, 0, width, height, gl.RGBA, gl.UNSIGNED_BYTE, raw);
+    const rgba = new Uint8Array(raw.length);
+    const stride = width * 4;
+    for (let y = 0; y < height; y++) {
+      rgba.set(raw.subarray((height - 1 - y) * stride, (height - y) * stride), y * stride);
+    }
+    return { width, height, rgba };
+  }
+
+  destroy(): void {
+    this.gl.deleteTexture(this.texture);
+    this.gl.deleteProgram(this.program);
+  }
+}

@@ -1,0 +1,36 @@
+/**
+ * The main thread's side of one film being rendered: where its samples
+ * are, how many passes are done, and how to reset it. Two kinds: the
+ * shared job (workers write the film in place, coordinated through the
+ * control block) and the transfer job (the main thread hands out stripe
+ * passes and merges the rows that come back).
+ */
+import type { Film } from '../core/index.ts';
+import type { StripeResult, StripeTask } from '../../workers/render-protocol.ts';
+
+export interface FilmJob {
+  readonly film: Film;
+  readonly width: number;
+  readonly height: number;
+  readonly stripeRows: number;
+  /** Approximate bytes held for this film (sums, Kahan terms, control). */
+  readonly memoryBytes: number;
+  /** Clears the film and drops all work in flight. */
+  reset(): void;
+  /** Marks the job as rendered under configuration `version` (-1: not at all). */
+  setVersion(version: number): void;
+  setTarget(spp: number): void;
+  setPaused(paused: boolean): void;
+  /** Passes finished by every stripe: the image's samples per pixel. */
+  passesDone(): number;
+  /** Passes finished, averaged over stripes (fractional; for the progress bar). */
+  progress(): number;
+  /** A number that changes whenever new samples landed in the film. */
+  changeCount(): number;
+  /** Segments traced since the previous call. */
+  takeSegments(): number;
+  rejected(): number;
+  /** Transfer mode only. */
+  nextTask?(job: number): StripeTask | null;
+  onResult?(result: StripeResult): void;
+}

@@ -1,0 +1,107 @@
+/**
+ * A film on a SharedArrayBuffer that the workers write in place. The main
+ * thread only changes the control block under its lock (see
+ * workers/render-protocol.ts) and reads the sums for display.
+ */
+import { Film } from '../core/index.ts';
+import {
+  C_CLAIM,
+  C_COMMITS,
+  C_CONFIG,
+  C_DONE,
+  C_GEN,
+  C_PAUSED,
+  C_REJECTED,
+  C_SEGMENTS,
+  C_TARGET,
+  controlWords,
+  lock,
+  unlock,
+} from '../../workers/render-protocol.ts';
+import type { FilmJob } from './film-job.ts';
+
+export class SharedFilmJob implements FilmJob {
+  readonly film: Film;
+  readonly width: number;
+  readonly height: number;
+  readonly stripeRows: number;
+  readonly stripes: number;
+  readonly filmBuffer: SharedArrayBuffer;
+  readonly ctrlBuffer: SharedArrayBuffer;
+  private readonly ctrl: Int32Array;
+  private lastSegments = 0;
+
+  constructor(width: number, height: number, stripeRows: number, target: number) {
+    this.width = width;
+    this.height = height;
+    this.stripeRows = stripeRows;
+    this.stripes = Math.ceil(height / stripeRows);
+    this.filmBuffer = new SharedArrayBuffer(Film.byteLength(width, height));
+    this.ctrlBuffer = new SharedArrayBuffer(controlWords(this.stripes) * 4);
+    this.film = new Film(width, height, this.filmBuffer);
+    this.ctrl = new Int32Array(this.ctrlBuffer);
+    this.ctrl[C_CONFIG] = -1;
+    this.ctrl[C_TARGET] = target;
+  }
+
+  get memoryBytes(): number {
+    return this.filmBuffer.byteLength + this.ctrlBuffer.byteLength;
+  }
+
+  reset(): void {
+    const ctrl = this.ctrl;
+    lock(ctrl);
+    // Under the lock no worker is committing a row; once the generation is
+    // bumped, rows rendered before this point fail their commit check.
+    this.film.clear();
+    ctrl[C_CLAIM] = 0;
+    ctrl.fill(0, C_DONE, C_DONE + this.stripes);
+    ctrl[C_GEN]++;
+    ctrl[C_COMMITS]++;
+    unlock(ctrl);
+    // Workers waiting for a stripe's previous pass look at the generation again.
+    for (let s = 0; s < this.stripes; s++) Atomics.notify(ctrl, C_DONE + s);
+  }
+
+  setVersion(version: number): void {
+    lock(this.ctrl);
+    this.ctrl[C_CONFIG] = version;
+    unlock(this.ctrl);
+  }
+
+  setTarget(spp: number): void {
+    Atomics.store(this.ctrl, C_TARGET, spp);
+  }
+
+  setPaused(paused: boolean): void {
+    Atomics.store(this.ctrl, C_PAUSED, paused ? 1 : 0);
+  }
+
+  passesDone(): number {
+    let min = Infinity;
+    for (let s = 0; s < this.stripes; s++) min = Math.min(min, Atomics.load(this.ctrl, C_DONE + s));
+    return min === Infinity ? 0 : min;
+  }
+
+  progress(): number {
+    let sum = 0;
+    for (let s = 0; s < this.stripes; s++) sum += Atomics.load(this.ctrl, C_DONE + s);
+    return sum / this.stripes;
+  }
+
+  changeCount(): number {
+    return Atomics.load(this.ctrl, C_COMMITS);
+  }
+
+  takeSegments(): number {
+    const now = Atomics.load(this.ctrl, C_SEGMENTS);
+    // The counter wraps at 2^32; the difference modulo 2^32 is exact.
+    const delta = (now - this.lastSegments) >>> 0;
+    this.lastSegments = now;
+    return delta;
+  }
+
+  rejected(): number {
+    return Atomics.load(this.ctrl, C_REJECTED);
+  }
+}

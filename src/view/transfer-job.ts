@@ -1,0 +1,149 @@
+/**
+ * The fallback without SharedArrayBuffer: the film lives on the main
+ * thread, and each task ships one stripe's rows (sums and Kahan terms) to
+ * a worker, which adds one pass and ships them back. A stripe is out at
+ * most once at a time and stripes are handed out pass by pass, so every
+ * pixel still receives samples 0, 1, 2, … in order and the image is the
+ * same, bit for bit, as the shared path's.
+ */
+import { Film } from '../core/index.ts';
+import type { StripeResult, StripeTask } from '../../workers/render-protocol.ts';
+import type { FilmJob } from './film-job.ts';
+
+export class TransferFilmJob implements FilmJob {
+  readonly film: Film;
+  readonly width: number;
+  readonly height: number;
+  readonly stripeRows: number;
+  readonly stripes: number;
+  private gen = 0;
+  private version = -1;
+  private target: number;
+  private paused = false;
+  private done: Int32Array;
+  private inFlight: Uint8Array;
+  /** Stripes ready for their next pass, in the order they will be handed out. */
+  private queue: number[] = [];
+  private commits = 0;
+  private segments = 0;
+  private rejectedCount = 0;
+
+  constructor(width: number, height: number, stripeRows: number, target: number) {
+    this.width = width;
+    this.height = height;
+    this.stripeRows = stripeRows;
+    this.stripes = Math.ceil(height / stripeRows);
+    this.film = new Film(width, height);
+    this.target = target;
+    this.done = new Int32Array(this.stripes);
+    this.inFlight = new Uint8Array(this.stripes);
+    this.requeue();
+  }
+
+  get memoryBytes(): number {
+    return this.film.buffer.byteLength;
+  }
+
+  private requeue(): void {
+    this.queue = [];
+    for (let s = 0; s < this.stripes; s++) {
+      if (!this.inFlight[s] && this.done[s] < this.target) this.queue.push(s);
+    }
+  }
+
+  reset(): void {
+    this.gen++;
+    this.film.clear();
+    this.done = new Int32Array(this.stripes);
+    // Tasks of the old generation still out are dropped when they return.
+    this.inFlight = new Uint8Array(this.stripes);
+    this.requeue();
+    this.commits++;
+  }
+
+  setVersion(version: number): void {
+    this.version = version;
+  }
+
+  setTarget(spp: number): void {
+    this.target = spp;
+    this.requeue();
+  }
+
+  setPaused(paused: boolean): void {
+    this.paused = paused;
+  }
+
+  passesDone(): number {
+    let min = Infinity;
+    for (let s = 0; s < this.stripes; s++) min = Math.min(min, this.done[s]);
+    return min === Infinity ? 0 : min;
+  }
+
+  progress(): number {
+    let sum = 0;
+    for (let s = 0; s < this.stripes; s++) sum += this.done[s];
+    return sum / this.stripes;
+  }
+
+  changeCount(): number {
+    return this.commits;
+  }
+
+  takeSegments(): number {
+    const s = this.segments;
+    this.segments = 0;
+    return s;
+  }
+
+  rejected(): number {
+    return this.rejectedCount;
+  }
+
+  nextTask(job: number): StripeTask | null {
+    if (this.paused || this.version < 0) return null;
+    const stripe = this.queue.shift();
+    if (stripe === undefined) return null;
+    const y0 = stripe * this.stripeRows;
+    const rows = Math.min(this.height, y0 + this.stripeRows) - y0;
+    const buffer = new ArrayBuffer(Film.byteLength(this.width, rows));
+    const window = new Film(this.width, rows, buffer, y0);
+    const a = y0 * this.width * 4;
+    const b = a + rows * this.width * 4;
+    window.sums.set(this.film.sums.subarray(a, b));
+    window.extra.set(this.film.extra.subarray(a, b));
+    this.inFlight[stripe] = 1;
+    return {
+      type: 'task',
+      job,
+      version: this.version,
+      gen: this.gen,
+      stripe,
+      pass: this.done[stripe],
+      y0,
+      rows,
+      buffer,
+    };
+  }
+
+  onResult(result: StripeResult): void {
+    this.segments += result.segments;
+    this.rejectedCount += result.rejected;
+    if (result.gen !== this.gen) return;
+    const s = result.stripe;
+    this.inFlight[s] = 0;
+    if (result.rendered) {
+      const window = new Film(this.width, result.rows, result.buffer, result.y0);
+      const a = result.y0 * this.width * 4;
+      this.film.sums.set(window.sums, a);
+      this.film.extra.set(window.extra, a);
+      this.done[s]++;
+      this.commits++;
+    }
+    if (this.done[s] < this.target) {
+      // A stripe that was not rendered goes first again, to keep pass order tight.
+      if (result.rendered) this.queue.push(s);
+      else this.queue.unshift(s);
+    }
+  }
+}

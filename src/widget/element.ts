@@ -1,0 +1,442 @@
+/**
+ * <pathwise-view>: a custom element wrapping one PathTracerController.
+ * Attributes configure it, the controller's events are re-dispatched on the
+ * element, and the element decides *when* to trace: never while disconnected,
+ * off screen, in a hidden tab or paused by the author.
+ */
+import { createPathTracer } from '../view/index.ts';
+import type {
+  FallbackInfo,
+  PathTracerController,
+  PathTracerEventMap,
+  PathTracerOptions,
+  ProgressInfo,
+} from '../view/types.ts';
+import {
+  DEFAULT_EXPOSURE,
+  DEFAULT_RENDER_SCALE,
+  DEFAULT_SPP,
+  OBSERVED_ATTRIBUTES,
+  parseAutoplay,
+  parseNumber,
+  parsePositive,
+  writeBoolean,
+  writeNumber,
+  type ObservedAttribute,
+} from './attributes.ts';
+import { OrbitControls } from './orbit-controls.ts';
+import { ELEMENT_CSS } from './styles.ts';
+import { VisibilityWatcher } from './visibility.ts';
+
+/** Events of <pathwise-view>: the controller's, re-dispatched on the element. */
+export interface PathwiseViewEventMap
+  extends Omit<HTMLElementEventMap, keyof PathTracerEventMap>, PathTracerEventMap {}
+
+/**
+ * Importing this module must not throw where there is no DOM (server-side
+ * rendering, Node tests): the class then extends an inert stand-in and is
+ * simply never registered.
+ */
+const ElementBase: typeof HTMLElement =
+  typeof HTMLElement === 'undefined' ? (class {} as unknown as typeof HTMLElement) : HTMLElement;
+
+const FORWARDED_EVENTS = ['load', 'progress', 'converged', 'error', 'fallback'] as const;
+
+export class PathwiseViewElement extends ElementBase {
+  static get observedAttributes(): readonly string[] {
+    return OBSERVED_ATTRIBUTES;
+  }
+
+  /** Where the render worker is, for hosts whose bundler or CDN breaks the default URL. */
+  workerFactory: (() => Worker) | undefined = undefined;
+
+  private readonly canvas: HTMLCanvasElement;
+  private readonly messageBox: HTMLDivElement;
+  private readonly visibility: VisibilityWatcher;
+  private readonly resizeObserver: ResizeObserver | null;
+  private tracer: PathTracerController | null = null;
+  private orbitControls: OrbitControls | null = null;
+  private sceneObject: unknown = undefined;
+  private lastProgress: ProgressInfo | null = null;
+  private lastWorkerUrl: string | URL | undefined = undefined;
+  /** Bumped on every scene request so a slow, superseded load cannot report over a newer one. */
+  private sceneRequest = 0;
+  private started = false;
+
+  constructor() {
+    super();
+    const root = this.attachShadow({ mode: 'open' });
+    const style = document.createElement('style');
+    style.textContent = ELEMENT_CSS;
+    this.canvas = document.createElement('canvas');
+    this.canvas.setAttribute('part', 'canvas');
+    this.messageBox = document.createElement('div');
+    this.messageBox.setAttribute('part', 'message');
+    this.messageBox.setAttribute('role', 'alert');
+    this.messageBox.hidden = true;
+    root.append(style, this.canvas, this.messageBox);
+    this.visibility = new VisibilityWatcher(this, () => this.applyRunState());
+    this.resizeObserver =
+      typeof ResizeObserver === 'undefined' ? null : new ResizeObserver(() => this.onResize());
+  }
+
+  // ---- attribute-backed properties -------------------------------------
+
+  /** URL of a pathwise-scene/1 JSON file; ignored while `scene` is set. */
+  get src(): string {
+    return this.getAttribute('src') ?? '';
+  }
+  set src(value: string) {
+    this.setAttribute('src', value);
+  }
+
+  /** Target samples per pixel (default 512); tracing stops there and `converged` fires. */
+  get spp(): number {
+    return parsePositive(this.getAttribute('spp')) ?? DEFAULT_SPP;
+  }
+  set spp(value: number) {
+    writeNumber(this, 'spp', value);
+  }
+
+  /** Maximum path bounces; null means the scene's own setting. */
+  get bounces(): number | null {
+    return parseNumber(this.getAttribute('bounces')) ?? null;
+  }
+  set bounces(value: number | null) {
+    writeNumber(this, 'bounces', value);
+  }
+
+  /** Display gain on linear radiance (default 1); changing it never restarts accumulation. */
+  get exposure(): number {
+    return parseNumber(this.getAttribute('exposure')) ?? DEFAULT_EXPOSURE;
+  }
+  set exposure(value: number) {
+    writeNumber(this, 'exposure', value);
+  }
+
+  /** Random seed; null means the tracer's default. */
+  get seed(): number | null {
+    return parseNumber(this.getAttribute('seed')) ?? null;
+  }
+  set seed(value: number | null) {
+    writeNumber(this, 'seed', value);
+  }
+
+  /** Orbit on drag, dolly on wheel. */
+  get cameraControls(): boolean {
+    return this.hasAttribute('camera-controls');
+  }
+  set cameraControls(value: boolean) {
+    writeBoolean(this, 'camera-controls', value);
+  }
+
+  /** Start tracing as soon as the scene loads (default true; `autoplay="false"` opts out). */
+  get autoplay(): boolean {
+    return parseAutoplay(this.getAttribute('autoplay'));
+  }
+  set autoplay(value: boolean) {
+    this.setAttribute('autoplay', String(value));
+  }
+
+  /** Paused by the author (independent of the automatic off-screen/hidden-tab pause). */
+  get paused(): boolean {
+    return this.hasAttribute('paused');
+  }
+  set paused(value: boolean) {
+    writeBoolean(this, 'paused', value);
+  }
+
+  /** Render resolution relative to the element's size × devicePixelRatio (default 1). */
+  get renderScale(): number {
+    return parsePositive(this.getAttribute('render-scale')) ?? DEFAULT_RENDER_SCALE;
+  }
+  set renderScale(value: number) {
+    writeNumber(this, 'render-scale', value);
+  }
+
+  /** Worker script URL override; read when tracing starts (attribute `worker-url`). */
+  get workerUrl(): string | URL | undefined {
+    return this.lastWorkerUrl ?? this.getAttribute('worker-url') ?? undefined;
+  }
+  set workerUrl(value: string | URL | undefined) {
+    this.lastWorkerUrl = value;
+  }
+
+  // ---- property-only state ---------------------------------------------
+
+  /** A scene object (pathwise-scene/1); takes precedence over `src`. */
+  get scene(): unknown {
+    return this.sceneObject;
+  }
+  set scene(value: unknown) {
+    this.sceneObject = value;
+    if (this.tracer) this.requestScene();
+  }
+
+  /** The underlying controller, for camera and other advanced controls; null while disconnected. */
+  get controller(): PathTracerController | null {
+    return this.tracer;
+  }
+
+  /** How it runs here (display and compute path), once tracing has started. */
+  get mode(): FallbackInfo | null {
+    return this.tracer?.mode ?? null;
+  }
+
+  /** The latest progress report, or null before the first one. */
+  get progress(): ProgressInfo | null {
+    return this.lastProgress;
+  }
+
+  // ---- methods ----------------------------------------------------------
+
+  /** Discards the accumulated samples and starts over. */
+  reset(): void {
+    this.tracer?.reset();
+  }
+
+  pause(): void {
+    this.paused = true;
+  }
+
+  resume(): void {
+    this.paused = false;
+  }
+
+  /** The current image as PNG (tone-mapped with the current exposure). */
+  toBlob(): Promise<Blob> {
+    if (!this.tracer) return Promise.reject(this.notRunningError());
+    return this.tracer.toBlob();
+  }
+
+  /** The current linear mean radiance as a PFM file. */
+  toPFM(): Uint8Array {
+    if (!this.tracer) throw this.notRunningError();
+    return this.tracer.toPFM();
+  }
+
+  // ---- lifecycle ----------------------------------------------------------
+
+  connectedCallback(): void {
+    if (!this.started) {
+      this.started = true;
+      // autoplay="false" means "start paused": expressed through the public
+      // `paused` state so that resume() is the one way to start.
+      if (!this.autoplay) this.paused = true;
+    }
+    // Creation waits a microtask so that properties set right after the
+    // element is created or upgraded (scene, workerUrl) are seen at start.
+    queueMicrotask(() => {
+      if (this.isConnected && !this.tracer) this.startTracer();
+    });
+    this.visibility.start();
+    this.resizeObserver?.observe(this);
+  }
+
+  disconnectedCallback(): void {
+    this.visibility.stop();
+    this.resizeObserver?.disconnect();
+    // A move within the document disconnects and reconnects synchronously;
+    // only a real removal should pay for freeing and re-creating workers.
+    queueMicrotask(() => {
+      if (!this.isConnected) this.stopTracer();
+    });
+  }
+
+  attributeChangedCallback(name: string, oldValue: string | null, value: string | null): void {
+    if (oldValue === value || !this.tracer) return;
+    const tracer = this.tracer;
+    switch (name as ObservedAttribute) {
+      case 'src':
+        if (this.sceneObject === undefined) this.requestScene();
+        break;
+      case 'spp':
+        tracer.setTargetSpp(this.spp);
+        break;
+      case 'bounces': {
+        const bounces = this.bounces ?? tracer.scene?.settings.maxBounces;
+        if (bounces !== undefined) tracer.setBounces(bounces);
+        break;
+      }
+      case 'exposure':
+        tracer.setExposure(this.exposure);
+        break;
+      case 'seed':
+        tracer.setSeed(this.seed ?? 0);
+        break;
+      case 'render-scale':
+        tracer.setRenderScale(this.renderScale);
+        break;
+      case 'camera-controls':
+        this.applyCameraControls();
+        break;
+      case 'paused':
+        this.applyRunState();
+        break;
+      case 'autoplay':
+        break;
+    }
+  }
+
+  // ---- internals ----------------------------------------------------------
+
+  private startTracer(): void {
+    const options: PathTracerOptions = {
+      spp: this.spp,
+      exposure: this.exposure,
+      renderScale: this.renderScale,
+      autoplay: this.shouldRun(),
+      cameraControls: false,
+    };
+    if (this.bounces !== null) options.bounces = this.bounces;
+    if (this.seed !== null) options.seed = this.seed;
+    const workerUrl = this.workerUrl;
+    if (workerUrl !== undefined) options.workerUrl = workerUrl;
+    if (this.workerFactory) options.workerFactory = this.workerFactory;
+    let tracer: PathTracerController;
+    try {
+      tracer = createPathTracer(this.canvas, options);
+    } catch (err) {
+      this.showError(errorMessage(err));
+      return;
+    }
+    this.tracer = tracer;
+    for (const type of FORWARDED_EVENTS) tracer.addEventListener(type, this.forward);
+    this.applyCameraControls();
+    this.requestScene();
+  }
+
+  private stopTracer(): void {
+    const tracer = this.tracer;
+    if (!tracer) return;
+    this.tracer = null;
+    this.sceneRequest++;
+    this.orbitControls?.dispose();
+    this.orbitControls = null;
+    for (const type of FORWARDED_EVENTS) tracer.removeEventListener(type, this.forward);
+    tracer.destroy();
+  }
+
+  /** Loads `scene` if set, else `src`; reports failures inside the element. */
+  private requestScene(): void {
+    const tracer = this.tracer;
+    if (!tracer) return;
+    const request = ++this.sceneRequest;
+    let pending: Promise<void>;
+    if (this.sceneObject !== undefined && this.sceneObject !== null) {
+      pending = tracer.setScene(this.sceneObject);
+    } else if (this.src !== '') {
+      pending = tracer.load(this.src);
+    } else {
+      return;
+    }
+    pending.then(
+      () => {
+        if (request === this.sceneRequest) this.applyRunState();
+      },
+      (err: unknown) => {
+        if (request === this.sceneRequest) this.showError(errorMessage(err));
+      },
+    );
+  }
+
+  private readonly forward = (event: Event) => {
+    const detail = (event as CustomEvent<unknown>).detail;
+    switch (event.type) {
+      case 'load':
+        this.hideMessage();
+        break;
+      case 'progress':
+      case 'converged':
+        this.lastProgress = detail as ProgressInfo;
+        break;
+      case 'error':
+        // The controller's own error (e.g. a worker crash); scene-load
+        // failures arrive through the rejected promise in requestScene.
+        this.showMessage((detail as { message: string }).message);
+        break;
+    }
+    this.dispatchEvent(new CustomEvent(event.type, { detail }));
+  };
+
+  private showError(message: string): void {
+    this.showMessage(message);
+    this.dispatchEvent(new CustomEvent('error', { detail: { message } }));
+  }
+
+  private showMessage(message: string): void {
+    this.messageBox.textContent = message;
+    this.messageBox.hidden = false;
+  }
+
+  private hideMessage(): void {
+    this.messageBox.hidden = true;
+    this.messageBox.textContent = '';
+  }
+
+  private shouldRun(): boolean {
+    return !this.paused && this.isConnected && this.visibility.visible;
+  }
+
+  private applyRunState(): void {
+    const tracer = this.tracer;
+    if (!tracer) return;
+    const run = this.shouldRun();
+    if (run && tracer.paused) tracer.resume();
+    else if (!run && !tracer.paused) tracer.pause();
+  }
+
+  private applyCameraControls(): void {
+    if (this.cameraControls && this.tracer && !this.orbitControls) {
+      this.orbitControls = new OrbitControls(this.canvas, this.tracer);
+    } else if (!this.cameraControls && this.orbitControls) {
+      this.orbitControls.dispose();
+      this.orbitControls = null;
+    }
+  }
+
+  private onResize(): void {
+    // The controller sizes its film from the canvas on its own; re-applying
+    // the scale asks it to re-measure after the host changed size.
+    this.tracer?.setRenderScale(this.renderScale);
+  }
+
+  private notRunningError(): Error {
+    return new Error('pathwise-view: no image yet (the element is not connected)');
+  }
+}
+
+// Typed addEventListener/removeEventListener for the element's own events.
+export interface PathwiseViewElement {
+  addEventListener<K extends keyof PathwiseViewEventMap>(
+    type: K,
+    listener: (this: PathwiseViewElement, ev: PathwiseViewEventMap[K]) => unknown,
+    options?: boolean | AddEventListenerOptions,
+  ): void;
+  addEventListener(
+    type: string,
+    listener: EventListenerOrEventListenerObject,
+    options?: boolean | AddEventListenerOptions,
+  ): void;
+  removeEventListener<K extends keyof PathwiseViewEventMap>(
+    type: K,
+    listener: (this: PathwiseViewElement, ev: PathwiseViewEventMap[K]) => unknown,
+    options?: boolean | EventListenerOptions,
+  ): void;
+  removeEventListener(
+    type: string,
+    listener: EventListenerOrEventListenerObject,
+    options?: boolean | EventListenerOptions,
+  ): void;
+}
+
+declare global {
+  interface HTMLElementTagNameMap {
+    'pathwise-view': PathwiseViewElement;
+  }
+}
+
+function errorMessage(err: unknown): string {
+  if (err instanceof Error) return err.message;
+  return String(err);
+}

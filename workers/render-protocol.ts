@@ -1,0 +1,115 @@
+/**
+ * What the browser's main thread and its render workers share: the layout
+ * of the control block that sits in shared memory next to each film, the
+ * spin lock that guards it, and the messages of the control channel.
+ *
+ * One control block (an Int32Array on a SharedArrayBuffer) belongs to one
+ * film. The main thread changes it only under the lock; workers read it
+ * under the lock when they claim work and when they commit a finished row,
+ * so a reset (clear the film, bump the generation) can never interleave
+ * with a commit, and no sample of an old generation lands in a new image.
+ */
+import type { Estimator, SamplerKind, Scene } from '../src/core/index.ts';
+
+/** Word indices of the control block. */
+export const C_LOCK = 0;
+/** Bumped by every reset: a row rendered under another generation is dropped. */
+export const C_GEN = 1;
+/** Bumped when the job's configuration changes; a worker renders only under the version it holds. */
+export const C_CONFIG = 2;
+/** Next claim: claim c is pass ⌊c / stripes⌋ of stripe c mod stripes. */
+export const C_CLAIM = 3;
+/** Target passes (samples per pixel). */
+export const C_TARGET = 4;
+export const C_PAUSED = 5;
+/** Rows committed so far (any generation): tells the display something changed. */
+export const C_COMMITS = 6;
+/** Segments traced, modulo 2^32 (read as a difference). */
+export const C_SEGMENTS = 7;
+export const C_REJECTED = 8;
+/** First of `stripes` words: passes finished per stripe in the current generation. */
+export const C_DONE = 16;
+
+export function controlWords(stripes: number): number {
+  return C_DONE + stripes;
+}
+
+/**
+ * Spin lock. Held only for a claim or a row copy (microseconds), so the
+ * main thread, which may not block with Atomics.wait, can afford to spin.
+ */
+export function lock(ctrl: Int32Array): void {
+  while (Atomics.compareExchange(ctrl, C_LOCK, 0, 1) !== 0) {
+    // Busy wait: the holder is copying one row at most.
+  }
+}
+
+export function unlock(ctrl: Int32Array): void {
+  Atomics.store(ctrl, C_LOCK, 0);
+}
+
+/**
+ * Rows per stripe: enough stripes for load balance (~16 per worker, as the
+ * command line does), but no fewer than 4 rows, so a stripe's claim and
+ * dependency check stay cheap next to its rendering.
+ */
+export function chooseStripeRows(height: number, workers: number): number {
+  return Math.max(1, Math.min(4, height), Math.floor(height / (Math.max(1, workers) * 16)));
+}
+
+export type JobMode = 'shared' | 'transfer';
+
+/** Everything a worker needs to render one controller's image. */
+export interface JobConfig {
+  mode: JobMode;
+  /** Equals the control block's C_CONFIG word (shared) or tags tasks (transfer). */
+  version: number;
+  /** The scene travels only when `sceneId` changed since this worker last saw the job. */
+  sceneId: number;
+  scene?: Scene;
+  width: number;
+  height: number;
+  maxBounces: number;
+  seed: number;
+  estimator: Estimator;
+  sampler: SamplerKind;
+  camera: Scene['camera'];
+  stripeRows: number;
+  /** Shared mode: the film's buffer and its control block. */
+  film?: SharedArrayBuffer;
+  ctrl?: SharedArrayBuffer;
+}
+
+/** Transfer mode: one pass of one stripe, its rows of the film shipped both ways. */
+export interface StripeTask {
+  type: 'task';
+  job: number;
+  version: number;
+  gen: number;
+  stripe: number;
+  pass: number;
+  y0: number;
+  rows: number;
+  /** Film window (sums then extra of rows [y0, y0+rows)); transferred. */
+  buffer: ArrayBuffer;
+}
+
+export interface StripeResult extends Omit<StripeTask, 'type'> {
+  type: 'result';
+  segments: number;
+  rejected: number;
+  /** False when the worker no longer had the job's configuration: nothing was added. */
+  rendered: boolean;
+}
+
+/** The comlink API a render worker exposes. */
+export interface RenderWorkerApi {
+  configure(job: number, config: JobConfig): void;
+  removeJob(job: number): void;
+  /** Shared mode: look for work now (after a reset, resume or new target). */
+  kick(): void;
+  /** Finishes the stripe in hand and stops; the worker can then be terminated safely. */
+  stop(): Promise<void>;
+  /** Transfer mode: the port that carries StripeTask/StripeResult messages. */
+  setTaskPort(port: MessagePort): void;
+}
