@@ -2,7 +2,7 @@
 // error metrics against the Mitsuba references, statistics and hand-written
 // SVG plots (no plotting dependency).
 import { execFileSync, spawnSync } from 'node:child_process';
-import { readFileSync } from 'node:fs';
+import { existsSync, readFileSync } from 'node:fs';
 import os from 'node:os';
 import { fileURLToPath } from 'node:url';
 
@@ -18,7 +18,9 @@ export function machineInfo() {
     dirty =
       execFileSync('git', ['status', '--porcelain'], { cwd: ROOT, encoding: 'utf8' }).trim() !== '';
   } catch {
-    // Not a git checkout (e.g. a copied tree on another machine): leave null.
+    // Not a git checkout (e.g. a tree copied to another machine): take the
+    // commit from the environment if the caller passed it, else leave null.
+    commit = process.env.PATHWISE_GIT_COMMIT ?? null;
   }
   return {
     cpu: os.cpus()[0]?.model ?? 'unknown',
@@ -34,6 +36,8 @@ export function machineInfo() {
     loadavg_start: os.loadavg(),
   };
 }
+
+const TIME = existsSync('/usr/bin/time') ? '/usr/bin/time' : null;
 
 /**
  * Renders one configuration in a fresh process (so no run warms the JIT of
@@ -54,23 +58,34 @@ export function renderOnce(opts) {
     String(opts.threads),
     '--seed',
     String(opts.seed ?? 1),
-    '--estimator',
-    opts.estimator,
-    '--sampler',
-    opts.sampler,
     '--json',
     '--out',
     opts.out,
   ];
   if (opts.bounces !== undefined) args.push('--bounces', String(opts.bounces));
+  // Left out, the CLI's defaults apply (what bench:core measures).
+  if (opts.estimator !== undefined) args.push('--estimator', opts.estimator);
+  if (opts.sampler !== undefined) args.push('--sampler', opts.sampler);
   const t0 = performance.now();
-  const r = spawnSync(process.execPath, args, { cwd: ROOT, encoding: 'utf8' });
+  // GNU time, where there is one, adds the CPU seconds of the process: unlike
+  // wall time they barely change when other processes share the cores.
+  const r = TIME
+    ? spawnSync(TIME, ['-f', 'cpu %U %S', process.execPath, ...args], {
+        cwd: ROOT,
+        encoding: 'utf8',
+      })
+    : spawnSync(process.execPath, args, { cwd: ROOT, encoding: 'utf8' });
   const processSeconds = (performance.now() - t0) / 1000;
   if (r.status !== 0) {
     throw new Error(`pathwise ${args.slice(1).join(' ')} failed (${r.status}): ${r.stderr}`);
   }
   const line = r.stdout.trim().split('\n').pop();
-  return { ...JSON.parse(line), process_seconds: processSeconds };
+  const cpu = /cpu ([\d.]+) ([\d.]+)\s*$/.exec(r.stderr ?? '');
+  return {
+    ...JSON.parse(line),
+    process_seconds: processSeconds,
+    cpu_seconds: cpu ? Number(cpu[1]) + Number(cpu[2]) : null,
+  };
 }
 
 /** Reads a colour PFM into top-to-bottom RGB floats (same layout as the core's decodePfm). */

@@ -130,6 +130,7 @@ function measure(scene, cfg, spp, threads, reps, width = scene.width, height = s
     seconds,
     seconds_all: runs.map((r) => r.seconds),
     process_seconds: median(runs.map((r) => r.process_seconds)),
+    cpu_seconds: runs[0].cpu_seconds === null ? null : median(runs.map((r) => r.cpu_seconds)),
     paths: last.paths,
     segments: last.segments,
     mpaths_per_s: last.paths / seconds / 1e6,
@@ -160,18 +161,24 @@ function warmUp(scene, cfg) {
 function runSeries() {
   const series = [];
   for (const scene of SCENES) {
-    for (const cfg of CONFIGS) {
+    const perConfig = CONFIGS.map((cfg) => {
       warmUp(scene, cfg);
-      const points = [];
-      let expected = 0.05;
-      for (const spp of sppList(maxSpp)) {
-        const p = measure(scene, cfg, spp, threadsAll, repsFor(expected));
-        points.push(p);
-        expected = p.seconds * 2;
+      return { cfg, points: [], expected: 0.05 };
+    });
+    // Configurations are interleaved spp by spp, so that a slow spell of
+    // the machine (other processes) hits all of them alike and their
+    // time ratios stay fair.
+    for (const spp of sppList(maxSpp)) {
+      for (const run of perConfig) {
+        const p = measure(scene, run.cfg, spp, threadsAll, repsFor(run.expected));
+        run.points.push(p);
+        run.expected = p.seconds * 2;
         log(
-          `${scene.name.padEnd(8)} ${cfg.id.padEnd(20)} spp ${String(spp).padStart(5)}  ${p.seconds.toFixed(3)} s  ${p.msegments_per_s.toFixed(2)} Mseg/s  relMSE ${p.relmse.toExponential(3)}  blockMARE ${p.block_mare_8.toExponential(3)}`,
+          `${scene.name.padEnd(8)} ${run.cfg.id.padEnd(20)} spp ${String(spp).padStart(5)}  ${p.seconds.toFixed(3)} s  ${p.msegments_per_s.toFixed(2)} Mseg/s  relMSE ${p.relmse.toExponential(3)}  blockMARE ${p.block_mare_8.toExponential(3)}`,
         );
       }
+    }
+    for (const { cfg, points } of perConfig) {
       const fitPoints = points.filter((p) => p.spp >= (points.length >= 6 ? 4 : 1));
       const fit = logLogFit(fitPoints.map((p) => [p.spp, p.relmse]));
       const fitTime = logLogFit(fitPoints.map((p) => [p.seconds, p.relmse]));
@@ -206,9 +213,21 @@ function compare(series, scene, a, b) {
   });
   // Geometric mean over the converged half (spp ≥ 16, or all in a quick run),
   // where a single image's error is no longer dominated by a few fireflies.
-  const tail = bySpp.filter(([s]) => s >= Math.min(16, maxSpp));
-  const geo = Math.exp(tail.reduce((s, [, r]) => s + Math.log(r), 0) / tail.length);
-  // Equal time: both error curves interpolated (log-log) at the longest time both reached.
+  const minSpp = Math.min(16, maxSpp);
+  const gm = (xs) => Math.exp(xs.reduce((s, x) => s + Math.log(x), 0) / xs.length);
+  const geo = gm(bySpp.filter(([s]) => s >= minSpp).map(([, r]) => r));
+  // Equal time, from every point: with relMSE ∝ 1/time, relMSE × seconds is
+  // constant along a curve (the inverse efficiency), and its ratio is the
+  // error ratio at any equal time. Robust to one slow render.
+  const eff = gm(
+    A.points
+      .filter((p) => p.spp >= minSpp)
+      .map((p) => {
+        const q = B.points.find((q) => q.spp === p.spp);
+        return (p.relmse * p.seconds) / (q.relmse * q.seconds);
+      }),
+  );
+  // And directly: both error curves interpolated (log-log) at the longest time both reached.
   const tA = A.points.map((p) => [p.seconds, p.relmse]);
   const tB = B.points.map((p) => [p.seconds, p.relmse]);
   const T = Math.min(Math.max(...tA.map((p) => p[0])), Math.max(...tB.map((p) => p[0])));
@@ -221,10 +240,11 @@ function compare(series, scene, a, b) {
     equal_spp_ratio_at_max_spp: bySpp[bySpp.length - 1][1],
     equal_spp_ratio_geomean: geo,
     equal_spp_ratios: bySpp,
-    equal_time_seconds: T,
-    equal_time_relmse_a: eA,
-    equal_time_relmse_b: eB,
-    equal_time_ratio: eA / eB,
+    equal_time_ratio: eff,
+    equal_time_interp_seconds: T,
+    equal_time_interp_relmse_a: eA,
+    equal_time_interp_relmse_b: eB,
+    equal_time_interp_ratio: eA / eB,
   };
 }
 
@@ -440,13 +460,13 @@ function writeMarkdown(result) {
   for (const c of result.comparisons.estimator) {
     if (c)
       L.push(
-        `| ${c.scene}: relMSE of NEE+MIS / BSDF-only at equal time (${fmt(c.equal_time_seconds)} s) | **${fmt(c.equal_time_ratio)}** (equal spp: ${fmt(c.equal_spp_ratio_geomean)}) |`,
+        `| ${c.scene}: relMSE of NEE+MIS / BSDF-only at equal time | **${fmt(c.equal_time_ratio)}** (interpolated at ${fmt(c.equal_time_interp_seconds)} s: ${fmt(c.equal_time_interp_ratio)}; equal spp: ${fmt(c.equal_spp_ratio_geomean)}) |`,
       );
   }
   for (const c of result.comparisons.sampler) {
     if (c)
       L.push(
-        `| ${c.scene}: relMSE of sobol / independent (NEE+MIS) at equal spp (geo. mean, spp ≥ 16) | **${fmt(c.equal_spp_ratio_geomean)}**; at equal time (${fmt(c.equal_time_seconds)} s): **${fmt(c.equal_time_ratio)}** |`,
+        `| ${c.scene}: relMSE of sobol / independent (NEE+MIS) at equal spp (geo. mean, spp ≥ 16) and at equal time | **${fmt(c.equal_spp_ratio_geomean)}** and **${fmt(c.equal_time_ratio)}** (interpolated at ${fmt(c.equal_time_interp_seconds)} s: ${fmt(c.equal_time_interp_ratio)}) |`,
       );
   }
   if (result.scaling) {
@@ -527,7 +547,7 @@ function writeMarkdown(result) {
     '- Convergence slope: least-squares fit of log relMSE against log spp over the points listed; ≈ −1 for an unbiased Monte Carlo estimator (flatter means bias or a bug, steeper means the low-discrepancy sampler still stratifies).',
   );
   L.push(
-    '- Equal time: both error curves are interpolated on log-log axes at the longest time both configurations reached. Equal spp: geometric mean of the error ratio over spp ≥ 16.',
+    '- Equal time: geometric mean over spp ≥ 16 of (relMSE × seconds) of one configuration over the other — with relMSE ∝ 1/time this is the error ratio at any equal time, and it uses every render rather than one. The direct reading (both curves interpolated on log-log axes at the longest time both reached) is given beside it. Equal spp: geometric mean of the error ratio over spp ≥ 16. Configurations are rendered interleaved, spp by spp, so that load from other processes hits them alike.',
   );
   L.push(
     '- Time to a target relMSE: the spp needed is interpolated (log-log) from the error series; the time at that spp is interpolated between renders at the two bracketing powers of two, with one thread and with all threads.',

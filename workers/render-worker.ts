@@ -100,7 +100,8 @@ function configure(id: number, config: JobConfig): void {
       old?.config.film === config.film && old?.film
         ? old.film
         : new Film(config.width, config.height, config.film!);
-    job.ctrl = old?.config.ctrl === config.ctrl && old?.ctrl ? old.ctrl : new Int32Array(config.ctrl!);
+    job.ctrl =
+      old?.config.ctrl === config.ctrl && old?.ctrl ? old.ctrl : new Int32Array(config.ctrl!);
     job.row = old?.row && old.row.width === config.width ? old.row : new Film(config.width, 1);
   }
   jobs.set(id, job);

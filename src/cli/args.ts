@@ -32,7 +32,7 @@ export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png 
   --threads T         worker threads (default: available cores)
   --exposure E        PNG exposure multiplier (default 1)
   --estimator nee-mis|bsdf  next-event estimation with MIS (default) or BSDF sampling only
-  --sampler independent|sobol  random numbers: independent PCG hash, or low-discrepancy for the leading dimensions
+  --sampler sobol|independent  random numbers: Owen-scrambled Sobol for the leading dimensions (default), or the independent PCG hash
   --stripe-rows R     rows per work stripe (default: automatic; the image does not depend on it)
   --json              print one JSON line of statistics on stdout`;
 
@@ -117,7 +117,7 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
   if (estimator !== 'nee-mis' && estimator !== 'bsdf') {
     throw new UsageError(`--estimator must be nee-mis or bsdf, got ${JSON.stringify(estimator)}`);
   }
-  const sampler = options.get('sampler') ?? 'independent';
+  const sampler = options.get('sampler') ?? 'sobol';
   if (!SAMPLER_KINDS.includes(sampler as SamplerKind)) {
     throw new UsageError(
       `--sampler must be one of ${SAMPLER_KINDS.join(', ')}, got ${JSON.stringify(sampler)}`,

@@ -10,14 +10,16 @@ export function chooseCompute(options: PathTracerOptions): { compute: ComputeMod
   if (options.shared === 'off') {
     return { compute: 'transfer', why: 'shared memory was turned off (shared=off)' };
   }
-  if (typeof SharedArrayBuffer === 'undefined') {
-    return { compute: 'transfer', why: 'this browser offers no SharedArrayBuffer' };
-  }
+  // Browsers hide SharedArrayBuffer on pages that are not cross-origin
+  // isolated, so that is the likelier reason and is named first.
   if (typeof crossOriginIsolated !== 'undefined' && !crossOriginIsolated) {
     return {
       compute: 'transfer',
       why: 'the page is not cross-origin isolated (no COOP/COEP headers), so SharedArrayBuffer is off',
     };
+  }
+  if (typeof SharedArrayBuffer === 'undefined') {
+    return { compute: 'transfer', why: 'this browser offers no SharedArrayBuffer' };
   }
   return { compute: 'shared', why: 'workers write one shared accumulator (cross-origin isolated)' };
 }
@@ -35,6 +37,9 @@ export function createDisplay(
     const reason = e instanceof Error ? e.message : String(e);
     // A canvas keeps the first context type it gave out; a failed WebGL2
     // request returned none, so a 2D context is still available.
-    return { display: new Canvas2DDisplay(canvas), why: `${reason}, so Canvas 2D tone maps on the CPU` };
+    return {
+      display: new Canvas2DDisplay(canvas),
+      why: `${reason}, so Canvas 2D tone maps on the CPU`,
+    };
   }
 }

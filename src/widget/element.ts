@@ -5,6 +5,7 @@
  * off screen, in a hidden tab or paused by the author.
  */
 import { createPathTracer } from '../view/index.ts';
+import { attachCameraControls } from '../view/interaction.ts';
 import type {
   FallbackInfo,
   PathTracerController,
@@ -24,9 +25,9 @@ import {
   writeNumber,
   type ObservedAttribute,
 } from './attributes.ts';
-import { OrbitControls } from './orbit-controls.ts';
 import { ELEMENT_CSS } from './styles.ts';
 import { VisibilityWatcher } from './visibility.ts';
+import { moduleWorkerFactory } from './worker-source.ts';
 
 /** Events of <pathwise-view>: the controller's, re-dispatched on the element. */
 export interface PathwiseViewEventMap
@@ -47,18 +48,22 @@ export class PathwiseViewElement extends ElementBase {
     return OBSERVED_ATTRIBUTES;
   }
 
-  /** Where the render worker is, for hosts whose bundler or CDN breaks the default URL. */
+  /**
+   * Creates render workers, for hosts whose bundler or CDN breaks the
+   * default worker URL; read when tracing starts. The page's worker pool is
+   * shared, so the first element (or createPathTracer call) to start decides.
+   */
   workerFactory: (() => Worker) | undefined = undefined;
 
   private readonly canvas: HTMLCanvasElement;
   private readonly messageBox: HTMLDivElement;
   private readonly visibility: VisibilityWatcher;
-  private readonly resizeObserver: ResizeObserver | null;
-  private tracer: PathTracerController | null = null;
-  private orbitControls: OrbitControls | null = null;
+  private tracer: ReturnType<typeof createPathTracer> | null = null;
+  /** Detaches the pointer controls while `camera-controls` is on. */
+  private detachControls: (() => void) | null = null;
   private sceneObject: unknown = undefined;
   private lastProgress: ProgressInfo | null = null;
-  private lastWorkerUrl: string | URL | undefined = undefined;
+  private workerUrlOverride: string | URL | undefined = undefined;
   /** Bumped on every scene request so a slow, superseded load cannot report over a newer one. */
   private sceneRequest = 0;
   private started = false;
@@ -76,8 +81,6 @@ export class PathwiseViewElement extends ElementBase {
     this.messageBox.hidden = true;
     root.append(style, this.canvas, this.messageBox);
     this.visibility = new VisibilityWatcher(this, () => this.applyRunState());
-    this.resizeObserver =
-      typeof ResizeObserver === 'undefined' ? null : new ResizeObserver(() => this.onResize());
   }
 
   // ---- attribute-backed properties -------------------------------------
@@ -154,12 +157,15 @@ export class PathwiseViewElement extends ElementBase {
     writeNumber(this, 'render-scale', value);
   }
 
-  /** Worker script URL override; read when tracing starts (attribute `worker-url`). */
+  /**
+   * The render worker script (pathwise/worker), when the default URL is
+   * broken; may be on a CDN. Read when tracing starts (attribute `worker-url`).
+   */
   get workerUrl(): string | URL | undefined {
-    return this.lastWorkerUrl ?? this.getAttribute('worker-url') ?? undefined;
+    return this.workerUrlOverride ?? this.getAttribute('worker-url') ?? undefined;
   }
   set workerUrl(value: string | URL | undefined) {
-    this.lastWorkerUrl = value;
+    this.workerUrlOverride = value;
   }
 
   // ---- property-only state ---------------------------------------------
@@ -230,12 +236,10 @@ export class PathwiseViewElement extends ElementBase {
       if (this.isConnected && !this.tracer) this.startTracer();
     });
     this.visibility.start();
-    this.resizeObserver?.observe(this);
   }
 
   disconnectedCallback(): void {
     this.visibility.stop();
-    this.resizeObserver?.disconnect();
     // A move within the document disconnects and reconnects synchronously;
     // only a real removal should pay for freeing and re-creating workers.
     queueMicrotask(() => {
@@ -248,7 +252,7 @@ export class PathwiseViewElement extends ElementBase {
     const tracer = this.tracer;
     switch (name as ObservedAttribute) {
       case 'src':
-        if (this.sceneObject === undefined) this.requestScene();
+        if (!this.hasSceneObject()) this.requestScene();
         break;
       case 'spp':
         tracer.setTargetSpp(this.spp);
@@ -291,9 +295,9 @@ export class PathwiseViewElement extends ElementBase {
     if (this.bounces !== null) options.bounces = this.bounces;
     if (this.seed !== null) options.seed = this.seed;
     const workerUrl = this.workerUrl;
-    if (workerUrl !== undefined) options.workerUrl = workerUrl;
     if (this.workerFactory) options.workerFactory = this.workerFactory;
-    let tracer: PathTracerController;
+    else if (workerUrl !== undefined) options.workerFactory = moduleWorkerFactory(workerUrl);
+    let tracer: ReturnType<typeof createPathTracer>;
     try {
       tracer = createPathTracer(this.canvas, options);
     } catch (err) {
@@ -311,32 +315,39 @@ export class PathwiseViewElement extends ElementBase {
     if (!tracer) return;
     this.tracer = null;
     this.sceneRequest++;
-    this.orbitControls?.dispose();
-    this.orbitControls = null;
+    this.detachControls?.();
+    this.detachControls = null;
     for (const type of FORWARDED_EVENTS) tracer.removeEventListener(type, this.forward);
     tracer.destroy();
   }
 
-  /** Loads `scene` if set, else `src`; reports failures inside the element. */
+  /**
+   * Loads `scene` if set, else `src`. Failures need no handling here: the
+   * controller reports them as an `error` event, which `forward` shows
+   * inside the element and re-dispatches.
+   */
   private requestScene(): void {
     const tracer = this.tracer;
     if (!tracer) return;
     const request = ++this.sceneRequest;
     let pending: Promise<void>;
-    if (this.sceneObject !== undefined && this.sceneObject !== null) {
+    if (this.hasSceneObject()) {
       pending = tracer.setScene(this.sceneObject);
     } else if (this.src !== '') {
       pending = tracer.load(this.src);
     } else {
       return;
     }
+    const first = tracer.scene === null;
     pending.then(
       () => {
-        if (request === this.sceneRequest) this.applyRunState();
+        if (request !== this.sceneRequest) return;
+        // The controller applies its `bounces` option to the first scene
+        // only; later scenes bring their own unless the attribute says else.
+        if (!first && this.bounces !== null) tracer.setBounces(this.bounces);
+        this.applyRunState();
       },
-      (err: unknown) => {
-        if (request === this.sceneRequest) this.showError(errorMessage(err));
-      },
+      () => {},
     );
   }
 
@@ -351,8 +362,7 @@ export class PathwiseViewElement extends ElementBase {
         this.lastProgress = detail as ProgressInfo;
         break;
       case 'error':
-        // The controller's own error (e.g. a worker crash); scene-load
-        // failures arrive through the rejected promise in requestScene.
+        // A bad scene or URL, or a worker failure: never leave a blank box.
         this.showMessage((detail as { message: string }).message);
         break;
     }
@@ -374,6 +384,10 @@ export class PathwiseViewElement extends ElementBase {
     this.messageBox.textContent = '';
   }
 
+  private hasSceneObject(): boolean {
+    return this.sceneObject !== undefined && this.sceneObject !== null;
+  }
+
   private shouldRun(): boolean {
     return !this.paused && this.isConnected && this.visibility.visible;
   }
@@ -386,19 +400,18 @@ export class PathwiseViewElement extends ElementBase {
     else if (!run && !tracer.paused) tracer.pause();
   }
 
+  /**
+   * The element attaches the view's pointer controls itself (the controller
+   * gets `cameraControls: false`) so that toggling the attribute takes
+   * effect at once, without re-creating the tracer.
+   */
   private applyCameraControls(): void {
-    if (this.cameraControls && this.tracer && !this.orbitControls) {
-      this.orbitControls = new OrbitControls(this.canvas, this.tracer);
-    } else if (!this.cameraControls && this.orbitControls) {
-      this.orbitControls.dispose();
-      this.orbitControls = null;
+    if (this.cameraControls && this.tracer && !this.detachControls) {
+      this.detachControls = attachCameraControls(this.tracer, this.canvas);
+    } else if (!this.cameraControls && this.detachControls) {
+      this.detachControls();
+      this.detachControls = null;
     }
-  }
-
-  private onResize(): void {
-    // The controller sizes its film from the canvas on its own; re-applying
-    // the scale asks it to re-measure after the host changed size.
-    this.tracer?.setRenderScale(this.renderScale);
   }
 
   private notRunningError(): Error {

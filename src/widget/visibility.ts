@@ -20,18 +20,16 @@ export class VisibilityWatcher {
 
   start(): void {
     if (this.observer) return;
-    // Until the first observation arrives, assume on screen: the first
-    // callback comes within a frame, and starting early costs nothing.
-    this.onScreen = true;
+    // An observer always reports once right after observe(), within a
+    // frame; until then count as off screen, so an element below the fold
+    // never traces a single pass. Without IntersectionObserver, always on.
+    this.onScreen = typeof IntersectionObserver === 'undefined';
     if (typeof IntersectionObserver !== 'undefined') {
       this.observer = new IntersectionObserver((entries) => {
         const entry = entries[entries.length - 1];
         if (!entry) return;
-        const onScreen = entry.isIntersecting;
-        if (onScreen !== this.onScreen) {
-          this.onScreen = onScreen;
-          this.changed();
-        }
+        this.onScreen = entry.isIntersecting;
+        this.changed();
       });
       this.observer.observe(this.target);
     }

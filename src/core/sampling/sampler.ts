@@ -42,7 +42,7 @@ export class Sampler {
   /** Low-discrepancy numbers of the current (pixel, sample), filled once in startPixelSample. */
   private readonly ld = new Float64Array(SOBOL_DIMENSIONS);
 
-  constructor(seed: number, kind: SamplerKind = 'independent') {
+  constructor(seed: number, kind: SamplerKind = 'sobol') {
     this.seed = seed >>> 0;
     this.kind = kind;
     this.lowDiscrepancy = kind === 'sobol';

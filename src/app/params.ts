@@ -1,0 +1,44 @@
+/**
+ * URL parameters of the demo: the first scene, fixed sizes and seeds for
+ * tests and benchmarks, and switches that force the fallback paths, e.g.
+ * `?scene=spheres`, `?width=64&height=64&seed=1&spp=8`, `?shared=off`,
+ * `?display=canvas2d`, `?workers=2`.
+ */
+import type { PathTracerOptions } from '../view/index.ts';
+import { PRESETS, type PresetName } from './presets.ts';
+
+export interface DemoParams {
+  preset: PresetName;
+  options: PathTracerOptions;
+}
+
+function positiveInt(value: string | null): number | undefined {
+  if (value === null) return undefined;
+  const n = Number(value);
+  return Number.isInteger(n) && n > 0 ? n : undefined;
+}
+
+function nonNegativeInt(value: string | null): number | undefined {
+  if (value === null) return undefined;
+  const n = Number(value);
+  return Number.isInteger(n) && n >= 0 ? n : undefined;
+}
+
+export function readParams(search: string): DemoParams {
+  const q = new URLSearchParams(search);
+  const name = q.get('scene') ?? 'cornell';
+  const preset: PresetName = name in PRESETS ? (name as PresetName) : 'cornell';
+  const scale = Number(q.get('scale'));
+  const options: PathTracerOptions = {
+    width: positiveInt(q.get('width')),
+    height: positiveInt(q.get('height')),
+    seed: nonNegativeInt(q.get('seed')),
+    spp: positiveInt(q.get('spp')),
+    bounces: nonNegativeInt(q.get('bounces')),
+    workers: positiveInt(q.get('workers')),
+    renderScale: scale > 0 ? scale : undefined,
+    display: q.get('display') === 'canvas2d' ? 'canvas2d' : 'auto',
+    shared: q.get('shared') === 'off' ? 'off' : 'auto',
+  };
+  return { preset, options };
+}

@@ -1,0 +1,129 @@
+/**
+ * Shared setup of the browser tests: a Vite dev server of the demo (with
+ * or without the cross-origin isolation headers) and Debian's Chromium
+ * driven by playwright-core.
+ */
+import { existsSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import { chromium, type Browser, type Page } from 'playwright-core';
+import { createServer, type ViteDevServer } from 'vite';
+
+export const root = fileURLToPath(new URL('../..', import.meta.url));
+export const CHROMIUM = process.env.CHROMIUM_PATH ?? '/usr/bin/chromium';
+
+export const chromiumArgs = [
+  '--no-sandbox',
+  '--disable-gpu',
+  '--disable-background-networking',
+  '--no-first-run',
+  '--disable-quic',
+  '--disable-component-update',
+  '--disable-sync',
+];
+
+/** The demo's dev server. `isolated: false` serves it without COOP/COEP. */
+export async function startDemoServer(
+  isolated = true,
+): Promise<{ server: ViteDevServer; url: string }> {
+  const server = await createServer({
+    root,
+    configFile: isolated ? undefined : false,
+    ...(isolated ? {} : { worker: { format: 'es' as const } }),
+    server: { host: '127.0.0.1', port: 0, strictPort: false, hmr: false },
+    logLevel: 'error',
+  });
+  await server.listen();
+  const url = server.resolvedUrls!.local[0];
+  return { server, url };
+}
+
+export async function launchBrowser(): Promise<Browser> {
+  if (!existsSync(CHROMIUM)) {
+    throw new Error(`${CHROMIUM} is missing: apt-get install -y chromium (or set CHROMIUM_PATH)`);
+  }
+  return chromium.launch({ executablePath: CHROMIUM, args: chromiumArgs });
+}
+
+/** Opens the demo with URL parameters and waits for the test hook. */
+export async function openDemo(browser: Browser, url: string, query: string): Promise<Page> {
+  const page = await browser.newPage();
+  const errors: string[] = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  (page as Page & { pageErrors?: string[] }).pageErrors = errors;
+  await page.goto(`${url}?${query}`);
+  await page.waitForFunction(() => 'controller' in ((window as any).__pathwise ?? {}));
+  return page;
+}
+
+export async function spp(page: Page): Promise<number> {
+  return page.evaluate(() => (window as any).__pathwise.controller.stats().spp as number);
+}
+
+/** Waits until the controller has at least `n` samples per pixel. */
+export async function waitForSpp(page: Page, n: number, timeout = 60_000): Promise<void> {
+  await page.waitForFunction(
+    (target) => (window as any).__pathwise.controller.stats().spp >= target,
+    n,
+    { timeout, polling: 50 },
+  );
+}
+
+/** The linear mean image as Float32 (exact: float32 values survive the trip through doubles). */
+export async function readLinear(
+  page: Page,
+): Promise<{ width: number; height: number; rgb: Float32Array }> {
+  const r = await page.evaluate(() => {
+    const { width, height, rgb } = (window as any).__pathwise.controller.readLinear();
+    return { width, height, rgb: Array.from(rgb as Float32Array) };
+  });
+  return { width: r.width, height: r.height, rgb: Float32Array.from(r.rgb) };
+}
+
+/** The canvas's displayed RGBA8 pixels, row 0 at the top. */
+export async function readDisplay(
+  page: Page,
+): Promise<{ width: number; height: number; rgba: Uint8Array }> {
+  const r = await page.evaluate(() => {
+    const { width, height, rgba } = (window as any).__pathwise.controller.readDisplay();
+    return { width, height, rgba: Array.from(rgba as Uint8Array) };
+  });
+  return { width: r.width, height: r.height, rgba: Uint8Array.from(r.rgba) };
+}
+
+/** Mean RGB of the displayed pixels in the box [x0, x1) × [y0, y1). */
+export function meanRgb(
+  img: { width: number; rgba: Uint8Array },
+  x0: number,
+  y0: number,
+  x1: number,
+  y1: number,
+): [number, number, number] {
+  const sum = [0, 0, 0];
+  let n = 0;
+  for (let y = y0; y < y1; y++) {
+    for (let x = x0; x < x1; x++) {
+      const i = (y * img.width + x) * 4;
+      sum[0] += img.rgba[i];
+      sum[1] += img.rgba[i + 1];
+      sum[2] += img.rgba[i + 2];
+      n++;
+    }
+  }
+  return [sum[0] / n, sum[1] / n, sum[2] / n];
+}
+
+/** Largest per-channel difference between two RGBA8 images of one size. */
+export function maxByteDifference(a: Uint8Array, b: Uint8Array): number {
+  let max = 0;
+  for (let i = 0; i < a.length; i++) max = Math.max(max, Math.abs(a[i] - b[i]));
+  return max;
+}
+
+/** Count of float32 values that differ in any bit. */
+export function bitDifferences(a: Float32Array, b: Float32Array): number {
+  const ua = new Uint32Array(a.buffer, a.byteOffset, a.length);
+  const ub = new Uint32Array(b.buffer, b.byteOffset, b.length);
+  let n = 0;
+  for (let i = 0; i < ua.length; i++) if (ua[i] !== ub[i]) n++;
+  return n;
+}

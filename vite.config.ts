@@ -1,0 +1,18 @@
+import { defineConfig } from 'vite';
+
+/**
+ * Cross-origin isolation (COOP + COEP) is what lets the page use
+ * SharedArrayBuffer, so the workers can write one shared accumulator. Both
+ * the dev server and `vite preview` send the headers.
+ */
+const isolation = {
+  'Cross-Origin-Opener-Policy': 'same-origin',
+  'Cross-Origin-Embedder-Policy': 'require-corp',
+};
+
+export default defineConfig({
+  server: { headers: isolation },
+  preview: { headers: isolation },
+  worker: { format: 'es' },
+  build: { target: 'es2022' },
+});
