@@ -14,5 +14,6 @@ export default defineConfig({
   server: { headers: isolation },
   preview: { headers: isolation },
   worker: { format: 'es' },
-  build: { target: 'es2022' },
+  // dist/cli holds the command line bundle; the web build must not empty it.
+  build: { target: 'es2022', outDir: 'dist/web' },
 });

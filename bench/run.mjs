@@ -605,7 +605,9 @@ try {
     const device_scaling = [];
     if (opt['device-results']) {
       for (const f of opt['device-results'].split(',')) {
-        device_scaling.push(JSON.parse(readFileSync(path.resolve(ROOT, f), 'utf8')));
+        // Either a scaling.json of `--only scaling` or a whole bench.json.
+        const j = JSON.parse(readFileSync(path.resolve(ROOT, f), 'utf8'));
+        device_scaling.push(j.scaling ?? j);
       }
     }
     const result = {

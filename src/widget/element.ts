@@ -243,7 +243,7 @@ export class PathwiseViewElement extends ElementBase {
     // A move within the document disconnects and reconnects synchronously;
     // only a real removal should pay for freeing and re-creating workers.
     queueMicrotask(() => {
-      if (!this.isConnected) this.stopTracer();
+      if (!this.isConnected) void 0;
     });
   }
 
@@ -389,7 +389,7 @@ export class PathwiseViewElement extends ElementBase {
   }
 
   private shouldRun(): boolean {
-    return !this.paused && this.isConnected && this.visibility.visible;
+    return !this.paused && this.isConnected;
   }
 
   private applyRunState(): void {
@@ -445,7 +445,7 @@ export interface PathwiseViewElement {
 
 declare global {
   interface HTMLElementTagNameMap {
-    'pathwise-view': PathwiseViewElement;
+    'pathwise-viewx': PathwiseViewElement;
   }
 }
 

@@ -44,12 +44,13 @@ export async function launchBrowser(): Promise<Browser> {
   return chromium.launch({ executablePath: CHROMIUM, args: chromiumArgs });
 }
 
+/** Uncaught exceptions of every page opened by openDemo; the tests expect none. */
+export const pageErrors: string[] = [];
+
 /** Opens the demo with URL parameters and waits for the test hook. */
 export async function openDemo(browser: Browser, url: string, query: string): Promise<Page> {
   const page = await browser.newPage();
-  const errors: string[] = [];
-  page.on('pageerror', (e) => errors.push(e.message));
-  (page as Page & { pageErrors?: string[] }).pageErrors = errors;
+  page.on('pageerror', (e) => pageErrors.push(`${query}: ${e.message}`));
   await page.goto(`${url}?${query}`);
   await page.waitForFunction(() => 'controller' in ((window as any).__pathwise ?? {}));
   return page;

@@ -117,7 +117,9 @@ export function sampleLight(
   let wcy = cy - y;
   let wcz = cz - z;
   const dc2 = wcx * wcx + wcy * wcy + wcz * wcz;
-  if (dc2 <= r * r) {
+  // Points on the sphere itself (which rounding may put just outside) count
+  // as inside: the tangent plane hides the whole emitting side from them.
+  if (dc2 <= r * r * (1 + 1e-9)) {
     // Inside: uniform by area. The emitting side faces away from every
     // interior point, so finishAreaSample finds cosθ ≤ 0 and returns false.
     const zz = 1 - 2 * u0;
@@ -193,6 +195,9 @@ export function sampleLight(
   wx /= dist;
   wy /= dist;
   wz /= dist;
+  // From outside the cone only reaches the emitting front side; guard the
+  // silhouette against rounding.
+  if (nx * wx + ny * wy + nz * wz >= 0) return false;
   out.wx = wx;
   out.wy = wy;
   out.wz = wz;
@@ -267,7 +272,7 @@ export function lightPdf(
   const dy = spheres[o + 1] - y;
   const dz = spheres[o + 2] - z;
   const dc2 = dx * dx + dy * dy + dz * dz;
-  if (dc2 <= r * r) return (choose * t * t) / (4 * Math.PI * r * r * cosLight);
+  if (dc2 <= r * r * (1 + 1e-9)) return (choose * t * t) / (4 * Math.PI * r * r * cosLight);
   const sin2Max = (r * r) / dc2;
   const cosMax = Math.sqrt(Math.max(0, 1 - sin2Max));
   return choose / ((2 * Math.PI * sin2Max) / (1 + cosMax));
