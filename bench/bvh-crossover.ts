@@ -8,7 +8,15 @@
  */
 import { execFileSync } from 'node:child_process';
 import { mkdirSync, writeFileSync } from 'node:fs';
-import { Film, PathTracer, RenderStats, compileScene } from '../src/core/index.ts';
+import { readFileSync } from 'node:fs';
+import {
+  Film,
+  PathTracer,
+  RenderStats,
+  compileScene,
+  parseScene,
+  type Scene,
+} from '../src/core/index.ts';
 import { randomSpheresScene } from '../src/core/scene/random-spheres.ts';
 
 const counts = [1, 2, 4, 8, 12, 16, 24, 32, 48, 64, 128];
@@ -17,8 +25,11 @@ const spp = 4;
 const reps = 5;
 let sink = 0;
 
-function measure(count: number, bvh: boolean): number {
-  const scene = randomSpheresScene(count);
+function measure(count: number, bvh?: boolean): number {
+  const scene: Scene =
+    count === 0
+      ? parseScene(readFileSync('scenes/cornell.json', 'utf8'))
+      : randomSpheresScene(count);
   const tracer = new PathTracer(compileScene(scene, { bvh }), {
     width: size,
     height: size,
@@ -71,9 +82,20 @@ if (mode === 'list' || mode === 'bvh') {
   for (let i = rows.length - 1; i >= 0 && rows[i].bvh > rows[i].list; i--)
     crossover = rows[i].shapes;
   console.log(`BVH faster from ${crossover ?? 'none of the sizes measured'} shapes`);
+  // The stress case of the tracer-core issue: 10,000 spheres under an area
+  // light against the Cornell box, per segment, each as the compiler builds it.
+  const cornell = run('auto', 0);
+  const spheres10k = run('auto', 10000);
+  console.log(
+    `Cornell ${cornell.toFixed(2)}, 10,000 spheres ${spheres10k.toFixed(2)} M segments/s: ratio ${(cornell / spheres10k).toFixed(2)}`,
+  );
   mkdirSync('bench/results', { recursive: true });
   writeFileSync(
     'bench/results/bvh-crossover.json',
-    JSON.stringify({ date: new Date().toISOString(), size, spp, reps, rows, crossover }, null, 1),
+    JSON.stringify(
+      { date: new Date().toISOString(), size, spp, reps, rows, crossover, cornell, spheres10k },
+      null,
+      1,
+    ),
   );
 }

@@ -64,9 +64,15 @@ export class SharedFilmJob implements FilmJob {
   }
 
   setVersion(version: number): void {
-    lock(this.ctrl);
-    this.ctrl[C_CONFIG] = version;
-    unlock(this.ctrl);
+    const ctrl = this.ctrl;
+    lock(ctrl);
+    ctrl[C_CONFIG] = version;
+    // A new generation too: a stripe in hand under the old configuration
+    // stops at its next row instead of finishing (a film being switched
+    // away from, e.g. for the drag preview, must free the workers at once).
+    ctrl[C_GEN]++;
+    unlock(ctrl);
+    for (let s = 0; s < this.stripes; s++) Atomics.notify(ctrl, C_DONE + s);
   }
 
   setTarget(spp: number): void {

@@ -43,13 +43,15 @@ export interface RenderOptions {
   seed?: number;
   maxBounces?: number;
   estimator?: Estimator;
+  /** Force or forbid the BVH (default: by the compiler's threshold). */
+  bvh?: boolean;
 }
 
 /** Renders with the core tracer, keeping per-pixel sums and sums of squares in doubles. */
 export function renderSampled(scene: Scene, options: RenderOptions): SampledImage {
   const width = options.width ?? scene.settings.width;
   const height = options.height ?? scene.settings.height;
-  const tracer = new PathTracer(compileScene(scene), {
+  const tracer = new PathTracer(compileScene(scene, { bvh: options.bvh }), {
     width,
     height,
     maxBounces: options.maxBounces ?? scene.settings.maxBounces,

@@ -11,6 +11,7 @@
  * reflection returns 1.
  */
 export function fresnelDielectric(cosI: number, eta: number): number {
+  if (eta === 1) return 0; // index-matched: 1 − cos² would round to a spurious TIR at grazing
   const sin2T = (1 - cosI * cosI) / (eta * eta);
   if (sin2T >= 1) return 1;
   const cosT = Math.sqrt(1 - sin2T);

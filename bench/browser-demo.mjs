@@ -1,0 +1,194 @@
+// Speed of the browser demo in headless Chromium, against the command line:
+//   node bench/browser-demo.mjs [--width 1280] [--height 520]
+// Reports (issue 3): M rays/s of the demo's Benchmark on the Cornell box
+// with all workers vs `pathwise render` msegments_per_s at the same size;
+// main-thread ms per frame for upload + display; time from a camera change
+// to the first frame showing new samples. Not a test: nothing is asserted.
+import { execFileSync } from 'node:child_process';
+import { mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+import { build, preview } from 'vite';
+
+const root = fileURLToPath(new URL('..', import.meta.url));
+const args = process.argv.slice(2);
+const arg = (name, fallback) => {
+  const i = args.indexOf(`--${name}`);
+  return i >= 0 ? Number(args[i + 1]) : fallback;
+};
+const width = arg('width', 1280);
+const height = arg('height', 520);
+/** The demo's Benchmark runs a fixed 10 s; this only bounds the wait for it. */
+const seconds = 10;
+
+function median(values) {
+  const s = [...values].sort((a, b) => a - b);
+  return s.length ? s[Math.floor(s.length / 2)] : NaN;
+}
+
+function percentile(values, p) {
+  const s = [...values].sort((a, b) => a - b);
+  return s.length ? s[Math.min(s.length - 1, Math.floor(s.length * p))] : NaN;
+}
+
+// 1. The command line, all threads.
+execFileSync(process.execPath, ['scripts/build-cli.mjs'], { cwd: root });
+const tmp = mkdtempSync(join(tmpdir(), 'pathwise-bench-'));
+const cli = JSON.parse(
+  execFileSync(
+    process.execPath,
+    [
+      'bin/pathwise.js',
+      'render',
+      'scenes/cornell.json',
+      '--width',
+      String(width),
+      '--height',
+      String(height),
+      '--spp',
+      '4',
+      '--json',
+      '--out',
+      join(tmp, 'x.pfm'),
+    ],
+    { cwd: root, encoding: 'utf8' },
+  ),
+);
+
+// 2. The demo, as built for production, served with COOP/COEP by `vite preview`.
+const outDir = join(tmp, 'web');
+await build({ root, logLevel: 'error', build: { outDir, emptyOutDir: true } });
+const server = await preview({
+  root,
+  logLevel: 'error',
+  build: { outDir },
+  preview: { host: '127.0.0.1', port: 0 },
+});
+const url = server.resolvedUrls.local[0];
+const browser = await chromium.launch({
+  executablePath: process.env.CHROMIUM_PATH ?? '/usr/bin/chromium',
+  args: [
+    '--no-sandbox',
+    '--disable-gpu',
+    '--disable-background-networking',
+    '--no-first-run',
+    '--disable-quic',
+    '--disable-component-update',
+    '--disable-sync',
+  ],
+});
+
+async function open(query) {
+  const page = await browser.newPage({ viewport: { width: 1600, height: 900 } });
+  await page.goto(`${url}?width=${width}&height=${height}&${query}`);
+  await page.waitForFunction(() => window.__pathwise?.controller?.stats().spp >= 1, null, {
+    timeout: 120_000,
+  });
+  return page;
+}
+
+/** Main-thread ms of upload + display per drawn frame, over `ms` of rendering. */
+async function frameTimes(page, ms) {
+  return page.evaluate(
+    (ms) =>
+      new Promise((resolve) => {
+        const c = window.__pathwise.controller;
+        const out = [];
+        const end = performance.now() + ms;
+        let last = -1;
+        const tick = () => {
+          const s = c.stats();
+          // frameMs belongs to the latest draw; record each draw once.
+          if (s.frameMs !== last) out.push(s.frameMs);
+          last = s.frameMs;
+          if (performance.now() < end) requestAnimationFrame(tick);
+          else resolve(out);
+        };
+        requestAnimationFrame(tick);
+      }),
+    ms,
+  );
+}
+
+/**
+ * Camera change to the first animation frame whose film holds a sample of
+ * the new view. `preview` orbits as a drag does (low-resolution film).
+ */
+async function cameraLatency(page, preview, trials) {
+  return page.evaluate(
+    ({ preview, trials }) =>
+      new Promise((resolve) => {
+        const c = window.__pathwise.controller;
+        const results = [];
+        const trial = () => {
+          if (preview) c.beginPreview();
+          const t0 = performance.now();
+          c.orbit(6, 0);
+          const job = preview ? c.preview : c.full;
+          const check = () => {
+            const sums = job.film.sums;
+            for (let i = 3; i < sums.length; i += 4) {
+              if (sums[i] > 0) {
+                results.push(performance.now() - t0);
+                if (preview) c.endPreview();
+                if (results.length < trials) setTimeout(trial, 150);
+                else resolve(results);
+                return;
+              }
+            }
+            requestAnimationFrame(check);
+          };
+          requestAnimationFrame(check);
+        };
+        trial();
+      }),
+    { preview, trials },
+  );
+}
+
+const page = await open('seed=1');
+const info = await page.evaluate(() => ({
+  mode: window.__pathwise.controller.mode,
+  cores: navigator.hardwareConcurrency,
+  version: navigator.userAgent,
+}));
+const frames = await frameTimes(page, 3000);
+const latencyFull = await cameraLatency(page, false, 8);
+const latencyPreview = await cameraLatency(page, true, 8);
+// The Benchmark button: 10 s on the Cornell box with all workers.
+await page.click('#benchmark');
+await page.waitForFunction(() => document.getElementById('bench-result')?.dataset.mrays, null, {
+  timeout: (seconds + 60) * 1000,
+});
+const benchText = await page.locator('#bench-result').textContent();
+const demoMrays = Number(
+  await page.evaluate(() => document.getElementById('bench-result').dataset.mrays),
+);
+await page.close();
+
+const canvasPage = await open('seed=1&display=canvas2d');
+const canvasFrames = await frameTimes(canvasPage, 3000);
+await canvasPage.close();
+
+await browser.close();
+await new Promise((resolve) => server.httpServer.close(resolve));
+rmSync(tmp, { recursive: true, force: true });
+
+const report = {
+  size: `${width}x${height}`,
+  browser: info.version,
+  cores: info.cores,
+  mode: info.mode,
+  demo: { mraysPerSecond: demoMrays, benchmark: benchText },
+  cli: { msegmentsPerSecond: cli.msegments_per_s, threads: cli.threads },
+  demoVsCli: demoMrays / cli.msegments_per_s,
+  frameMsWebGL2: { median: median(frames), p95: percentile(frames, 0.95), frames: frames.length },
+  frameMsCanvas2D: { median: median(canvasFrames), p95: percentile(canvasFrames, 0.95) },
+  cameraChangeToFirstFrameMs: {
+    full: { median: median(latencyFull), max: Math.max(...latencyFull) },
+    preview: { median: median(latencyPreview), max: Math.max(...latencyPreview) },
+  },
+};
+console.log(JSON.stringify(report, null, 2));
