@@ -14,6 +14,9 @@ export default defineConfig({
   server: { headers: isolation },
   preview: { headers: isolation },
   worker: { format: 'es' },
+  // Pre-bundled at start-up: discovered later (in the worker) it would make
+  // Vite re-optimise and reload the page under a running render.
+  optimizeDeps: { include: ['comlink'] },
   // dist/cli holds the command line bundle; the web build must not empty it.
   build: { target: 'es2022', outDir: 'dist/web' },
 });

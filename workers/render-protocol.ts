@@ -22,7 +22,7 @@ export const C_CLAIM = 3;
 /** Target passes (samples per pixel). */
 export const C_TARGET = 4;
 export const C_PAUSED = 5;
-/** Rows committed so far (any generation): tells the display something changed. */
+/** Rows committed so far (any generation); also the stamp of the latest row change. */
 export const C_COMMITS = 6;
 /** Segments traced, modulo 2^32 (read as a difference). */
 export const C_SEGMENTS = 7;
@@ -30,8 +30,16 @@ export const C_REJECTED = 8;
 /** First of `stripes` words: passes finished per stripe in the current generation. */
 export const C_DONE = 16;
 
-export function controlWords(stripes: number): number {
+/**
+ * After the stripe words, one word per image row: the C_COMMITS value of
+ * the row's latest change, so the display uploads only rows that changed.
+ */
+export function rowStampBase(stripes: number): number {
   return C_DONE + stripes;
+}
+
+export function controlWords(stripes: number, height: number): number {
+  return rowStampBase(stripes) + height;
 }
 
 /**

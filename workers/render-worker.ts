@@ -31,6 +31,7 @@ import {
   C_SEGMENTS,
   C_TARGET,
   lock,
+  rowStampBase,
   unlock,
   type JobConfig,
   type RenderWorkerApi,
@@ -177,6 +178,7 @@ function renderOneStripe(job: Job): boolean {
   const y0 = stripe * stripeRows;
   const y1 = Math.min(height, y0 + stripeRows);
   const n = width * 4;
+  const stamps = rowStampBase(stripes);
   for (let y = y0; y < y1; y++) {
     if (Atomics.load(ctrl, C_GEN) !== gen) return true;
     const rowFilm = new Film(width, 1, row.buffer, y);
@@ -189,7 +191,7 @@ function renderOneStripe(job: Job): boolean {
     if (ctrl[C_GEN] === gen) {
       film.sums.set(rowFilm.sums, y * n);
       film.extra.set(rowFilm.extra, y * n);
-      ctrl[C_COMMITS]++;
+      ctrl[stamps + y] = ++ctrl[C_COMMITS];
     }
     ctrl[C_SEGMENTS] = (ctrl[C_SEGMENTS] + (stats.segments - segments)) | 0;
     ctrl[C_REJECTED] += stats.rejected - rejected;

@@ -74,8 +74,10 @@ export class Controller extends EventTarget implements PathTracerController {
   /** The pointer is moving: the next camera change switches to the preview film. */
   private wantPreview = false;
   private raf = 0;
-  private lastDrawnChange = -1;
+  /** Exposure changed: redraw without new samples. */
   private displayDirty = true;
+  /** The film was switched or remade: upload all of it. */
+  private uploadAll = true;
   private convergedSent = false;
   private destroyed = false;
   private readonly rays = new RateMeter();
@@ -216,7 +218,7 @@ export class Controller extends EventTarget implements PathTracerController {
     this.preview = null;
     this.canvas.width = w;
     this.canvas.height = h;
-    this.displayDirty = true;
+    this.uploadAll = true;
     return true;
   }
 
@@ -263,7 +265,7 @@ export class Controller extends EventTarget implements PathTracerController {
       ctrl: shared?.ctrlBuffer,
     };
     this.convergedSent = false;
-    this.displayDirty = true;
+    this.uploadAll = true;
     this.rays.reset();
     this.noise = NaN;
     this.pool.register(this.client);
@@ -398,6 +400,20 @@ export class Controller extends EventTarget implements PathTracerController {
 
   // ---- per frame ---------------------------------------------------------
 
+  /**
+   * Uploads the rows that changed since the last draw and draws; with
+   * `force`, draws even when nothing changed. Returns whether it drew.
+   */
+  private present(job: FilmJob, force: boolean): boolean {
+    const dirty = job.takeDirtyRows();
+    if (!force && dirty.length === 0 && !this.displayDirty && !this.uploadAll) return false;
+    const rows = this.uploadAll ? null : dirty;
+    this.display.draw(job.film.sums, job.width, job.height, this.exposure, rows);
+    this.displayDirty = false;
+    this.uploadAll = false;
+    return true;
+  }
+
   private readonly frame = (now: number): void => {
     if (this.destroyed) return;
     this.raf = requestAnimationFrame(this.frame);
@@ -409,14 +425,10 @@ export class Controller extends EventTarget implements PathTracerController {
     const segments = job.takeSegments();
     this.segmentsTotal += segments;
     this.rays.add(now, segments);
-    const change = job.changeCount();
-    if (change !== this.lastDrawnChange || this.displayDirty) {
-      const t0 = performance.now();
-      this.display.draw(job.film.sums, job.width, job.height, this.exposure);
+    const t0 = performance.now();
+    if (this.present(job, false)) {
       this.frameMs = performance.now() - t0;
       this.frames.add(now, 1);
-      this.lastDrawnChange = change;
-      this.displayDirty = false;
     }
     const spp = job.passesDone();
     if (now - this.noiseAt > NOISE_INTERVAL_MS) {
@@ -480,8 +492,11 @@ export class Controller extends EventTarget implements PathTracerController {
 
   /** The canvas's displayed pixels (redrawn first, so WebGL2's buffer is current). */
   readDisplay(): DisplayPixels {
+    // Drawn as a frame would be (only changed rows uploaded), so a read-back
+    // checks the incremental upload too; WebGL2 needs the draw because its
+    // buffer is not preserved after a frame is shown.
     const job = this.activeJob();
-    if (job) this.display.draw(job.film.sums, job.width, job.height, this.exposure);
+    if (job) this.present(job, true);
     return this.display.readPixels();
   }
 

@@ -13,6 +13,7 @@ export class Canvas2DDisplay implements Display {
   private image: ImageData | null = null;
   /** Holds a preview film's pixels before they are scaled onto the canvas. */
   private scratch: HTMLCanvasElement | null = null;
+  private lastExposure = NaN;
 
   constructor(canvas: HTMLCanvasElement) {
     const ctx = canvas.getContext('2d', { alpha: false });
@@ -21,14 +22,35 @@ export class Canvas2DDisplay implements Display {
     this.ctx = ctx;
   }
 
-  draw(sums: Float32Array, filmWidth: number, filmHeight: number, exposure: number): void {
+  draw(
+    sums: Float32Array,
+    filmWidth: number,
+    filmHeight: number,
+    exposure: number,
+    dirtyRows: readonly number[] | null,
+  ): void {
+    let rows = dirtyRows;
     if (!this.image || this.image.width !== filmWidth || this.image.height !== filmHeight) {
       this.image = new ImageData(filmWidth, filmHeight);
+      rows = null;
     }
-    tonemapSums(sums.subarray(0, filmWidth * filmHeight * 4), exposure, this.image.data);
+    // A new exposure changes every pixel; otherwise only changed rows are
+    // tone mapped, which is what makes the CPU path affordable per frame.
+    if (exposure !== this.lastExposure) rows = null;
+    this.lastExposure = exposure;
+    if (rows === null) rows = [0, filmHeight];
+    const image = this.image;
+    const rowFloats = filmWidth * 4;
+    for (let i = 0; i < rows.length; i += 2) {
+      const a = rows[i] * rowFloats;
+      const b = rows[i + 1] * rowFloats;
+      tonemapSums(sums.subarray(a, b), exposure, image.data.subarray(a, b));
+    }
     const { width, height } = this.canvas;
     if (filmWidth === width && filmHeight === height) {
-      this.ctx.putImageData(this.image, 0, 0);
+      for (let i = 0; i < rows.length; i += 2) {
+        this.ctx.putImageData(image, 0, 0, 0, rows[i], filmWidth, rows[i + 1] - rows[i]);
+      }
       return;
     }
     this.scratch ??= document.createElement('canvas');

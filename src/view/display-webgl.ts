@@ -70,28 +70,34 @@ export class WebGLDisplay implements Display {
     this.texHeight = 1;
   }
 
-  draw(sums: Float32Array, filmWidth: number, filmHeight: number, exposure: number): void {
+  draw(
+    sums: Float32Array,
+    filmWidth: number,
+    filmHeight: number,
+    exposure: number,
+    dirtyRows: readonly number[] | null,
+  ): void {
     const gl = this.gl;
     gl.bindTexture(gl.TEXTURE_2D, this.texture);
     // Tightly packed rows of 16-byte texels.
     gl.pixelStorei(gl.UNPACK_ALIGNMENT, 4);
-    const data = sums.subarray(0, filmWidth * filmHeight * 4);
+    let rows = dirtyRows;
     if (filmWidth !== this.texWidth || filmHeight !== this.texHeight) {
-      gl.texImage2D(
-        gl.TEXTURE_2D,
-        0,
-        gl.RGBA32F,
-        filmWidth,
-        filmHeight,
-        0,
-        gl.RGBA,
-        gl.FLOAT,
-        null,
-      );
+      const f = gl.FLOAT;
+      gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, filmWidth, filmHeight, 0, gl.RGBA, f, null);
       this.texWidth = filmWidth;
       this.texHeight = filmHeight;
+      rows = null;
     }
-    this.upload(data, filmWidth, filmHeight);
+    // Workers finish a few rows per frame; uploading only those keeps the
+    // main thread's share to a fraction of a full 1280×520 upload.
+    if (rows === null) rows = [0, filmHeight];
+    const rowFloats = filmWidth * 4;
+    for (let i = 0; i < rows.length; i += 2) {
+      const y0 = rows[i];
+      const y1 = rows[i + 1];
+      this.upload(sums.subarray(y0 * rowFloats, y1 * rowFloats), filmWidth, y0, y1 - y0);
+    }
     gl.viewport(0, 0, this.canvas.width, this.canvas.height);
     gl.useProgram(this.program);
     gl.uniform1f(this.uExposure, exposure);
@@ -99,21 +105,22 @@ export class WebGLDisplay implements Display {
     gl.drawArrays(gl.TRIANGLES, 0, 3);
   }
 
-  private upload(data: Float32Array, w: number, h: number): void {
+  private upload(data: Float32Array, w: number, y0: number, h: number): void {
     const gl = this.gl;
     if (!this.sharedUploadFails) {
       try {
-        gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, w, h, gl.RGBA, gl.FLOAT, data);
+        gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, y0, w, h, gl.RGBA, gl.FLOAT, data);
         return;
       } catch {
         this.sharedUploadFails = true;
       }
     }
-    if (!this.staging || this.staging.length < data.length)
+    if (!this.staging || this.staging.length < data.length) {
       this.staging = new Float32Array(data.length);
+    }
     const staging = this.staging.subarray(0, data.length);
     staging.set(data);
-    gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, w, h, gl.RGBA, gl.FLOAT, staging);
+    gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, y0, w, h, gl.RGBA, gl.FLOAT, staging);
   }
 
   readPixels(): DisplayPixels {

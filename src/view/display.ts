@@ -17,9 +17,17 @@ export interface Display {
   readonly mode: DisplayMode;
   /**
    * Draws a film of filmWidth × filmHeight onto the whole canvas (a smaller
-   * film, the low-resolution preview, is scaled up).
+   * film, the low-resolution preview, is scaled up). `dirtyRows` lists the
+   * rows whose sums changed since the previous draw as flat [y0, y1, …]
+   * spans, so only those are uploaded or tone mapped; null means all.
    */
-  draw(sums: Float32Array, filmWidth: number, filmHeight: number, exposure: number): void;
+  draw(
+    sums: Float32Array,
+    filmWidth: number,
+    filmHeight: number,
+    exposure: number,
+    dirtyRows: readonly number[] | null,
+  ): void;
   /** The canvas's pixels as last drawn. */
   readPixels(): DisplayPixels;
   destroy(): void;

@@ -25,8 +25,11 @@ export interface FilmJob {
   passesDone(): number;
   /** Passes finished, averaged over stripes (fractional; for the progress bar). */
   progress(): number;
-  /** A number that changes whenever new samples landed in the film. */
-  changeCount(): number;
+  /**
+   * Rows whose samples changed since the previous call, as flat
+   * [y0, y1, y0, y1, …] half-open spans (empty when nothing changed).
+   */
+  takeDirtyRows(): number[];
   /** Segments traced since the previous call. */
   takeSegments(): number;
   rejected(): number;

@@ -16,6 +16,7 @@ import {
   C_TARGET,
   controlWords,
   lock,
+  rowStampBase,
   unlock,
 } from '../../workers/render-protocol.ts';
 import type { FilmJob } from './film-job.ts';
@@ -30,6 +31,8 @@ export class SharedFilmJob implements FilmJob {
   readonly ctrlBuffer: SharedArrayBuffer;
   private readonly ctrl: Int32Array;
   private lastSegments = 0;
+  /** Row stamps as of the last takeDirtyRows. */
+  private readonly seen: Int32Array;
 
   constructor(width: number, height: number, stripeRows: number, target: number) {
     this.width = width;
@@ -37,7 +40,8 @@ export class SharedFilmJob implements FilmJob {
     this.stripeRows = stripeRows;
     this.stripes = Math.ceil(height / stripeRows);
     this.filmBuffer = new SharedArrayBuffer(Film.byteLength(width, height));
-    this.ctrlBuffer = new SharedArrayBuffer(controlWords(this.stripes) * 4);
+    this.ctrlBuffer = new SharedArrayBuffer(controlWords(this.stripes, height) * 4);
+    this.seen = new Int32Array(height).fill(-1);
     this.film = new Film(width, height, this.filmBuffer);
     this.ctrl = new Int32Array(this.ctrlBuffer);
     this.ctrl[C_CONFIG] = -1;
@@ -57,7 +61,9 @@ export class SharedFilmJob implements FilmJob {
     ctrl[C_CLAIM] = 0;
     ctrl.fill(0, C_DONE, C_DONE + this.stripes);
     ctrl[C_GEN]++;
-    ctrl[C_COMMITS]++;
+    const stamp = ++ctrl[C_COMMITS];
+    const base = rowStampBase(this.stripes);
+    ctrl.fill(stamp, base, base + this.height);
     unlock(ctrl);
     // Workers waiting for a stripe's previous pass look at the generation again.
     for (let s = 0; s < this.stripes; s++) Atomics.notify(ctrl, C_DONE + s);
@@ -95,8 +101,22 @@ export class SharedFilmJob implements FilmJob {
     return sum / this.stripes;
   }
 
-  changeCount(): number {
-    return Atomics.load(this.ctrl, C_COMMITS);
+  takeDirtyRows(): number[] {
+    const spans: number[] = [];
+    const base = rowStampBase(this.stripes);
+    let start = -1;
+    for (let y = 0; y < this.height; y++) {
+      const stamp = Atomics.load(this.ctrl, base + y);
+      const dirty = stamp !== this.seen[y];
+      this.seen[y] = stamp;
+      if (dirty && start < 0) start = y;
+      if (!dirty && start >= 0) {
+        spans.push(start, y);
+        start = -1;
+      }
+    }
+    if (start >= 0) spans.push(start, this.height);
+    return spans;
   }
 
   takeSegments(): number {

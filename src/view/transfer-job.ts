@@ -24,7 +24,8 @@ export class TransferFilmJob implements FilmJob {
   private inFlight: Uint8Array;
   /** Stripes ready for their next pass, in the order they will be handed out. */
   private queue: number[] = [];
-  private commits = 0;
+  /** Rows changed since the last takeDirtyRows, as [y0, y1) spans. */
+  private dirty: number[] = [];
   private segments = 0;
   private rejectedCount = 0;
 
@@ -58,7 +59,7 @@ export class TransferFilmJob implements FilmJob {
     // Tasks of the old generation still out are dropped when they return.
     this.inFlight = new Uint8Array(this.stripes);
     this.requeue();
-    this.commits++;
+    this.dirty = [0, this.height];
   }
 
   setVersion(version: number): void {
@@ -86,8 +87,10 @@ export class TransferFilmJob implements FilmJob {
     return sum / this.stripes;
   }
 
-  changeCount(): number {
-    return this.commits;
+  takeDirtyRows(): number[] {
+    const d = this.dirty;
+    this.dirty = [];
+    return d;
   }
 
   takeSegments(): number {
@@ -138,7 +141,9 @@ export class TransferFilmJob implements FilmJob {
       this.film.sums.set(window.sums, a);
       this.film.extra.set(window.extra, a);
       this.done[s]++;
-      this.commits++;
+      // Collapsed when frames stop (a hidden tab) so the list stays small.
+      if (this.dirty.length > 2 * this.stripes) this.dirty = [0, this.height];
+      else this.dirty.push(result.y0, result.y0 + result.rows);
     }
     if (this.done[s] < this.target) {
       // A stripe that was not rendered goes first again, to keep pass order tight.

@@ -55,7 +55,9 @@ export class PathwiseViewElement extends ElementBase {
    */
   workerFactory: (() => Worker) | undefined = undefined;
 
-  private readonly canvas: HTMLCanvasElement;
+  private canvas: HTMLCanvasElement;
+  /** Whether a tracer has drawn on `canvas` (a canvas keeps its first context for good). */
+  private canvasUsed = false;
   private readonly messageBox: HTMLDivElement;
   private readonly visibility: VisibilityWatcher;
   private tracer: ReturnType<typeof createPathTracer> | null = null;
@@ -66,6 +68,8 @@ export class PathwiseViewElement extends ElementBase {
   private workerUrlOverride: string | URL | undefined = undefined;
   /** Bumped on every scene request so a slow, superseded load cannot report over a newer one. */
   private sceneRequest = 0;
+  /** Error events seen from the controller, to tell reported failures from silent ones. */
+  private errorEvents = 0;
   private started = false;
 
   constructor() {
@@ -73,8 +77,7 @@ export class PathwiseViewElement extends ElementBase {
     const root = this.attachShadow({ mode: 'open' });
     const style = document.createElement('style');
     style.textContent = ELEMENT_CSS;
-    this.canvas = document.createElement('canvas');
-    this.canvas.setAttribute('part', 'canvas');
+    this.canvas = createCanvas();
     this.messageBox = document.createElement('div');
     this.messageBox.setAttribute('part', 'message');
     this.messageBox.setAttribute('role', 'alert');
@@ -243,7 +246,7 @@ export class PathwiseViewElement extends ElementBase {
     // A move within the document disconnects and reconnects synchronously;
     // only a real removal should pay for freeing and re-creating workers.
     queueMicrotask(() => {
-      if (!this.isConnected) void 0;
+      if (!this.isConnected) this.stopTracer();
     });
   }
 
@@ -299,6 +302,14 @@ export class PathwiseViewElement extends ElementBase {
     else if (workerUrl !== undefined) options.workerFactory = moduleWorkerFactory(workerUrl);
     let tracer: ReturnType<typeof createPathTracer>;
     try {
+      // A re-connected element starts on a fresh canvas: the old one's
+      // context belonged to the destroyed tracer.
+      if (this.canvasUsed) {
+        const canvas = createCanvas();
+        this.canvas.replaceWith(canvas);
+        this.canvas = canvas;
+      }
+      this.canvasUsed = true;
       tracer = createPathTracer(this.canvas, options);
     } catch (err) {
       this.showError(errorMessage(err));
@@ -322,9 +333,9 @@ export class PathwiseViewElement extends ElementBase {
   }
 
   /**
-   * Loads `scene` if set, else `src`. Failures need no handling here: the
-   * controller reports them as an `error` event, which `forward` shows
-   * inside the element and re-dispatches.
+   * Loads `scene` if set, else `src`. The controller reports failures as an
+   * `error` event, which `forward` shows and re-dispatches; a rejection that
+   * came without one is reported here, so no failure leaves a blank box.
    */
   private requestScene(): void {
     const tracer = this.tracer;
@@ -339,6 +350,7 @@ export class PathwiseViewElement extends ElementBase {
       return;
     }
     const first = tracer.scene === null;
+    const errorsBefore = this.errorEvents;
     pending.then(
       () => {
         if (request !== this.sceneRequest) return;
@@ -347,7 +359,11 @@ export class PathwiseViewElement extends ElementBase {
         if (!first && this.bounces !== null) tracer.setBounces(this.bounces);
         this.applyRunState();
       },
-      () => {},
+      (err: unknown) => {
+        if (request === this.sceneRequest && this.errorEvents === errorsBefore) {
+          this.showError(errorMessage(err));
+        }
+      },
     );
   }
 
@@ -363,6 +379,7 @@ export class PathwiseViewElement extends ElementBase {
         break;
       case 'error':
         // A bad scene or URL, or a worker failure: never leave a blank box.
+        this.errorEvents++;
         this.showMessage((detail as { message: string }).message);
         break;
     }
@@ -370,6 +387,7 @@ export class PathwiseViewElement extends ElementBase {
   };
 
   private showError(message: string): void {
+    this.errorEvents++;
     this.showMessage(message);
     this.dispatchEvent(new CustomEvent('error', { detail: { message } }));
   }
@@ -389,7 +407,7 @@ export class PathwiseViewElement extends ElementBase {
   }
 
   private shouldRun(): boolean {
-    return !this.paused && this.isConnected;
+    return !this.paused && this.isConnected && this.visibility.visible;
   }
 
   private applyRunState(): void {
@@ -445,8 +463,14 @@ export interface PathwiseViewElement {
 
 declare global {
   interface HTMLElementTagNameMap {
-    'pathwise-viewx': PathwiseViewElement;
+    'pathwise-view': PathwiseViewElement;
   }
+}
+
+function createCanvas(): HTMLCanvasElement {
+  const canvas = document.createElement('canvas');
+  canvas.setAttribute('part', 'canvas');
+  return canvas;
 }
 
 function errorMessage(err: unknown): string {

@@ -20,6 +20,7 @@ import {
   startDemoServer,
   waitForSpp,
 } from './harness.ts';
+import { toDisplayByte } from '../../src/core/index.ts';
 import { nodeRender } from './node-reference.ts';
 
 const SIZE = 64;
@@ -82,6 +83,15 @@ describe('browser demo (Chromium)', () => {
     expect(img.width).toBe(SIZE);
     expect(img.rgb.length).toBe(reference.length);
     expect(bitDifferences(img.rgb, reference)).toBe(0);
+    // And the canvas shows that image through the core's display transform,
+    // every row of it (rows reach the texture incrementally, as they finish).
+    const shown = await readDisplay(page);
+    const expected = new Uint8Array(SIZE * SIZE * 4);
+    for (let p = 0; p < SIZE * SIZE; p++) {
+      for (let c = 0; c < 3; c++) expected[p * 4 + c] = toDisplayByte(reference[p * 3 + c], 1);
+      expected[p * 4 + 3] = 255;
+    }
+    expect(maxByteDifference(shown.rgba, expected)).toBeLessThanOrEqual(1);
     await page.close();
   });
 

@@ -3,7 +3,9 @@
  * or without the cross-origin isolation headers) and Debian's Chromium
  * driven by playwright-core.
  */
-import { existsSync } from 'node:fs';
+import { existsSync, mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium, type Browser, type Page } from 'playwright-core';
 import { createServer, type ViteDevServer } from 'vite';
@@ -21,19 +23,33 @@ export const chromiumArgs = [
   '--disable-sync',
 ];
 
-/** The demo's dev server. `isolated: false` serves it without COOP/COEP. */
+/**
+ * The demo's dev server. `isolated: false` serves it without COOP/COEP.
+ * Each server gets its own dependency cache: other Vite servers on this
+ * checkout (other test files, a developer's `npm start`) must not rewrite
+ * the pre-bundled modules under a page that is loading them.
+ */
 export async function startDemoServer(
   isolated = true,
 ): Promise<{ server: ViteDevServer; url: string }> {
+  const cacheDir = mkdtempSync(join(tmpdir(), 'pathwise-vite-'));
   const server = await createServer({
     root,
+    cacheDir,
     configFile: isolated ? undefined : false,
-    ...(isolated ? {} : { worker: { format: 'es' as const } }),
+    ...(isolated
+      ? {}
+      : { worker: { format: 'es' as const }, optimizeDeps: { include: ['comlink'] } }),
     server: { host: '127.0.0.1', port: 0, strictPort: false, hmr: false },
     logLevel: 'error',
   });
   await server.listen();
   const url = server.resolvedUrls!.local[0];
+  const close = server.close.bind(server);
+  server.close = async () => {
+    await close();
+    rmSync(cacheDir, { recursive: true, force: true });
+  };
   return { server, url };
 }
 
@@ -51,6 +67,11 @@ export const pageErrors: string[] = [];
 export async function openDemo(browser: Browser, url: string, query: string): Promise<Page> {
   const page = await browser.newPage();
   page.on('pageerror', (e) => pageErrors.push(`${query}: ${e.message}`));
+  const logged: string[] = [];
+  consoleErrors.set(page, logged);
+  page.on('console', (m) => {
+    if (m.type() === 'error') logged.push(m.text());
+  });
   await page.goto(`${url}?${query}`);
   await page.waitForFunction(() => 'controller' in ((window as any).__pathwise ?? {}));
   return page;
@@ -60,13 +81,30 @@ export async function spp(page: Page): Promise<number> {
   return page.evaluate(() => (window as any).__pathwise.controller.stats().spp as number);
 }
 
+/** Console errors per page, for the message of a wait that times out. */
+const consoleErrors = new WeakMap<Page, string[]>();
+
 /** Waits until the controller has at least `n` samples per pixel. */
 export async function waitForSpp(page: Page, n: number, timeout = 60_000): Promise<void> {
-  await page.waitForFunction(
-    (target) => (window as any).__pathwise.controller.stats().spp >= target,
-    n,
-    { timeout, polling: 50 },
-  );
+  try {
+    await page.waitForFunction(
+      (target) => (window as any).__pathwise.controller.stats().spp >= target,
+      n,
+      { timeout, polling: 50 },
+    );
+  } catch (e) {
+    // Say where it stood: a stalled render is otherwise just a timeout.
+    const state = await page
+      .evaluate(() => ({
+        stats: (window as any).__pathwise.controller.stats(),
+        error: document.getElementById('error')?.textContent,
+      }))
+      .catch(() => null);
+    const logged = (consoleErrors.get(page) ?? []).slice(-5).join(' | ');
+    throw new Error(
+      `spp did not reach ${n}: ${JSON.stringify(state)}; console: ${logged}; ${(e as Error).message}`,
+    );
+  }
 }
 
 /** The linear mean image as Float32 (exact: float32 values survive the trip through doubles). */

@@ -21,9 +21,13 @@ const MIRROR_F0: Vec3 = [0.95, 0.64, 0.04];
 const ROUGH_F0: Vec3 = [0, 0.5, 1];
 
 const DESCS: MaterialDesc[] = [
-  ...IORS.map(
-    (ior): MaterialDesc => ({ type: 'dielectric', ior, color: TINT, roughness: 0, emission: BLACK }),
-  ),
+  ...IORS.map((ior): MaterialDesc => ({
+    type: 'dielectric',
+    ior,
+    color: TINT,
+    roughness: 0,
+    emission: BLACK,
+  })),
   { type: 'conductor', color: MIRROR_F0, roughness: 0, emission: BLACK },
   { type: 'conductor', color: ROUGH_F0, roughness: 1, emission: BLACK },
 ];
@@ -85,9 +89,9 @@ describe('fresnelDielectric', () => {
         expect(Math.abs(fresnelDielectric(c, ior) - fresnelReference(c, 1, ior))).toBeLessThan(
           1e-13,
         );
-        expect(
-          Math.abs(fresnelDielectric(c, 1 / ior) - fresnelReference(c, ior, 1)),
-        ).toBeLessThan(1e-13);
+        expect(Math.abs(fresnelDielectric(c, 1 / ior) - fresnelReference(c, ior, 1))).toBeLessThan(
+          1e-13,
+        );
       }
     }
   });
@@ -354,7 +358,17 @@ describe('conductor, roughness 0: a Schlick mirror', () => {
     for (let i = 0; i < 5000; i++) {
       const c = i % 5 === 0 ? 1e-9 * (1 + rand(60, i, 0)) : rand(60, i, 0) || 1;
       const w = dir(c, 6.28 * rand(60, i, 1));
-      const ok = bsdfSample(MATERIALS, MIRROR, w[0], w[1], w[2], rand(61, i, 0), rand(61, i, 1), 0, s);
+      const ok = bsdfSample(
+        MATERIALS,
+        MIRROR,
+        w[0],
+        w[1],
+        w[2],
+        rand(61, i, 0),
+        rand(61, i, 1),
+        0,
+        s,
+      );
       expect(ok).toBe(true);
       expect(s.isDelta).toBe(true);
       expect(s.pdf).toBe(1);

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { hashToUnit, sampleKey } from '../../src/core/rng/pcg.ts';
+import { hashToUnit, pcgHash, sampleKey } from '../../src/core/rng/pcg.ts';
 import {
   DIM_BOUNCE,
   DIM_BSDF,
@@ -71,11 +71,14 @@ describe('sobol sampler building blocks', () => {
   it('matches the dimension layout of the sampler', () => {
     const bounce0 = DIM_BOUNCE;
     expect(PAIRS).toEqual([DIM_FILM, DIM_LENS, bounce0 + DIM_LIGHT_POINT, bounce0 + DIM_BSDF]);
-    expect(SINGLES).toEqual([
-      bounce0 + DIM_LIGHT_CHOICE,
-      bounce0 + DIM_BSDF_LOBE,
-      bounce0 + DIM_ROULETTE,
-    ]);
+    expect(SINGLES).toEqual([bounce0 + DIM_LIGHT_CHOICE, bounce0 + DIM_BSDF_LOBE]);
+    // The first bounce's roulette number is never drawn (roulette starts at
+    // the third bounce), so it stays on the hash.
+    const sampler = new Sampler(5, 'sobol');
+    sampler.startPixelSample(3, 4);
+    expect(sampler.get1D(bounce0 + DIM_ROULETTE)).toBe(
+      hashToUnit(sampleKey(5, 3, 4), bounce0 + DIM_ROULETTE),
+    );
     expect(SOBOL_DIMENSIONS).toBe(DIM_BOUNCE + DIM_PER_BOUNCE);
   });
 });
@@ -149,6 +152,29 @@ describe('sobol samples', () => {
       expect(Math.abs(mean - 0.5)).toBeLessThan(5 * Math.sqrt(1 / 12 / n));
       // Uniform on [0,1) has variance 1/12.
       expect(Math.abs(variance - 1 / 12)).toBeLessThan(0.01);
+    }
+  });
+
+  it('matches a direct evaluation of shuffle, Sobol point and scramble', () => {
+    // The fill works in the bit-reversed domain to save reversals; check it
+    // against the textbook composition owen(sobol_d(owen(index))).
+    for (const [pixel, s] of [
+      [0, 0],
+      [5, 9],
+      [777, 300],
+    ]) {
+      for (const [g, first] of [
+        [1, 0],
+        [4, 5],
+      ]) {
+        const key = pcgHash((seed + pcgHash(pixel)) >>> 0);
+        const gk = pcgHash((key + Math.imul(g, 0x9e3779b9)) >>> 0);
+        const index = owenScramble(s, gk);
+        const x = owenScramble(reverseBits32(index), pcgHash(gk ^ 0x68e31da4)) / 2 ** 32;
+        const y = owenScramble(sobol1(index), pcgHash(gk ^ 0xb5297a4d)) / 2 ** 32;
+        expect(sobolSample(seed, pixel, s, first)).toBe(x);
+        expect(sobolSample(seed, pixel, s, first + 1)).toBe(y);
+      }
     }
   });
 

@@ -5,7 +5,7 @@
  * Chromium, served once without and once with cross-origin isolation.
  */
 import { execFileSync } from 'node:child_process';
-import { existsSync, readdirSync, readFileSync, writeFileSync } from 'node:fs';
+import { existsSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { join } from 'node:path';
 import type { Browser, BrowserContext, Page } from 'playwright-core';
@@ -15,8 +15,8 @@ import type { FallbackInfo, ProgressInfo } from '../../src/view/types.ts';
 import type { PathwiseViewElement } from '../../src/widget/index.ts';
 import { launchChromium } from './fixture/browser.ts';
 import { isGreen, isRed, wallColors } from './fixture/cornell-colors.ts';
-import { installPackedPackage, type InstalledPackage } from './fixture/install-package.ts';
-import { writeSite } from './fixture/site.ts';
+import { installPackedPackage, REPO, type InstalledPackage } from './fixture/install-package.ts';
+import { writeCdnPage, writeSite, writeViteApp } from './fixture/site.ts';
 import { serveDirectory, type StaticServer } from './fixture/static-server.ts';
 
 interface LoggedEvent {
@@ -39,6 +39,7 @@ beforeAll(async () => {
 
 afterAll(async () => {
   await browser?.close();
+  if (installed) rmSync(installed.dir, { recursive: true, force: true });
 });
 
 /** Runs an ES module script with Node inside the consumer project; returns its stdout. */
@@ -301,7 +302,7 @@ async function expectWorkersTerminatedAfterRemoving(page: Page, selectors: strin
 describe('<pathwise-view> on a page without cross-origin isolation', () => {
   let server: StaticServer;
   beforeAll(async () => {
-    server = await serveDirectory(installed.project, false);
+    server = await serveDirectory(installed.project);
   });
   afterAll(() => server?.close());
 
@@ -352,6 +353,22 @@ describe('<pathwise-view> on a page without cross-origin isolation', () => {
     }
   });
 
+  test('a worker script that cannot load yields an error event and message, not a blank box', async () => {
+    const { page, close } = await openPage(server, 'blank.html');
+    try {
+      const view = await addView(page, 'noworker', {
+        src: 'scenes/cornell.json',
+        'worker-url': 'no-such-worker.js',
+      });
+      await waitForEvent(page, view, 'error');
+      const message = page.locator(`${view} [part=message]`);
+      expect(await message.isVisible()).toBe(true);
+      expect(await message.innerText()).toMatch(/worker/);
+    } finally {
+      await close();
+    }
+  });
+
   test('elements share one worker pool; removing the last one terminates the workers', async () => {
     const { page, errors, close } = await openPage(server, 'blank.html');
     try {
@@ -365,7 +382,8 @@ describe('<pathwise-view> on a page without cross-origin isolation', () => {
         ),
       );
       // One pool for both elements: as many workers as one element uses.
-      expect(page.workers().length).toBe(poolSizes[0]);
+      // (Polled: Playwright learns of workers asynchronously.)
+      await expect.poll(() => page.workers().length).toBe(poolSizes[0]);
       expect(poolSizes[1]).toBe(poolSizes[0]);
 
       // Removing one element leaves the pool working for the other.
@@ -377,6 +395,40 @@ describe('<pathwise-view> on a page without cross-origin isolation', () => {
       expect(page.workers().length).toBe(poolSizes[0]);
 
       await expectWorkersTerminatedAfterRemoving(page, [b]);
+      expect(errors).toEqual([]);
+    } finally {
+      await close();
+    }
+  });
+
+  test('a moved element keeps tracing; a removed and re-added one starts again', async () => {
+    const { page, errors, close } = await openPage(server, 'blank.html');
+    try {
+      const view = await addView(page, 'moved', { src: 'scenes/cornell.json', spp: '4' });
+      await waitForEvent(page, view, 'converged');
+      const sameController = await page.evaluate(() => {
+        const el = document.querySelector<PathwiseViewElement>('#moved')!;
+        const before = el.controller;
+        const box = document.createElement('div');
+        document.body.append(box);
+        box.append(el); // a move: disconnected and connected in one task
+        return el.controller === before;
+      });
+      expect(sameController).toBe(true);
+      // Removed in one task (its tracer is destroyed), re-added in another.
+      await page.evaluate(() => {
+        const el = document.querySelector('#moved')!;
+        (window as unknown as { removed: Element }).removed = el;
+        el.remove();
+      });
+      await page.evaluate(() =>
+        document.body.append((window as unknown as { removed: Element }).removed),
+      );
+      await waitForEvent(page, view, 'load', 2);
+      await waitForEvent(page, view, 'converged', 2);
+      const image = await readPfm(page, view);
+      const walls = wallColors(image.width, image.height, image.rgb);
+      expect(isRed(walls.left) && isGreen(walls.right)).toBe(true);
       expect(errors).toEqual([]);
     } finally {
       await close();
@@ -500,7 +552,7 @@ describe('<pathwise-view> on a page without cross-origin isolation', () => {
 describe('<pathwise-view> on a cross-origin isolated page (COOP/COEP)', () => {
   let server: StaticServer;
   beforeAll(async () => {
-    server = await serveDirectory(installed.project, true);
+    server = await serveDirectory(installed.project, { isolated: true });
   });
   afterAll(() => server?.close());
 
@@ -523,6 +575,64 @@ describe('<pathwise-view> on a cross-origin isolated page (COOP/COEP)', () => {
       await waitForEvent(page, '#view', 'converged');
       expect(page.workers().length).toBeGreaterThan(0);
       await expectWorkersTerminatedAfterRemoving(page, ['#view']);
+      expect(errors).toEqual([]);
+    } finally {
+      await close();
+    }
+  });
+});
+
+describe('<pathwise-view> loaded from another origin (a CDN)', () => {
+  let site: StaticServer;
+  let cdn: StaticServer;
+  beforeAll(async () => {
+    site = await serveDirectory(installed.project);
+    cdn = await serveDirectory(installed.project, { cdn: true });
+  });
+  afterAll(async () => {
+    await site?.close();
+    await cdn?.close();
+  });
+
+  // Browsers start workers only from same-origin scripts; worker-url makes
+  // the element start its workers through a same-origin module shim.
+  test('with worker-url on the CDN it renders the Cornell box', async () => {
+    const worker = `${cdn.url}node_modules/pathwise/dist/lib/render-worker.js`;
+    writeCdnPage(
+      installed.project,
+      installed.packageDir,
+      'cdn-worker-url.html',
+      cdn.url,
+      `<pathwise-view id="view" src="scenes/cornell.json" spp="16" worker-url="${worker}"></pathwise-view>
+    <script>record(document.getElementById('view'));</script>`,
+    );
+    const { page, errors, close } = await openPage(site, 'cdn-worker-url.html');
+    try {
+      await expectConvergedCornellBox(page);
+      expect(errors).toEqual([]);
+    } finally {
+      await close();
+    }
+  });
+});
+
+describe('<pathwise-view> in an app bundled by Vite', () => {
+  let server: StaticServer;
+  beforeAll(async () => {
+    const app = writeViteApp(installed.project);
+    // The repository's Vite builds the app; 'pathwise' resolves to the installed package.
+    execFileSync(process.execPath, [join(REPO, 'node_modules/vite/bin/vite.js'), 'build'], {
+      cwd: app,
+      stdio: ['ignore', 'pipe', 'pipe'],
+    });
+    server = await serveDirectory(join(app, 'dist'));
+  });
+  afterAll(() => server?.close());
+
+  test('the bundled worker loads and the view converges to the Cornell box', async () => {
+    const { page, errors, close } = await openPage(server, 'index.html');
+    try {
+      await expectConvergedCornellBox(page);
       expect(errors).toEqual([]);
     } finally {
       await close();

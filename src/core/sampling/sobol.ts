@@ -37,10 +37,11 @@ export const SOBOL_IMPLEMENTED = true;
 /**
  * How the leading dimensions are grouped, following the layout of
  * sampler.ts: film (0,1), lens (2,3), then first bounce from DIM_BOUNCE = 4:
- * light choice (4), light point (5,6), BSDF direction (7,8), BSDF lobe (9),
- * Russian roulette (10). Dimension 11 is not used by the tracer and stays
- * on the hash. A group of size 2 is a 2D Sobol pair; size 1 is van der
- * Corput. Each entry: [first dimension, size].
+ * light choice (4), light point (5,6), BSDF direction (7,8), BSDF lobe (9).
+ * A group of size 2 is a 2D Sobol pair; size 1 is van der Corput. Each
+ * entry: [first dimension, size]. Dimension 10 (Russian roulette of the
+ * first bounce: roulette starts at the third) and 11 (unused) stay on the
+ * hash, as does everything from the second bounce on.
  */
 export const SOBOL_GROUPS: readonly (readonly [number, number])[] = [
   [0, 2],
@@ -49,7 +50,6 @@ export const SOBOL_GROUPS: readonly (readonly [number, number])[] = [
   [5, 2],
   [7, 2],
   [9, 1],
-  [10, 1],
 ];
 
 /** Reverses the 32 bits of x (returns an unsigned 32-bit integer). */
@@ -71,13 +71,20 @@ export function reverseBits32(x: number): number {
  * which fixes the weak high bits of Burley's original constants.
  */
 export function owenScramble(x: number, seed: number): number {
-  x = reverseBits32(x);
+  return reverseBits32(lkPermute(reverseBits32(x), seed));
+}
+
+/**
+ * The permutation in the bit-reversed domain (see owenScramble): output bit
+ * i depends only on input bits 0..i.
+ */
+function lkPermute(x: number, seed: number): number {
   x ^= Math.imul(x, 0x3d20adea);
   x = (x + seed) | 0;
   x = Math.imul(x, (seed >>> 16) | 1);
   x ^= Math.imul(x, 0x05526c56);
   x ^= Math.imul(x, 0x53a22864);
-  return reverseBits32(x);
+  return x;
 }
 
 /**
@@ -85,7 +92,7 @@ export function owenScramble(x: number, seed: number): number {
  * Pascal matrix mod 2): direction v_0 = 2^31, v_i = v_{i−1} ^ (v_{i−1} >> 1).
  * Tabulated per byte of the index so one point costs four lookups.
  */
-const SOBOL1_TABLE = (() => {
+function sobol1Table(reversed: boolean): Uint32Array {
   const dirs = new Uint32Array(32);
   dirs[0] = 0x80000000;
   for (let i = 1; i < 32; i++) dirs[i] = dirs[i - 1] ^ (dirs[i - 1] >>> 1);
@@ -94,11 +101,16 @@ const SOBOL1_TABLE = (() => {
     for (let v = 0; v < 256; v++) {
       let x = 0;
       for (let bit = 0; bit < 8; bit++) if (v & (1 << bit)) x ^= dirs[b * 8 + bit];
-      table[b * 256 + v] = x >>> 0;
+      // Bit reversal is linear over XOR, so the reversed point is the XOR
+      // of reversed directions.
+      table[b * 256 + v] = reversed ? reverseBits32(x) : x >>> 0;
     }
   }
   return table;
-})();
+}
+const SOBOL1_TABLE = sobol1Table(false);
+/** The same, each entry bit-reversed: yields reverseBits32(sobol1(i)). */
+const SOBOL1_REV_TABLE = sobol1Table(true);
 
 /** Sobol dimension 1 of index i, as a 32-bit fixed-point number. */
 export function sobol1(i: number): number {
@@ -119,8 +131,14 @@ export function pixelKey(seed: number, pixel: number): number {
 
 /**
  * Fills out[0 .. SOBOL_DIMENSIONS) with the low-discrepancy numbers of one
- * (pixel, sample); `key` is pixelKey(seed, pixel), and `sampleKey` is the
- * PCG sample key used for the dimensions no group covers.
+ * (pixel, sample); `key` is pixelKey(seed, pixel), and `sampleKeyValue` is
+ * the PCG sample key, used for the dimensions no group covers.
+ *
+ * Written to do few bit reversals (they dominate the cost): with rs the
+ * reversed sample index, the shuffled index is rev(LK_g(rs)); the van der
+ * Corput point of index i is rev(i), so its Owen scramble
+ * rev(LK(rev(rev(i)))) is rev(LK(i)); and rev(sobol1(i)) comes from a
+ * reversed table, so its scramble is rev(LK(table(i))).
  */
 export function sobolFill(
   key: number,
@@ -128,22 +146,40 @@ export function sobolFill(
   sampleKeyValue: number,
   out: Float64Array,
 ): void {
-  for (let g = 0; g < SOBOL_GROUPS.length; g++) {
-    const first = SOBOL_GROUPS[g][0];
-    const size = SOBOL_GROUPS[g][1];
-    // One hash chain per group: shuffle key, then one scramble key per
-    // coordinate. The odd multipliers only spread the small integers.
-    const groupKey = pcgHash((key + Math.imul(g + 1, 0x9e3779b9)) >>> 0);
-    const index = owenScramble(sample >>> 0, groupKey);
-    const k0 = pcgHash(groupKey ^ 0x68e31da4);
-    out[first] = owenScramble(reverseBits32(index), k0) * INV_2_32;
-    if (size === 2) {
-      const k1 = pcgHash(groupKey ^ 0xb5297a4d);
-      out[first + 1] = owenScramble(sobol1(index), k1) * INV_2_32;
-    }
-  }
-  // Dimension 11 is in no group.
+  const rs = reverseBits32(sample >>> 0);
+  fillPair(out, 0, key, 1, rs);
+  fillPair(out, 2, key, 2, rs);
+  fillSingle(out, 4, key, 3, rs);
+  fillPair(out, 5, key, 4, rs);
+  fillPair(out, 7, key, 5, rs);
+  fillSingle(out, 9, key, 6, rs);
+  out[10] = hashToUnit(sampleKeyValue, 10);
   out[11] = hashToUnit(sampleKeyValue, 11);
+}
+
+/** Shuffled Sobol index of group g: Owen scramble keyed per (seed, pixel, group). */
+function groupKeyOf(key: number, g: number): number {
+  // The odd multiplier only spreads the small group numbers before hashing.
+  return pcgHash((key + Math.imul(g, 0x9e3779b9)) >>> 0);
+}
+
+function fillPair(out: Float64Array, first: number, key: number, g: number, rs: number): void {
+  const gk = groupKeyOf(key, g);
+  const index = reverseBits32(lkPermute(rs, gk));
+  out[first] = reverseBits32(lkPermute(index, pcgHash(gk ^ 0x68e31da4))) * INV_2_32;
+  const t = SOBOL1_REV_TABLE;
+  const v1 =
+    t[index & 255] ^
+    t[256 + ((index >>> 8) & 255)] ^
+    t[512 + ((index >>> 16) & 255)] ^
+    t[768 + (index >>> 24)];
+  out[first + 1] = reverseBits32(lkPermute(v1, pcgHash(gk ^ 0xb5297a4d))) * INV_2_32;
+}
+
+function fillSingle(out: Float64Array, first: number, key: number, g: number, rs: number): void {
+  const gk = groupKeyOf(key, g);
+  const index = reverseBits32(lkPermute(rs, gk));
+  out[first] = reverseBits32(lkPermute(index, pcgHash(gk ^ 0x68e31da4))) * INV_2_32;
 }
 
 /**
