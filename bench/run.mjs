@@ -11,7 +11,9 @@
 //
 // Options: --quick, --out-dir DIR, --md FILE, --max-spp N, --reps N,
 // --threads-max N, --scaling-spp N, --scaling-size WxH, --only errors|scaling,
-// --scenes a,b, --device-results FILE (extra scaling JSON to include).
+// --from FILE (only re-write the report and plots of an existing bench.json),
+// --scenes a,b, --device-results FILE[,FILE] (scaling measured elsewhere, to
+// include), --device-processes FILE (output of bench/processes.mjs).
 import { existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -60,6 +62,17 @@ const threadsMax = Number(opt['threads-max'] ?? threadsAll);
 const scalingSpp = Number(opt['scaling-spp'] ?? (quick ? 4 : 64));
 const [scalingW, scalingH] = (opt['scaling-size'] ?? '128x128').split('x').map(Number);
 const only = opt.only ?? null;
+// Figures measured on another machine (see bench/results/device/README.md)
+// are included in the full report by default.
+const deviceFile = (name) => {
+  const f = path.join(ROOT, 'bench/results/device', name);
+  return !quick && existsSync(f) ? path.relative(ROOT, f) : undefined;
+};
+opt['device-results'] ??=
+  [deviceFile('scaling-128.json'), deviceFile('scaling-256.json')].filter(Boolean).join(',') ||
+  undefined;
+opt['device-processes'] ??= deviceFile('processes.json');
+opt['device-full'] ??= deviceFile('full/bench.json');
 const SEED = 1;
 // The issue's target; a quick run cannot reach it, so it exercises the same
 // code path with a looser one.
@@ -227,6 +240,17 @@ function compare(series, scene, a, b) {
         return (p.relmse * p.seconds) / (q.relmse * q.seconds);
       }),
   );
+  const cpuKnown = A.points.every((p) => p.cpu_seconds) && B.points.every((p) => p.cpu_seconds);
+  const effCpu = cpuKnown
+    ? gm(
+        A.points
+          .filter((p) => p.spp >= minSpp)
+          .map((p) => {
+            const q = B.points.find((q) => q.spp === p.spp);
+            return (p.relmse * p.cpu_seconds) / (q.relmse * q.cpu_seconds);
+          }),
+      )
+    : null;
   // And directly: both error curves interpolated (log-log) at the longest time both reached.
   const tA = A.points.map((p) => [p.seconds, p.relmse]);
   const tB = B.points.map((p) => [p.seconds, p.relmse]);
@@ -241,10 +265,51 @@ function compare(series, scene, a, b) {
     equal_spp_ratio_geomean: geo,
     equal_spp_ratios: bySpp,
     equal_time_ratio: eff,
+    equal_cpu_time_ratio: effCpu,
     equal_time_interp_seconds: T,
     equal_time_interp_relmse_a: eA,
     equal_time_interp_relmse_b: eB,
     equal_time_interp_ratio: eA / eB,
+  };
+}
+
+/**
+ * The estimator and sampler studies and the defaults they choose. The
+ * choice uses equal CPU time where GNU time measured it: on a machine
+ * shared with other work, wall time of one render can double, CPU time
+ * barely moves. Equal wall time is reported beside it.
+ */
+function analyze(series) {
+  const estimator = SCENES.map((s) =>
+    compare(series, s.name, 'nee-mis/independent', 'bsdf/independent'),
+  ).filter(Boolean);
+  const sampler = SCENES.map((s) =>
+    compare(series, s.name, 'nee-mis/sobol', 'nee-mis/independent'),
+  ).filter(Boolean);
+  const gm = (xs) => Math.exp(xs.reduce((a, x) => a + Math.log(x), 0) / xs.length);
+  const useCpu = [...estimator, ...sampler].every((c) => c.equal_cpu_time_ratio !== null);
+  const key = useCpu ? 'equal_cpu_time_ratio' : 'equal_time_ratio';
+  const samplerTime = gm(sampler.map((c) => c[key]));
+  const samplerWall = gm(sampler.map((c) => c.equal_time_ratio));
+  const samplerSpp = gm(sampler.map((c) => c.equal_spp_ratio_geomean));
+  const estimatorTime = gm(estimator.map((c) => c[key]));
+  const estimatorWall = gm(estimator.map((c) => c.equal_time_ratio));
+  const bestSampler = samplerTime < 1 ? 'sobol' : 'independent';
+  const bestEstimator = estimatorTime < 1 ? 'nee-mis' : 'bsdf';
+  const basis = useCpu ? 'equal CPU time' : 'equal wall time';
+  return {
+    comparisons: { estimator, sampler },
+    recommendation: {
+      sampler: bestSampler,
+      estimator: bestEstimator,
+      basis,
+      sampler_equal_time_geomean: samplerTime,
+      sampler_equal_wall_time_geomean: samplerWall,
+      sampler_equal_spp_geomean: samplerSpp,
+      estimator_equal_time_geomean: estimatorTime,
+      estimator_equal_wall_time_geomean: estimatorWall,
+      text: `estimator **${bestEstimator}** (NEE+MIS / BSDF-only relMSE at ${basis}, geometric mean over scenes: ${fmt(estimatorTime)}; at equal wall time ${fmt(estimatorWall)}), sampler **${bestSampler}** (sobol / independent relMSE at ${basis}: ${fmt(samplerTime)}; at equal wall time ${fmt(samplerWall)}; at equal spp ${fmt(samplerSpp)}).`,
+    },
   };
 }
 
@@ -345,10 +410,12 @@ function writePlots(result) {
   for (const scene of SCENES) {
     const ss = result.series.filter((s) => s.scene === scene.name);
     if (!ss.length) continue;
-    // Reference slope −1 (relMSE ∝ 1/N, i.e. RMSE ∝ 1/√N) through the first config's last point.
-    const anchor = ss[0].points[ss[0].points.length - 1];
+    // Reference slope −1 (relMSE ∝ 1/N, i.e. RMSE ∝ 1/√N), drawn a factor
+    // of two below the lowest curve's end so that it does not hide a curve.
+    const ends = ss.map((s) => s.points[s.points.length - 1]);
+    const anchor = ends.reduce((a, b) => (b.relmse < a.relmse ? b : a));
     const xs = ss[0].points.map((p) => p.spp);
-    const refSpp = xs.map((x) => [x, (anchor.relmse * anchor.spp) / x]);
+    const refSpp = xs.map((x) => [x, (0.5 * anchor.relmse * anchor.spp) / x]);
     write(
       `error-spp-${scene.name}.svg`,
       plotSvg({
@@ -365,8 +432,9 @@ function writePlots(result) {
         ],
       }),
     );
-    const ts = ss[0].points.map((p) => p.seconds);
-    const refT = ts.map((t) => [t, (anchor.relmse * anchor.seconds) / t]);
+    const allT = ss.flatMap((s) => s.points.map((p) => p.seconds));
+    const ts = [Math.min(...allT), Math.max(...allT)];
+    const refT = ts.map((t) => [t, (0.5 * anchor.relmse * anchor.seconds) / t]);
     write(
       `error-time-${scene.name}.svg`,
       plotSvg({
@@ -415,7 +483,7 @@ function writePlots(result) {
   return files;
 }
 
-function writeMarkdown(result) {
+function writeMarkdown(result, deviceFull) {
   const rel = (f) => path.relative(path.dirname(mdPath), path.join(outDir, f)).replace(/\\/g, '/');
   const m = result.machine;
   const L = [];
@@ -433,6 +501,13 @@ function writeMarkdown(result) {
     '> Absolute times vary between machines (and with other load on this one); ratios measured within one run — error at equal time, scaling efficiency — hold. Every render is a fresh `node bin/pathwise.js render … --json` process, seed 1; each time is the median of the repetitions listed (more for short renders), after an unmeasured warm-up render. The error of a point is deterministic: the same seed gives a bit-identical image at any thread count.',
   );
   L.push('');
+  const maxLoad = Math.max(m.loadavg_start[0], result.loadavg_end[0]);
+  if (maxLoad > m.cores * 0.75) {
+    L.push(
+      `> **This run shared the machine with other work** (1-minute load average up to ${maxLoad.toFixed(1)} on ${m.cores} cores): wall times, and above all the thread scaling measured here, are disturbed. CPU-time ratios (given beside the wall-time ones) and the errors are not; the figures from the idle 16-core machine below are the cleaner timing reference.`,
+    );
+    L.push('');
+  }
   L.push(
     'Error metrics against the Mitsuba 3 references (`tests/references`, 65,536 spp): **relMSE** = mean over pixels and channels of (x − r)² / (r² + 0.01); **blockMARE** = mean over 8×8 blocks and channels of |x̄ − r̄| / (r̄ + 0.01). The references have their own noise (relMSE at 65,536 spp ≈ relMSE(1 spp)/65,536), negligible at the spp measured here.',
   );
@@ -460,13 +535,13 @@ function writeMarkdown(result) {
   for (const c of result.comparisons.estimator) {
     if (c)
       L.push(
-        `| ${c.scene}: relMSE of NEE+MIS / BSDF-only at equal time | **${fmt(c.equal_time_ratio)}** (interpolated at ${fmt(c.equal_time_interp_seconds)} s: ${fmt(c.equal_time_interp_ratio)}; equal spp: ${fmt(c.equal_spp_ratio_geomean)}) |`,
+        `| ${c.scene}: relMSE of NEE+MIS / BSDF-only at equal time | **${fmt(c.equal_time_ratio)}** wall, **${fmt(c.equal_cpu_time_ratio)}** CPU (wall interpolated at ${fmt(c.equal_time_interp_seconds)} s: ${fmt(c.equal_time_interp_ratio)}; equal spp: ${fmt(c.equal_spp_ratio_geomean)}) |`,
       );
   }
   for (const c of result.comparisons.sampler) {
     if (c)
       L.push(
-        `| ${c.scene}: relMSE of sobol / independent (NEE+MIS) at equal spp (geo. mean, spp ≥ 16) and at equal time | **${fmt(c.equal_spp_ratio_geomean)}** and **${fmt(c.equal_time_ratio)}** (interpolated at ${fmt(c.equal_time_interp_seconds)} s: ${fmt(c.equal_time_interp_ratio)}) |`,
+        `| ${c.scene}: relMSE of sobol / independent (NEE+MIS) at equal spp (geo. mean, spp ≥ 16); at equal time | **${fmt(c.equal_spp_ratio_geomean)}**; **${fmt(c.equal_time_ratio)}** wall, **${fmt(c.equal_cpu_time_ratio)}** CPU (wall interpolated at ${fmt(c.equal_time_interp_seconds)} s: ${fmt(c.equal_time_interp_ratio)}) |`,
       );
   }
   if (result.scaling) {
@@ -505,11 +580,11 @@ function writeMarkdown(result) {
     L.push('');
     const ss = result.series.filter((s) => s.scene === scene.name);
     L.push('| config | spp | seconds | reps | M paths/s | M segments/s | relMSE | blockMARE |');
-    L.push('|---|---:|---:|---:|---:|---:|---:|---:|');
+    L.push('|---|---:|---:|---:|---:|---:|---:|---:|---:|');
     for (const s of ss) {
       for (const p of s.points) {
         L.push(
-          `| ${s.config} | ${p.spp} | ${fmt(p.seconds)} | ${p.reps} | ${fmt(p.mpaths_per_s)} | ${fmt(p.msegments_per_s)} | ${fmt(p.relmse)} | ${fmt(p.block_mare_8)} |`,
+          `| ${s.config} | ${p.spp} | ${fmt(p.seconds)} | ${fmt(p.cpu_seconds)} | ${p.reps} | ${fmt(p.mpaths_per_s)} | ${fmt(p.msegments_per_s)} | ${fmt(p.relmse)} | ${fmt(p.block_mare_8)} |`,
         );
       }
     }
@@ -531,15 +606,66 @@ function writeMarkdown(result) {
         `${sc.scene} ${sc.width}×${sc.height}, ${sc.spp} spp, ${sc.config}; median of ${sc.points[0].reps} runs.`,
       );
       L.push('');
-      L.push('| threads | seconds | M paths/s | M segments/s | speed-up | efficiency |');
-      L.push('|---:|---:|---:|---:|---:|---:|');
+      L.push(
+        '| threads | seconds | M paths/s | M segments/s | speed-up | efficiency | CPU seconds |',
+      );
+      L.push('|---:|---:|---:|---:|---:|---:|---:|');
       for (const p of sc.points) {
         L.push(
-          `| ${p.threads} | ${fmt(p.seconds)} | ${fmt(p.mpaths_per_s)} | ${fmt(p.msegments_per_s)} | ${fmt(p.speedup)} | ${(p.efficiency * 100).toFixed(0)} % |`,
+          `| ${p.threads} | ${fmt(p.seconds)} | ${fmt(p.mpaths_per_s)} | ${fmt(p.msegments_per_s)} | ${fmt(p.speedup)} | ${(p.efficiency * 100).toFixed(0)} % | ${fmt(p.cpu_seconds)} |`,
         );
       }
       L.push('');
     });
+  }
+  const dp = result.device_processes;
+  if (dp) {
+    L.push(
+      `### The hardware's own ceiling: independent processes (${dp.machine.cpu}, ${dp.machine.cores} cores)`,
+    );
+    L.push('');
+    L.push(
+      `n single-thread renders started at once as separate processes (\`${dp.command}\`): what the machine gives when nothing is shared. Where this stays near 100 % but the thread scaling above falls off, the limit is the renderer's worker pool, not the hardware.`,
+    );
+    L.push('');
+    L.push('| processes | M paths/s in total | efficiency |');
+    L.push('|---:|---:|---:|');
+    for (const p of dp.points) {
+      L.push(
+        `| ${p.processes} | ${fmt(p.mpaths_per_s_total)} | ${(p.efficiency * 100).toFixed(0)} % |`,
+      );
+    }
+    L.push('');
+  }
+  if (deviceFull) {
+    const d = deviceFull;
+    L.push(`## Cross-check: the same benchmark on ${d.machine.cores} cores`);
+    L.push('');
+    L.push(
+      `\`${d.command}\` on ${d.machine.cpu}, ${d.machine.cores} cores, Node ${d.machine.node}, ${d.machine.date} (code ${d.machine.git_commit ?? 'unknown'}; up to ${d.settings.max_spp} spp, all ${d.settings.threads} threads; raw figures and plots in \`${path.dirname(result.device_full_file)}/\`). An idle machine, so its equal-time ratios are not disturbed by other load; its all-thread times suffer from the pool's scaling shown above.`,
+    );
+    L.push('');
+    L.push('| figure | value |');
+    L.push('|---|---|');
+    for (const t of d.time_to_target.filter((t) => t && t.reached)) {
+      L.push(
+        `| cornell, ${t.config}: time to relMSE ${t.target_relmse}, 1 thread / ${d.settings.threads} threads | ${fmt(t.threads_1.seconds)} s / ${fmt(t[`threads_${d.settings.threads}`]?.seconds)} s (${fmt(t.spp_needed)} spp) |`,
+      );
+    }
+    for (const c of d.comparisons.estimator) {
+      L.push(
+        `| ${c.scene}: NEE+MIS / BSDF-only relMSE, equal time (equal spp) | ${fmt(c.equal_time_ratio)} (${fmt(c.equal_spp_ratio_geomean)}) |`,
+      );
+    }
+    for (const c of d.comparisons.sampler) {
+      L.push(
+        `| ${c.scene}: sobol / independent relMSE, equal spp / equal time | ${fmt(c.equal_spp_ratio_geomean)} / ${fmt(c.equal_time_ratio)} |`,
+      );
+    }
+    for (const s of d.series) {
+      L.push(`| slope, ${s.scene}, ${s.config} | ${fmt(s.slope_relmse_vs_spp)} |`);
+    }
+    L.push('');
   }
   L.push('## Method');
   L.push('');
@@ -567,7 +693,17 @@ const machine = machineInfo();
 log(`pathwise bench: ${machine.cpu}, ${machine.cores} cores, Node ${machine.node}`);
 
 try {
-  if (only === 'scaling') {
+  if (opt.from) {
+    // Re-renders the report and plots of an existing bench.json, measuring nothing.
+    const result = JSON.parse(readFileSync(path.resolve(ROOT, opt.from), 'utf8'));
+    Object.assign(result, analyze(result.series));
+    const deviceFull = result.device_full_file
+      ? JSON.parse(readFileSync(path.resolve(ROOT, result.device_full_file), 'utf8'))
+      : null;
+    result.plots = writePlots(result);
+    writeMarkdown(result, deviceFull);
+    log(`wrote ${mdPath} from ${opt.from}`);
+  } else if (only === 'scaling') {
     const cfg = CONFIGS.find((c) => c.id === (opt.config ?? 'nee-mis/sobol')) ?? CONFIGS[1];
     const scaling = runScaling(cfg);
     scaling.command = `node bench/run.mjs ${process.argv.slice(2).join(' ')}`;
@@ -575,27 +711,14 @@ try {
     log(`wrote ${path.join(outDir, 'scaling.json')}`);
   } else {
     const series = runSeries();
-    const estimator = SCENES.map((s) =>
-      compare(series, s.name, 'nee-mis/independent', 'bsdf/independent'),
-    );
-    const sampler = SCENES.map((s) =>
-      compare(series, s.name, 'nee-mis/sobol', 'nee-mis/independent'),
-    );
-    const gm = (xs) => Math.exp(xs.reduce((a, x) => a + Math.log(x), 0) / xs.length);
-    const samplerTime = gm(sampler.filter(Boolean).map((c) => c.equal_time_ratio));
-    const samplerSpp = gm(sampler.filter(Boolean).map((c) => c.equal_spp_ratio_geomean));
-    const estimatorTime = gm(estimator.filter(Boolean).map((c) => c.equal_time_ratio));
-    const bestSampler = samplerTime < 1 ? 'sobol' : 'independent';
-    const bestEstimator = estimatorTime < 1 ? 'nee-mis' : 'bsdf';
-    const recommendation = {
-      sampler: bestSampler,
-      estimator: bestEstimator,
-      sampler_equal_time_geomean: samplerTime,
-      sampler_equal_spp_geomean: samplerSpp,
-      estimator_equal_time_geomean: estimatorTime,
-      text: `estimator **${bestEstimator}** (NEE+MIS / BSDF-only relMSE at equal time, geometric mean over scenes: ${fmt(estimatorTime)}), sampler **${bestSampler}** (sobol / independent relMSE at equal time: ${fmt(samplerTime)}, at equal spp: ${fmt(samplerSpp)}).`,
-    };
+    const { comparisons, recommendation } = analyze(series);
     log(`recommendation: ${recommendation.text}`);
+    const bestSampler = recommendation.sampler;
+    // Saved before the slower stages, so a failure there keeps the series.
+    writeFileSync(
+      path.join(outDir, 'bench.partial.json'),
+      JSON.stringify({ machine, series, comparisons, recommendation }, null, 2) + '\n',
+    );
     const winner = CONFIGS.find((c) => c.id === `nee-mis/${bestSampler}`);
     const other = CONFIGS.find(
       (c) => c.id === `nee-mis/${bestSampler === 'sobol' ? 'independent' : 'sobol'}`,
@@ -610,6 +733,12 @@ try {
         device_scaling.push(j.scaling ?? j);
       }
     }
+    const device_processes = opt['device-processes']
+      ? JSON.parse(readFileSync(path.resolve(ROOT, opt['device-processes']), 'utf8'))
+      : null;
+    const device_full = opt['device-full']
+      ? JSON.parse(readFileSync(path.resolve(ROOT, opt['device-full']), 'utf8'))
+      : null;
     const result = {
       schema: 'pathwise-bench/1',
       command,
@@ -619,15 +748,18 @@ try {
       total_seconds: (performance.now() - started) / 1000,
       settings: { seed: SEED, max_spp: maxSpp, threads: threadsAll, target_relmse: TARGET },
       series,
-      comparisons: { estimator, sampler },
+      comparisons,
       recommendation,
       time_to_target,
       scaling,
       device_scaling,
+      device_processes,
+      device_full_file: opt['device-full'] ?? null,
     };
     result.plots = writePlots(result);
     writeFileSync(path.join(outDir, 'bench.json'), JSON.stringify(result, null, 2) + '\n');
-    writeMarkdown(result);
+    writeMarkdown(result, device_full);
+    rmSync(path.join(outDir, 'bench.partial.json'), { force: true });
     log(
       `wrote ${path.join(outDir, 'bench.json')} and ${mdPath} in ${result.total_seconds.toFixed(0)} s`,
     );

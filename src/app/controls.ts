@@ -41,7 +41,7 @@ export interface Controls {
   sync(): void;
 }
 
-export function attachControls(c: Controller): Controls {
+export function attachControls(c: Controller, renderScale = 1): Controls {
   const pause = byId<HTMLButtonElement>('pause');
   const showPause = () => (pause.textContent = c.paused ? 'Resume' : 'Pause');
   pause.addEventListener('click', () => {
@@ -80,7 +80,7 @@ export function attachControls(c: Controller): Controls {
   );
 
   exposure.set(1);
-  scale.set(1);
+  scale.set(renderScale);
   const sync = () => {
     const s = c.stats();
     workers.set(s.workers);

@@ -21,8 +21,9 @@ if (options.width && options.height) {
 }
 const controller = createPathTracer(canvas, { ...options, scene: PRESETS[preset] });
 
-// Test hook for the browser tests (tests/browser): the controller, nothing else.
-(window as unknown as { __pathwise: unknown }).__pathwise = { controller };
+// Test hook for the browser tests (tests/browser): the controller, and the
+// factory so a test can put a second view on the page (the shared pool).
+(window as unknown as { __pathwise: unknown }).__pathwise = { controller, createPathTracer };
 
 const errorBox = document.getElementById('error') as HTMLElement;
 function showError(message: string | null): void {
@@ -31,7 +32,8 @@ function showError(message: string | null): void {
 }
 errorBox.addEventListener('click', () => showError(null));
 
-const controls = attachControls(controller);
+const controls = attachControls(controller, options.renderScale ?? 1);
+controls.sync();
 controller.addEventListener('load', () => {
   controls.sync();
   const name = controller.scene?.name ?? '';

@@ -2,7 +2,7 @@
  * URL parameters of the demo: the first scene, fixed sizes and seeds for
  * tests and benchmarks, and switches that force the fallback paths, e.g.
  * `?scene=spheres`, `?width=64&height=64&seed=1&spp=8`, `?shared=off`,
- * `?display=canvas2d`, `?workers=2`.
+ * `?display=canvas2d` (or `webgl2`, even on a software renderer), `?workers=2`.
  */
 import type { PathTracerOptions } from '../view/index.ts';
 import { PRESETS, type PresetName } from './presets.ts';
@@ -24,6 +24,10 @@ function nonNegativeInt(value: string | null): number | undefined {
   return Number.isInteger(n) && n >= 0 ? n : undefined;
 }
 
+function displayParam(value: string | null): PathTracerOptions['display'] {
+  return value === 'canvas2d' || value === 'webgl2' ? value : 'auto';
+}
+
 export function readParams(search: string): DemoParams {
   const q = new URLSearchParams(search);
   const name = q.get('scene') ?? 'cornell';
@@ -37,7 +41,7 @@ export function readParams(search: string): DemoParams {
     bounces: nonNegativeInt(q.get('bounces')),
     workers: positiveInt(q.get('workers')),
     renderScale: scale > 0 ? scale : undefined,
-    display: q.get('display') === 'canvas2d' ? 'canvas2d' : 'auto',
+    display: displayParam(q.get('display')),
     shared: q.get('shared') === 'off' ? 'off' : 'auto',
   };
   return { preset, options };

@@ -24,16 +24,16 @@ import {
   type CompiledScene,
   type Scene,
 } from '../core/index.ts';
-import { chooseStripeRows, type JobConfig } from '../../workers/render-protocol.ts';
+import type { JobConfig } from '../../workers/render-protocol.ts';
 import type { Display, DisplayPixels } from './display.ts';
 import type { FilmJob } from './film-job.ts';
+import { Films } from './films.ts';
 import { attachCameraControls } from './interaction.ts';
 import { chooseCompute, createDisplay } from './mode.ts';
 import { dollyCamera, orbitCamera } from './orbit.ts';
 import { releasePool, sharedPool, type PoolClient, type WorkerPool } from './pool.ts';
-import { SharedFilmJob } from './shared-job.ts';
 import { RateMeter } from './rate-meter.ts';
-import { TransferFilmJob } from './transfer-job.ts';
+import { SharedFilmJob } from './shared-job.ts';
 import type {
   FallbackInfo,
   PathTracerController,
@@ -43,8 +43,6 @@ import type {
 } from './types.ts';
 
 let nextJobId = 1;
-/** Preview films are this many times smaller in each direction. */
-const PREVIEW_DIVISOR = 4;
 /** Noise is estimated at most this often (it reads the whole film). */
 const NOISE_INTERVAL_MS = 500;
 
@@ -64,20 +62,13 @@ export class Controller extends EventTarget implements PathTracerController {
   private exposure: number;
   private seed: number;
   private target: number;
-  private renderScale: number;
   private isPaused = false;
   private version = 0;
   private config: JobConfig | null = null;
-  private full: FilmJob | null = null;
-  private preview: FilmJob | null = null;
-  private previewing = false;
-  /** The pointer is moving: the next camera change switches to the preview film. */
-  private wantPreview = false;
+  private readonly films: Films;
   private raf = 0;
   /** Exposure changed: redraw without new samples. */
   private displayDirty = true;
-  /** The film was switched or remade: upload all of it. */
-  private uploadAll = true;
   private convergedSent = false;
   private destroyed = false;
   private readonly rays = new RateMeter();
@@ -86,9 +77,11 @@ export class Controller extends EventTarget implements PathTracerController {
   private segmentsTotal = 0;
   private noise = NaN;
   private noiseAt = 0;
+  private changedSinceNoise = false;
   private lastProgressAt = 0;
   private detachControls: (() => void) | null = null;
   private picker: PathTracer | null = null;
+  private sceneRequested = false;
 
   constructor(canvas: HTMLCanvasElement, options: PathTracerOptions) {
     super();
@@ -97,7 +90,6 @@ export class Controller extends EventTarget implements PathTracerController {
     this.exposure = options.exposure ?? 1;
     this.seed = options.seed ?? 0;
     this.target = options.spp ?? 512;
-    this.renderScale = options.renderScale ?? 1;
     this.isPaused = options.autoplay === false;
     const compute = chooseCompute(options);
     const { display, why } = createDisplay(canvas, options);
@@ -108,13 +100,14 @@ export class Controller extends EventTarget implements PathTracerController {
       reason: `${why}; ${compute.why}`,
     };
     this.pool = sharedPool(options, options.workers);
+    this.films = new Films(canvas, options, compute.compute, () => this.pool.size);
     if (options.workers !== undefined && options.workers !== this.pool.size) {
       void this.pool.setSize(options.workers);
     }
     this.client = {
       id: this.id,
       config: () => this.config!,
-      nextTask: () => (this.previewing ? this.preview : this.full)?.nextTask?.(this.id) ?? null,
+      nextTask: () => this.films.active()?.nextTask?.(this.id) ?? null,
       onResult: (r) => {
         const job = this.activeJob();
         if (job && r.version === this.version) job.onResult?.(r);
@@ -126,11 +119,14 @@ export class Controller extends EventTarget implements PathTracerController {
     }
     // Let the caller attach listeners before the first events.
     queueMicrotask(() => this.emit('fallback', this.mode));
-    if (options.scene !== undefined) {
-      this.setScene(options.scene).catch(() => {});
-    } else if (options.src) {
-      this.load(options.src).catch(() => {});
-    }
+    // The first scene loads in a microtask too, so a 'load' listener added
+    // right after createPathTracer hears it; a scene set by the caller
+    // before then wins.
+    queueMicrotask(() => {
+      if (this.sceneRequested) return;
+      if (options.scene !== undefined) this.setScene(options.scene).catch(() => {});
+      else if (options.src) this.load(options.src).catch(() => {});
+    });
     this.raf = requestAnimationFrame(this.frame);
   }
 
@@ -147,12 +143,13 @@ export class Controller extends EventTarget implements PathTracerController {
   }
 
   private activeJob(): FilmJob | null {
-    return this.previewing ? this.preview : this.full;
+    return this.films.active();
   }
 
   // ---- scene -------------------------------------------------------------
 
   async setScene(value: unknown): Promise<void> {
+    this.sceneRequested = true;
     let scene: Scene;
     try {
       scene = typeof value === 'string' ? parseScene(value) : validateScene(value);
@@ -176,6 +173,7 @@ export class Controller extends EventTarget implements PathTracerController {
   }
 
   async load(url: string): Promise<void> {
+    this.sceneRequested = true;
     let text: string;
     try {
       const response = await fetch(url);
@@ -191,56 +189,11 @@ export class Controller extends EventTarget implements PathTracerController {
 
   // ---- restart machinery -------------------------------------------------
 
-  /** The full render size: fixed, or the canvas's CSS size × devicePixelRatio × renderScale. */
-  private fullSize(): [number, number] {
-    const o = this.options;
-    if (o.width && o.height) return [Math.floor(o.width), Math.floor(o.height)];
-    const dpr = typeof devicePixelRatio === 'number' ? devicePixelRatio : 1;
-    const w = this.canvas.clientWidth || this.canvas.width || 300;
-    const h = this.canvas.clientHeight || this.canvas.height || 150;
-    const s = dpr * this.renderScale;
-    return [Math.max(1, Math.round(w * s)), Math.max(1, Math.round(h * s))];
-  }
-
-  private makeJob(width: number, height: number): FilmJob {
-    const rows = chooseStripeRows(height, this.pool.size);
-    return this.mode.compute === 'shared'
-      ? new SharedFilmJob(width, height, rows, this.target)
-      : new TransferFilmJob(width, height, rows, this.target);
-  }
-
-  /** Makes sure the full film matches the wanted size; returns true when it was (re)made. */
-  private ensureFullJob(): boolean {
-    const [w, h] = this.fullSize();
-    if (this.full && this.full.width === w && this.full.height === h) return false;
-    this.full?.setVersion(-1);
-    this.full = this.makeJob(w, h);
-    this.preview = null;
-    this.canvas.width = w;
-    this.canvas.height = h;
-    this.uploadAll = true;
-    return true;
-  }
-
-  private ensurePreviewJob(): FilmJob {
-    const full = this.full!;
-    const w = Math.max(1, Math.round(full.width / PREVIEW_DIVISOR));
-    const h = Math.max(1, Math.round(full.height / PREVIEW_DIVISOR));
-    if (!this.preview || this.preview.width !== w || this.preview.height !== h) {
-      this.preview = this.makeJob(w, h);
-    }
-    return this.preview;
-  }
-
   /** New configuration version, reset of the active film, configuration to the workers. */
   private restart(): void {
     if (!this.currentScene || !this.camera || this.destroyed) return;
-    this.ensureFullJob();
-    if (this.wantPreview) this.previewing = true;
-    const active = this.previewing ? this.ensurePreviewJob() : this.full!;
-    const inactive = this.previewing ? this.full : this.preview;
+    const active = this.films.select(this.target);
     this.version++;
-    inactive?.setVersion(-1);
     // Version first, then reset: a worker still holding the old
     // configuration can claim nothing once the version moved on.
     active.setVersion(this.version);
@@ -265,7 +218,6 @@ export class Controller extends EventTarget implements PathTracerController {
       ctrl: shared?.ctrlBuffer,
     };
     this.convergedSent = false;
-    this.uploadAll = true;
     this.rays.reset();
     this.noise = NaN;
     this.pool.register(this.client);
@@ -296,8 +248,8 @@ export class Controller extends EventTarget implements PathTracerController {
 
   setTargetSpp(spp: number): void {
     this.target = Math.max(1, Math.floor(spp));
-    this.full?.setTarget(this.target);
-    this.preview?.setTarget(this.target);
+    this.films.full?.setTarget(this.target);
+    this.films.preview?.setTarget(this.target);
     this.convergedSent = false;
     this.pool.kick();
   }
@@ -318,8 +270,8 @@ export class Controller extends EventTarget implements PathTracerController {
   }
 
   setRenderScale(scale: number): void {
-    this.renderScale = Math.max(0.05, Math.min(4, scale));
-    if (this.ensureFullJob()) this.restart();
+    this.films.renderScale = Math.max(0.05, Math.min(4, scale));
+    if (this.films.ensureFull(this.target)) this.restart();
   }
 
   async setWorkers(count: number): Promise<void> {
@@ -359,8 +311,8 @@ export class Controller extends EventTarget implements PathTracerController {
   }
 
   focusAt(x: number, y: number): boolean {
-    if (!this.camera || !this.compiled || !this.full) return false;
-    const { width, height } = this.full;
+    if (!this.camera || !this.compiled || !this.films.full) return false;
+    const { width, height } = this.films.full;
     const rect = this.canvas.getBoundingClientRect();
     const fx = (x / (rect.width || width)) * width;
     const fy = (y / (rect.height || height)) * height;
@@ -388,38 +340,37 @@ export class Controller extends EventTarget implements PathTracerController {
 
   /** Interaction hooks: the preview film while the pointer moves, the full film when it rests. */
   beginPreview(): void {
-    this.wantPreview = true;
+    this.films.wantPreview = true;
   }
 
   endPreview(): void {
-    this.wantPreview = false;
-    if (!this.previewing) return;
-    this.previewing = false;
+    this.films.wantPreview = false;
+    if (!this.films.previewing) return;
+    this.films.previewing = false;
     this.restart();
   }
 
   // ---- per frame ---------------------------------------------------------
 
   /**
-   * Uploads the rows that changed since the last draw and draws; with
+   * Blanks the display after a reset, uploads the rows that changed since
+   * the last draw and draws; with
    * `force`, draws even when nothing changed. Returns whether it drew.
    */
   private present(job: FilmJob, force: boolean): boolean {
+    const cleared = job.takeCleared();
     const dirty = job.takeDirtyRows();
-    if (!force && dirty.length === 0 && !this.displayDirty && !this.uploadAll) return false;
-    const rows = this.uploadAll ? null : dirty;
-    this.display.draw(job.film.sums, job.width, job.height, this.exposure, rows);
+    if (!force && !cleared && dirty.length === 0 && !this.displayDirty) return false;
+    if (cleared) this.display.clear(job.width, job.height);
+    this.display.draw(job.film.sums, job.width, job.height, this.exposure, dirty);
     this.displayDirty = false;
-    this.uploadAll = false;
     return true;
   }
 
   private readonly frame = (now: number): void => {
     if (this.destroyed) return;
     this.raf = requestAnimationFrame(this.frame);
-    if (!this.options.width && this.full && !this.previewing && this.ensureFullJob()) {
-      this.restart();
-    }
+    if (this.films.follow(now, this.target)) this.restart();
     const job = this.activeJob();
     if (!job) return;
     const segments = job.takeSegments();
@@ -429,10 +380,15 @@ export class Controller extends EventTarget implements PathTracerController {
     if (this.present(job, false)) {
       this.frameMs = performance.now() - t0;
       this.frames.add(now, 1);
+      this.changedSinceNoise = true;
     }
     const spp = job.passesDone();
-    if (now - this.noiseAt > NOISE_INTERVAL_MS) {
+    // Once converged (or paused) nothing changes, so the film is not read
+    // again for the noise estimate. Progress events go on ~10 times a
+    // second regardless: listeners (the widget) use them as a heartbeat.
+    if (this.changedSinceNoise && now - this.noiseAt > NOISE_INTERVAL_MS) {
       this.noiseAt = now;
+      this.changedSinceNoise = false;
       // Every 4th pixel is plenty for a figure shown with two digits.
       this.noise = estimateNoise(job.film, 4);
     }
@@ -440,7 +396,7 @@ export class Controller extends EventTarget implements PathTracerController {
       this.lastProgressAt = now;
       this.emit('progress', this.progressInfo(spp));
     }
-    if (!this.convergedSent && !this.previewing && spp >= this.target) {
+    if (!this.convergedSent && !this.films.previewing && spp >= this.target) {
       this.convergedSent = true;
       this.emit('converged', this.progressInfo(spp));
     }
@@ -466,7 +422,7 @@ export class Controller extends EventTarget implements PathTracerController {
       width: job?.width ?? 0,
       height: job?.height ?? 0,
       workers: this.pool.size,
-      memoryBytes: (this.full?.memoryBytes ?? 0) + (this.preview?.memoryBytes ?? 0) + textureBytes,
+      memoryBytes: this.films.memoryBytes + textureBytes,
       rejected: job?.rejected() ?? 0,
       paused: this.isPaused,
     };
@@ -485,7 +441,7 @@ export class Controller extends EventTarget implements PathTracerController {
   // ---- output ------------------------------------------------------------
 
   readLinear(): { width: number; height: number; rgb: Float32Array } {
-    const job = this.full;
+    const job = this.films.full;
     if (!job) return { width: 0, height: 0, rgb: new Float32Array(0) };
     return { width: job.width, height: job.height, rgb: job.film.mean() };
   }
@@ -501,7 +457,7 @@ export class Controller extends EventTarget implements PathTracerController {
   }
 
   toBlob(): Promise<Blob> {
-    const job = this.full;
+    const job = this.films.full;
     if (!job) return Promise.reject(new Error('no image yet'));
     const image = new ImageData(job.width, job.height);
     tonemapSums(job.film.sums, this.exposure, image.data);
@@ -527,8 +483,7 @@ export class Controller extends EventTarget implements PathTracerController {
     this.destroyed = true;
     cancelAnimationFrame(this.raf);
     this.detachControls?.();
-    this.full?.setVersion(-1);
-    this.preview?.setVersion(-1);
+    this.films.park();
     this.pool.unregister(this.client);
     releasePool(this.pool);
     this.display.destroy();

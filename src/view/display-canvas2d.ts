@@ -62,6 +62,19 @@ export class Canvas2DDisplay implements Display {
     this.ctx.drawImage(this.scratch, 0, 0, width, height);
   }
 
+  clear(filmWidth: number, filmHeight: number): void {
+    if (!this.image || this.image.width !== filmWidth || this.image.height !== filmHeight) {
+      this.image = new ImageData(filmWidth, filmHeight);
+    }
+    const data = this.image.data;
+    // Opaque black, four bytes at a time (R, G, B = 0, A = 255 in memory order).
+    new Uint32Array(data.buffer, data.byteOffset, data.length / 4).fill(
+      new Uint32Array(new Uint8Array([0, 0, 0, 255]).buffer)[0],
+    );
+    this.ctx.fillStyle = '#000';
+    this.ctx.fillRect(0, 0, this.canvas.width, this.canvas.height);
+  }
+
   readPixels(): DisplayPixels {
     const { width, height } = this.canvas;
     const data = this.ctx.getImageData(0, 0, width, height).data;

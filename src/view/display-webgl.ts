@@ -105,6 +105,16 @@ export class WebGLDisplay implements Display {
     gl.drawArrays(gl.TRIANGLES, 0, 3);
   }
 
+  clear(filmWidth: number, filmHeight: number): void {
+    const gl = this.gl;
+    gl.bindTexture(gl.TEXTURE_2D, this.texture);
+    // A fresh texture is zero-filled by WebGL: no sums travel from here.
+    const f = gl.FLOAT;
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, filmWidth, filmHeight, 0, gl.RGBA, f, null);
+    this.texWidth = filmWidth;
+    this.texHeight = filmHeight;
+  }
+
   private upload(data: Float32Array, w: number, y0: number, h: number): void {
     const gl = this.gl;
     if (!this.sharedUploadFails) {

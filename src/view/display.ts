@@ -28,6 +28,11 @@ export interface Display {
     exposure: number,
     dirtyRows: readonly number[] | null,
   ): void;
+  /**
+   * Forgets the previous image: the film (of this size) is all zeros now.
+   * Much cheaper than drawing every row of zeros; a draw follows.
+   */
+  clear(filmWidth: number, filmHeight: number): void;
   /** The canvas's pixels as last drawn. */
   readPixels(): DisplayPixels;
   destroy(): void;

@@ -25,6 +25,8 @@ export interface FilmJob {
   passesDone(): number;
   /** Passes finished, averaged over stripes (fractional; for the progress bar). */
   progress(): number;
+  /** True once after each reset: the whole film went back to zero. */
+  takeCleared(): boolean;
   /**
    * Rows whose samples changed since the previous call, as flat
    * [y0, y1, y0, y1, …] half-open spans (empty when nothing changed).

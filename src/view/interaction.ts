@@ -42,10 +42,10 @@ export function attachCameraControls(target: CameraTarget, canvas: HTMLCanvasEle
   const move = (e: PointerEvent): void => {
     if (e.pointerId !== pointer) return;
     if (!dragging && Math.hypot(e.clientX - startX, e.clientY - startY) < CLICK_SLOP) return;
-    if (!dragging) {
-      dragging = true;
-      target.beginPreview();
-    }
+    dragging = true;
+    // On every move, not only the first: after a rest (full resolution)
+    // the drag goes on in the preview again.
+    target.beginPreview();
     const dx = e.clientX - lastX;
     const dy = e.clientY - lastY;
     lastX = e.clientX;

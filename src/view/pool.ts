@@ -35,6 +35,8 @@ interface PoolWorker {
   port: MessagePort;
   busy: boolean;
   retiring: boolean;
+  /** Its stop() has answered: no claim in hand, safe to terminate once no task is out. */
+  stopped: boolean;
   /** Per job: the scene id this worker holds and the config version it acknowledged. */
   sceneIds: Map<number, number>;
   acked: Map<number, number>;
@@ -124,7 +126,8 @@ export class WorkerPool {
   private async retire(w: PoolWorker): Promise<void> {
     w.retiring = true;
     await w.api.stop().catch(() => {});
-    // Transfer mode: wait for the task in hand to come back (onResult terminates then).
+    w.stopped = true;
+    // Transfer mode: a task still out comes back first (onResult removes the worker then).
     if (!w.busy) this.remove(w);
   }
 
@@ -154,6 +157,7 @@ export class WorkerPool {
       port: channel.port1,
       busy: false,
       retiring: false,
+      stopped: false,
       sceneIds: new Map(),
       acked: new Map(),
     };
@@ -188,7 +192,8 @@ export class WorkerPool {
   private onResult(w: PoolWorker, result: StripeResult): void {
     w.busy = false;
     this.clients.get(result.job)?.onResult(result);
-    if (w.retiring) this.remove(w);
+    // Not before stop() has answered: terminating earlier would leave that call unanswered.
+    if (w.retiring && w.stopped) this.remove(w);
     this.pump();
   }
 

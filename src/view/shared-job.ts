@@ -6,7 +6,6 @@
 import { Film } from '../core/index.ts';
 import {
   C_CLAIM,
-  C_COMMITS,
   C_CONFIG,
   C_DONE,
   C_GEN,
@@ -31,6 +30,7 @@ export class SharedFilmJob implements FilmJob {
   readonly ctrlBuffer: SharedArrayBuffer;
   private readonly ctrl: Int32Array;
   private lastSegments = 0;
+  private cleared = false;
   /** Row stamps as of the last takeDirtyRows. */
   private readonly seen: Int32Array;
 
@@ -61,10 +61,11 @@ export class SharedFilmJob implements FilmJob {
     ctrl[C_CLAIM] = 0;
     ctrl.fill(0, C_DONE, C_DONE + this.stripes);
     ctrl[C_GEN]++;
-    const stamp = ++ctrl[C_COMMITS];
-    const base = rowStampBase(this.stripes);
-    ctrl.fill(stamp, base, base + this.height);
     unlock(ctrl);
+    // The display blanks the whole image once (takeCleared) instead of
+    // tone mapping every row of zeros; rows committed from now on carry
+    // new stamps and are drawn over the blank.
+    this.cleared = true;
     // Workers waiting for a stripe's previous pass look at the generation again.
     for (let s = 0; s < this.stripes; s++) Atomics.notify(ctrl, C_DONE + s);
   }
@@ -99,6 +100,12 @@ export class SharedFilmJob implements FilmJob {
     let sum = 0;
     for (let s = 0; s < this.stripes; s++) sum += Atomics.load(this.ctrl, C_DONE + s);
     return sum / this.stripes;
+  }
+
+  takeCleared(): boolean {
+    const c = this.cleared;
+    this.cleared = false;
+    return c;
   }
 
   takeDirtyRows(): number[] {

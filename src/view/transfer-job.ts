@@ -26,6 +26,7 @@ export class TransferFilmJob implements FilmJob {
   private queue: number[] = [];
   /** Rows changed since the last takeDirtyRows, as [y0, y1) spans. */
   private dirty: number[] = [];
+  private cleared = false;
   private segments = 0;
   private rejectedCount = 0;
 
@@ -59,7 +60,8 @@ export class TransferFilmJob implements FilmJob {
     // Tasks of the old generation still out are dropped when they return.
     this.inFlight = new Uint8Array(this.stripes);
     this.requeue();
-    this.dirty = [0, this.height];
+    this.dirty = [];
+    this.cleared = true;
   }
 
   setVersion(version: number): void {
@@ -85,6 +87,12 @@ export class TransferFilmJob implements FilmJob {
     let sum = 0;
     for (let s = 0; s < this.stripes; s++) sum += this.done[s];
     return sum / this.stripes;
+  }
+
+  takeCleared(): boolean {
+    const c = this.cleared;
+    this.cleared = false;
+    return c;
   }
 
   takeDirtyRows(): number[] {

@@ -8,7 +8,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium, type Browser, type Page } from 'playwright-core';
-import { createServer, type ViteDevServer } from 'vite';
+import { build, createServer, preview, type PreviewServer, type ViteDevServer } from 'vite';
 
 export const root = fileURLToPath(new URL('../..', import.meta.url));
 export const CHROMIUM = process.env.CHROMIUM_PATH ?? '/usr/bin/chromium';
@@ -48,6 +48,28 @@ export async function startDemoServer(
   const close = server.close.bind(server);
   server.close = async () => {
     await close();
+    rmSync(cacheDir, { recursive: true, force: true });
+  };
+  return { server, url };
+}
+
+/** The production build of the demo in a temporary folder, served by `vite preview`. */
+export async function startPreviewServer(): Promise<{ server: PreviewServer; url: string }> {
+  const outDir = mkdtempSync(join(tmpdir(), 'pathwise-web-'));
+  const cacheDir = mkdtempSync(join(tmpdir(), 'pathwise-vite-'));
+  await build({ root, cacheDir, logLevel: 'error', build: { outDir, emptyOutDir: true } });
+  const server = await preview({
+    root,
+    cacheDir,
+    logLevel: 'error',
+    build: { outDir },
+    preview: { host: '127.0.0.1', port: 0 },
+  });
+  const url = server.resolvedUrls!.local[0];
+  const close = server.close.bind(server);
+  server.close = async () => {
+    await close();
+    rmSync(outDir, { recursive: true, force: true });
     rmSync(cacheDir, { recursive: true, force: true });
   };
   return { server, url };

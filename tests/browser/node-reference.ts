@@ -18,16 +18,35 @@ export function nodeRender(
   seed: number,
   spp: number,
   camera?: CameraDesc,
+  maxBounces?: number,
 ): Float32Array {
   const parsed = parseScene(readFileSync(join(root, 'scenes', `${scene}.json`), 'utf8'));
   const tracer = new PathTracer(compileScene(parsed), {
     width,
     height,
-    maxBounces: parsed.settings.maxBounces,
+    maxBounces: maxBounces ?? parsed.settings.maxBounces,
     seed,
     camera: camera ?? parsed.camera,
   });
   const film = new Film(width, height);
   tracer.renderRows(film, 0, height, 0, spp, new RenderStats());
   return film.mean();
+}
+
+/** Distance along the view axis to the surface at film point (x, y): what click-to-focus sets. */
+export function nodePick(
+  scene: string,
+  width: number,
+  height: number,
+  x: number,
+  y: number,
+): number {
+  const parsed = parseScene(readFileSync(join(root, 'scenes', `${scene}.json`), 'utf8'));
+  const tracer = new PathTracer(compileScene(parsed), {
+    width,
+    height,
+    maxBounces: 1,
+    camera: parsed.camera,
+  });
+  return tracer.pick(x, y);
 }

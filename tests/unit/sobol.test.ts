@@ -71,14 +71,13 @@ describe('sobol sampler building blocks', () => {
   it('matches the dimension layout of the sampler', () => {
     const bounce0 = DIM_BOUNCE;
     expect(PAIRS).toEqual([DIM_FILM, DIM_LENS, bounce0 + DIM_LIGHT_POINT, bounce0 + DIM_BSDF]);
-    expect(SINGLES).toEqual([bounce0 + DIM_LIGHT_CHOICE, bounce0 + DIM_BSDF_LOBE]);
-    // The first bounce's roulette number is never drawn (roulette starts at
-    // the third bounce), so it stays on the hash.
+    expect(SINGLES).toEqual([]);
+    // The 1D choices of the first bounce stay on the hash (see SOBOL_GROUPS).
     const sampler = new Sampler(5, 'sobol');
     sampler.startPixelSample(3, 4);
-    expect(sampler.get1D(bounce0 + DIM_ROULETTE)).toBe(
-      hashToUnit(sampleKey(5, 3, 4), bounce0 + DIM_ROULETTE),
-    );
+    for (const d of [DIM_LIGHT_CHOICE, DIM_BSDF_LOBE, DIM_ROULETTE, DIM_PER_BOUNCE - 1]) {
+      expect(sampler.get1D(bounce0 + d)).toBe(hashToUnit(sampleKey(5, 3, 4), bounce0 + d));
+    }
     expect(SOBOL_DIMENSIONS).toBe(DIM_BOUNCE + DIM_PER_BOUNCE);
   });
 });
@@ -113,8 +112,8 @@ describe('sobol samples', () => {
     }
   });
 
-  it('stratify 1D groups: 2^k samples fall one per interval of width 2^-k', () => {
-    for (const d of SINGLES) {
+  it('stratify each dimension alone: 2^k samples fall one per interval of width 2^-k', () => {
+    for (const d of [...SINGLES, ...PAIRS, ...PAIRS.map((p) => p + 1)]) {
       for (let k = 0; k <= 8; k++) {
         const seen = new Uint8Array(2 ** k);
         for (let s = 0; s < 2 ** k; s++) seen[Math.floor(sobolSample(seed, 3, s, d) * 2 ** k)]++;
@@ -165,7 +164,8 @@ describe('sobol samples', () => {
     ]) {
       for (const [g, first] of [
         [1, 0],
-        [4, 5],
+        [3, 5],
+        [4, 7],
       ]) {
         const key = pcgHash((seed + pcgHash(pixel)) >>> 0);
         const gk = pcgHash((key + Math.imul(g, 0x9e3779b9)) >>> 0);

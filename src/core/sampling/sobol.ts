@@ -36,20 +36,20 @@ export const SOBOL_IMPLEMENTED = true;
 
 /**
  * How the leading dimensions are grouped, following the layout of
- * sampler.ts: film (0,1), lens (2,3), then first bounce from DIM_BOUNCE = 4:
- * light choice (4), light point (5,6), BSDF direction (7,8), BSDF lobe (9).
- * A group of size 2 is a 2D Sobol pair; size 1 is van der Corput. Each
- * entry: [first dimension, size]. Dimension 10 (Russian roulette of the
- * first bounce: roulette starts at the third) and 11 (unused) stay on the
- * hash, as does everything from the second bounce on.
+ * sampler.ts: film (0,1), lens (2,3), then the first bounce from
+ * DIM_BOUNCE = 4: light point (5,6) and BSDF direction (7,8). Each group is
+ * a 2D Sobol pair ([first dimension, size]; size 1 would be van der Corput,
+ * which the fill also supports). The first bounce's light choice (4), lobe
+ * choice (9), roulette (10, never drawn: roulette starts at the third
+ * bounce) and dimension 11 stay on the hash: the canonical scenes have one
+ * emitter and few two-lobe surfaces, so stratifying those 1D choices bought
+ * less error than its cost in time (bench/run.mjs, equal-time study).
  */
 export const SOBOL_GROUPS: readonly (readonly [number, number])[] = [
   [0, 2],
   [2, 2],
-  [4, 1],
   [5, 2],
   [7, 2],
-  [9, 1],
 ];
 
 /** Reverses the 32 bits of x (returns an unsigned 32-bit integer). */
@@ -129,16 +129,27 @@ export function pixelKey(seed: number, pixel: number): number {
   return pcgHash((seed + pcgHash(pixel >>> 0)) >>> 0);
 }
 
+/** SOBOL_GROUPS as flat typed arrays for the fill loop. */
+const GROUP_FIRST = Int32Array.from(SOBOL_GROUPS, (g) => g[0]);
+const GROUP_SIZE = Int32Array.from(SOBOL_GROUPS, (g) => g[1]);
+const GROUP_COUNT = SOBOL_GROUPS.length;
+
 /**
  * Fills out[0 .. SOBOL_DIMENSIONS) with the low-discrepancy numbers of one
  * (pixel, sample); `key` is pixelKey(seed, pixel), and `sampleKeyValue` is
  * the PCG sample key, used for the dimensions no group covers.
  *
- * Written to do few bit reversals (they dominate the cost): with rs the
- * reversed sample index, the shuffled index is rev(LK_g(rs)); the van der
- * Corput point of index i is rev(i), so its Owen scramble
- * rev(LK(rev(rev(i)))) is rev(LK(i)); and rev(sobol1(i)) comes from a
- * reversed table, so its scramble is rev(LK(table(i))).
+ * For group g with key gk = pcgHash(key + g·φ):
+ *   index = owenScramble(sample, gk)                      (the shuffle)
+ *   out[first]     = owenScramble(vdc(index), pcgHash(gk ^ A))
+ *   out[first + 1] = owenScramble(sobol1(index), pcgHash(gk ^ B))
+ * Written to do few bit reversals: with rs the reversed sample, the index is
+ * rev(LK_gk(rs)); the van der Corput point of index i is rev(i), so its
+ * scramble rev(LK(rev(rev(i)))) is rev(LK(i)); rev(sobol1(i)) comes from a
+ * reversed table, so its scramble is rev(LK(table(i))). Everything is
+ * inlined by hand: this runs once per path and the profiler showed the
+ * helper calls (not inlined by V8 at this size) costing as much as the
+ * arithmetic.
  */
 export function sobolFill(
   key: number,
@@ -146,40 +157,67 @@ export function sobolFill(
   sampleKeyValue: number,
   out: Float64Array,
 ): void {
-  const rs = reverseBits32(sample >>> 0);
-  fillPair(out, 0, key, 1, rs);
-  fillPair(out, 2, key, 2, rs);
-  fillSingle(out, 4, key, 3, rs);
-  fillPair(out, 5, key, 4, rs);
-  fillPair(out, 7, key, 5, rs);
-  fillSingle(out, 9, key, 6, rs);
+  const t = SOBOL1_REV_TABLE;
+  let rs = sample >>> 0;
+  rs = ((rs >>> 1) & 0x55555555) | ((rs & 0x55555555) << 1);
+  rs = ((rs >>> 2) & 0x33333333) | ((rs & 0x33333333) << 2);
+  rs = ((rs >>> 4) & 0x0f0f0f0f) | ((rs & 0x0f0f0f0f) << 4);
+  rs = ((rs >>> 8) & 0x00ff00ff) | ((rs & 0x00ff00ff) << 8);
+  rs = (rs >>> 16) | (rs << 16);
+  for (let g = 0; g < GROUP_COUNT; g++) {
+    // gk = pcgHash(key + (g + 1)·φ); the odd multiplier spreads small g.
+    let h = (key + Math.imul(g + 1, 0x9e3779b9)) | 0;
+    h = (Math.imul(h, 747796405) + 2891336453) | 0;
+    h = Math.imul((h >>> ((h >>> 28) + 4)) ^ h, 277803737);
+    const gk = (h >>> 22) ^ h;
+    // Shuffled index, still bit-reversed: LK_gk(rs) (see lkPermute).
+    let x = rs ^ Math.imul(rs, 0x3d20adea);
+    x = (x + gk) | 0;
+    x = Math.imul(x, (gk >>> 16) | 1);
+    x ^= Math.imul(x, 0x05526c56);
+    x ^= Math.imul(x, 0x53a22864);
+    // index = rev(x)
+    x = ((x >>> 1) & 0x55555555) | ((x & 0x55555555) << 1);
+    x = ((x >>> 2) & 0x33333333) | ((x & 0x33333333) << 2);
+    x = ((x >>> 4) & 0x0f0f0f0f) | ((x & 0x0f0f0f0f) << 4);
+    x = ((x >>> 8) & 0x00ff00ff) | ((x & 0x00ff00ff) << 8);
+    const index = ((x >>> 16) | (x << 16)) >>> 0;
+    const first = GROUP_FIRST[g];
+    out[first] = scrambledValue(index, gk ^ 0x68e31da4);
+    if (GROUP_SIZE[g] === 2) {
+      const v1 =
+        t[index & 255] ^
+        t[256 + ((index >>> 8) & 255)] ^
+        t[512 + ((index >>> 16) & 255)] ^
+        t[768 + (index >>> 24)];
+      out[first + 1] = scrambledValue(v1, gk ^ 0xb5297a4d);
+    }
+  }
+  // The leading dimensions in no group.
+  out[4] = hashToUnit(sampleKeyValue, 4);
+  out[9] = hashToUnit(sampleKeyValue, 9);
   out[10] = hashToUnit(sampleKeyValue, 10);
   out[11] = hashToUnit(sampleKeyValue, 11);
 }
 
-/** Shuffled Sobol index of group g: Owen scramble keyed per (seed, pixel, group). */
-function groupKeyOf(key: number, g: number): number {
-  // The odd multiplier only spreads the small group numbers before hashing.
-  return pcgHash((key + Math.imul(g, 0x9e3779b9)) >>> 0);
-}
-
-function fillPair(out: Float64Array, first: number, key: number, g: number, rs: number): void {
-  const gk = groupKeyOf(key, g);
-  const index = reverseBits32(lkPermute(rs, gk));
-  out[first] = reverseBits32(lkPermute(index, pcgHash(gk ^ 0x68e31da4))) * INV_2_32;
-  const t = SOBOL1_REV_TABLE;
-  const v1 =
-    t[index & 255] ^
-    t[256 + ((index >>> 8) & 255)] ^
-    t[512 + ((index >>> 16) & 255)] ^
-    t[768 + (index >>> 24)];
-  out[first + 1] = reverseBits32(lkPermute(v1, pcgHash(gk ^ 0xb5297a4d))) * INV_2_32;
-}
-
-function fillSingle(out: Float64Array, first: number, key: number, g: number, rs: number): void {
-  const gk = groupKeyOf(key, g);
-  const index = reverseBits32(lkPermute(rs, gk));
-  out[first] = reverseBits32(lkPermute(index, pcgHash(gk ^ 0x68e31da4))) * INV_2_32;
+/**
+ * rev(LK_k(y)) · 2^-32 with k = pcgHash(seedInput): the Owen-scrambled
+ * coordinate whose bit-reversed digits are y, as a number in [0, 1).
+ */
+function scrambledValue(y: number, seedInput: number): number {
+  let h = (Math.imul(seedInput, 747796405) + 2891336453) | 0;
+  h = Math.imul((h >>> ((h >>> 28) + 4)) ^ h, 277803737);
+  const k = (h >>> 22) ^ h;
+  y ^= Math.imul(y, 0x3d20adea);
+  y = (y + k) | 0;
+  y = Math.imul(y, (k >>> 16) | 1);
+  y ^= Math.imul(y, 0x05526c56);
+  y ^= Math.imul(y, 0x53a22864);
+  y = ((y >>> 1) & 0x55555555) | ((y & 0x55555555) << 1);
+  y = ((y >>> 2) & 0x33333333) | ((y & 0x33333333) << 2);
+  y = ((y >>> 4) & 0x0f0f0f0f) | ((y & 0x0f0f0f0f) << 4);
+  y = ((y >>> 8) & 0x00ff00ff) | ((y & 0x00ff00ff) << 8);
+  return (((y >>> 16) | (y << 16)) >>> 0) * INV_2_32;
 }
 
 /**
