@@ -2,7 +2,7 @@
  * Command-line parsing for `pathwise render`. Every problem is a
  * UsageError with a one-line message; the caller exits with status 2.
  */
-import { SAMPLER_KINDS, type Estimator, type SamplerKind } from '../core/index.ts';
+import { DEFAULT_SAMPLER, SAMPLER_KINDS, type Estimator, type SamplerKind } from '../core/index.ts';
 
 export class UsageError extends Error {
   override name = 'UsageError';
@@ -117,7 +117,7 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
   if (estimator !== 'nee-mis' && estimator !== 'bsdf') {
     throw new UsageError(`--estimator must be nee-mis or bsdf, got ${JSON.stringify(estimator)}`);
   }
-  const sampler = options.get('sampler') ?? 'sobol';
+  const sampler = options.get('sampler') ?? DEFAULT_SAMPLER;
   if (!SAMPLER_KINDS.includes(sampler as SamplerKind)) {
     throw new UsageError(
       `--sampler must be one of ${SAMPLER_KINDS.join(', ')}, got ${JSON.stringify(sampler)}`,

@@ -22,5 +22,5 @@ export { encodePfm, decodePfm, type PfmImage } from './io/pfm.ts';
 export { encodePng, zlibStored } from './io/png.ts';
 export { acesFilmic, srgbEncode, toDisplayByte, tonemapSums } from './io/tonemap.ts';
 export { pcgHash } from './rng/pcg.ts';
-export { Sampler, SAMPLER_KINDS, type SamplerKind } from './sampling/sampler.ts';
+export { Sampler, SAMPLER_KINDS, DEFAULT_SAMPLER, type SamplerKind } from './sampling/sampler.ts';
 export { estimateNoise, type NoiseInput } from './film/noise.ts';

@@ -11,8 +11,14 @@
  * While the user drags, the job switches to a preview film a quarter of the
  * size in each direction, so each camera step shows within a frame or two;
  * when the pointer rests the full film takes over again.
+ *
+ * The animation-frame loop runs only while something can change on screen:
+ * samples arriving, a pending resize, a redraw asked for. Paused, converged
+ * or in a hidden tab it stops asking for frames (a page of idle views costs
+ * nothing), and every call that can change the picture wakes it again.
  */
 import {
+  DEFAULT_SAMPLER,
   PathTracer,
   compileScene,
   encodePfm,
@@ -66,7 +72,10 @@ export class Controller extends EventTarget implements PathTracerController {
   private version = 0;
   private config: JobConfig | null = null;
   private readonly films: Films;
+  /** The pending animation frame; 0 while the loop is idle. */
   private raf = 0;
+  /** Animation frames the loop has run (see framesRun). */
+  private framesCount = 0;
   /** Exposure changed: redraw without new samples. */
   private displayDirty = true;
   private convergedSent = false;
@@ -79,6 +88,10 @@ export class Controller extends EventTarget implements PathTracerController {
   private noiseAt = 0;
   private changedSinceNoise = false;
   private lastProgressAt = 0;
+  /** spp and target of the last progress event (-1: none since the last restart). */
+  private lastProgressSpp = -1;
+  private lastProgressTarget = -1;
+  private resizeObserver: ResizeObserver | null = null;
   private detachControls: (() => void) | null = null;
   private picker: PathTracer | null = null;
   private sceneRequested = false;
@@ -111,6 +124,7 @@ export class Controller extends EventTarget implements PathTracerController {
       onResult: (r) => {
         const job = this.activeJob();
         if (job && r.version === this.version) job.onResult?.(r);
+        this.wake();
       },
       onWorkerError: (message) => this.emit('error', { message }),
     };
@@ -127,6 +141,18 @@ export class Controller extends EventTarget implements PathTracerController {
       if (options.scene !== undefined) this.setScene(options.scene).catch(() => {});
       else if (options.src) this.load(options.src).catch(() => {});
     });
+    // The film follows the canvas's size, which is checked on each frame;
+    // an idle loop learns of a new size from here.
+    if (typeof ResizeObserver !== 'undefined') {
+      this.resizeObserver = new ResizeObserver(() => this.wake());
+      this.resizeObserver.observe(canvas);
+    }
+    this.wake();
+  }
+
+  /** Makes sure an animation frame is coming (the loop stops itself when idle). */
+  private wake(): void {
+    if (this.destroyed || this.raf !== 0) return;
     this.raf = requestAnimationFrame(this.frame);
   }
 
@@ -211,7 +237,7 @@ export class Controller extends EventTarget implements PathTracerController {
       maxBounces: this.bounces,
       seed: this.seed,
       estimator: 'nee-mis',
-      sampler: 'independent',
+      sampler: DEFAULT_SAMPLER,
       camera: this.camera,
       stripeRows: active.stripeRows,
       film: shared?.filmBuffer,
@@ -220,9 +246,11 @@ export class Controller extends EventTarget implements PathTracerController {
     this.convergedSent = false;
     this.rays.reset();
     this.noise = NaN;
+    this.lastProgressSpp = -1;
     this.pool.register(this.client);
     this.pool.configure(this.client);
     this.pool.kick();
+    this.wake();
   }
 
   reset(): void {
@@ -232,18 +260,24 @@ export class Controller extends EventTarget implements PathTracerController {
     this.convergedSent = false;
     this.displayDirty = true;
     this.noise = NaN;
+    this.lastProgressSpp = -1;
     this.pool.kick();
+    this.wake();
   }
 
   pause(): void {
     this.isPaused = true;
     this.activeJob()?.setPaused(true);
+    // Stripes already in hand still finish and should be shown; the loop
+    // stops once they have.
+    this.wake();
   }
 
   resume(): void {
     this.isPaused = false;
     this.activeJob()?.setPaused(false);
     this.pool.kick();
+    this.wake();
   }
 
   setTargetSpp(spp: number): void {
@@ -252,6 +286,7 @@ export class Controller extends EventTarget implements PathTracerController {
     this.films.preview?.setTarget(this.target);
     this.convergedSent = false;
     this.pool.kick();
+    this.wake();
   }
 
   setBounces(bounces: number): void {
@@ -262,6 +297,7 @@ export class Controller extends EventTarget implements PathTracerController {
   setExposure(exposure: number): void {
     this.exposure = exposure;
     this.displayDirty = true;
+    this.wake();
   }
 
   setSeed(seed: number): void {
@@ -341,6 +377,7 @@ export class Controller extends EventTarget implements PathTracerController {
   /** Interaction hooks: the preview film while the pointer moves, the full film when it rests. */
   beginPreview(): void {
     this.films.wantPreview = true;
+    this.wake();
   }
 
   endPreview(): void {
@@ -368,37 +405,66 @@ export class Controller extends EventTarget implements PathTracerController {
   }
 
   private readonly frame = (now: number): void => {
+    this.raf = 0;
     if (this.destroyed) return;
-    this.raf = requestAnimationFrame(this.frame);
+    this.framesCount++;
     if (this.films.follow(now, this.target)) this.restart();
     const job = this.activeJob();
-    if (!job) return;
+    // No scene yet: setScene's restart wakes the loop. A resize waiting to
+    // settle is checked again on the next frame.
+    if (!job) {
+      if (this.films.resizePending) this.wake();
+      return;
+    }
     const segments = job.takeSegments();
     this.segmentsTotal += segments;
     this.rays.add(now, segments);
     const t0 = performance.now();
-    if (this.present(job, false)) {
+    const drew = this.present(job, false);
+    if (drew) {
       this.frameMs = performance.now() - t0;
       this.frames.add(now, 1);
       this.changedSinceNoise = true;
     }
     const spp = job.passesDone();
     // Once converged (or paused) nothing changes, so the film is not read
-    // again for the noise estimate. Progress events go on ~10 times a
-    // second regardless: listeners (the widget) use them as a heartbeat.
+    // again for the noise estimate.
     if (this.changedSinceNoise && now - this.noiseAt > NOISE_INTERVAL_MS) {
       this.noiseAt = now;
       this.changedSinceNoise = false;
       // Every 4th pixel is plenty for a figure shown with two digits.
       this.noise = estimateNoise(job.film, 4);
     }
-    if (now - this.lastProgressAt > 100) {
+    // Progress only when it says something new, at most ~10 times a second;
+    // the last step (the target reached) goes out at once.
+    const progressChanged = spp !== this.lastProgressSpp || this.target !== this.lastProgressTarget;
+    if (progressChanged && (now - this.lastProgressAt > 100 || spp >= this.target)) {
       this.lastProgressAt = now;
+      this.lastProgressSpp = spp;
+      this.lastProgressTarget = this.target;
       this.emit('progress', this.progressInfo(spp));
     }
     if (!this.convergedSent && !this.films.previewing && spp >= this.target) {
       this.convergedSent = true;
       this.emit('converged', this.progressInfo(spp));
+    }
+    // Another frame only while the picture can still change: samples are
+    // (or may soon be) arriving, a draw or an event is owed, a resize is
+    // settling or the pointer drags the preview.
+    const tracing = !this.isPaused && spp < this.target;
+    const owed =
+      spp !== this.lastProgressSpp || this.target !== this.lastProgressTarget || this.displayDirty;
+    if (
+      drew ||
+      segments > 0 ||
+      tracing ||
+      owed ||
+      job.busy() ||
+      this.films.resizePending ||
+      this.films.wantPreview ||
+      this.films.previewing
+    ) {
+      this.wake();
     }
   };
 
@@ -426,6 +492,14 @@ export class Controller extends EventTarget implements PathTracerController {
       rejected: job?.rejected() ?? 0,
       paused: this.isPaused,
     };
+  }
+
+  /**
+   * Animation frames the controller has run: constant while it idles
+   * (paused, converged, hidden), for tests and benchmarks.
+   */
+  framesRun(): number {
+    return this.framesCount;
   }
 
   /** Segments traced since the controller was made (for benchmarks: a difference over time). */
@@ -482,6 +556,8 @@ export class Controller extends EventTarget implements PathTracerController {
     if (this.destroyed) return;
     this.destroyed = true;
     cancelAnimationFrame(this.raf);
+    this.raf = 0;
+    this.resizeObserver?.disconnect();
     this.detachControls?.();
     this.films.park();
     this.pool.unregister(this.client);

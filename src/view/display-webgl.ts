@@ -151,5 +151,9 @@ export class WebGLDisplay implements Display {
   destroy(): void {
     this.gl.deleteTexture(this.texture);
     this.gl.deleteProgram(this.program);
+    // Browsers cap live WebGL contexts per page (about 16) and only free one
+    // when its canvas is collected; losing it now frees the GPU side at once.
+    // The canvas is done for: a re-connected <pathwise-view> starts on a new one.
+    this.gl.getExtension('WEBGL_lose_context')?.loseContext();
   }
 }

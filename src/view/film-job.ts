@@ -35,6 +35,8 @@ export interface FilmJob {
   /** Segments traced since the previous call. */
   takeSegments(): number;
   rejected(): number;
+  /** Work handed out and not yet back (stripes in hand, tasks out): samples may still arrive. */
+  busy(): boolean;
   /** Transfer mode only. */
   nextTask?(job: number): StripeTask | null;
   onResult?(result: StripeResult): void;

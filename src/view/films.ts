@@ -106,6 +106,11 @@ export class Films {
     return active;
   }
 
+  /** A new canvas size is waiting to settle (follow must be called again). */
+  get resizePending(): boolean {
+    return this.pendingSize !== '';
+  }
+
   /**
    * Follows the canvas size once it has settled for RESIZE_SETTLE_MS: a
    * window dragged wider would otherwise reallocate and restart the render

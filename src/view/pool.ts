@@ -18,6 +18,7 @@ import type {
   StripeResult,
   StripeTask,
 } from '../../workers/render-protocol.ts';
+import { startModuleWorker } from './worker-source.ts';
 
 export interface PoolClient {
   readonly id: number;
@@ -52,6 +53,14 @@ function defaultWorkerCount(): number {
   return Math.max(1, Math.min(64, cores || 4));
 }
 
+/**
+ * Starts the worker at `url` like `new Worker`, but through a same-origin
+ * shim when the package was loaded from another origin (see createWorker).
+ */
+const ModuleWorker = function (url: URL): Worker {
+  return startModuleWorker(url);
+} as unknown as new (url: URL, options: WorkerOptions) => Worker;
+
 export class WorkerPool {
   private readonly workers: PoolWorker[] = [];
   private readonly clients = new Map<number, PoolClient>();
@@ -70,7 +79,7 @@ export class WorkerPool {
 
   register(client: PoolClient): void {
     this.clients.set(client.id, client);
-    this.resize();
+    void this.resize();
   }
 
   unregister(client: PoolClient): void {
@@ -140,15 +149,32 @@ export class WorkerPool {
 
   private createWorker(): Worker {
     if (this.source.workerFactory) return this.source.workerFactory();
-    if (this.source.workerUrl) return new Worker(this.source.workerUrl, { type: 'module' });
-    // Written out in full so that Vite recognises and bundles the worker.
+    if (this.source.workerUrl) return startModuleWorker(this.source.workerUrl);
+    // The package's own worker sits next to this module, which may have come
+    // from a CDN: `Worker` is shadowed so that the expression below stays
+    // written out in full (Vite recognises and bundles the worker by that
+    // pattern) while the URL goes through the same-origin shim.
+    const Worker = ModuleWorker;
     return new Worker(new URL('../../workers/render-worker.ts', import.meta.url), {
       type: 'module',
     });
   }
 
+  /** Reports a failure to every client: each shows it through its controller's error event. */
+  private fail(message: string): void {
+    for (const c of this.clients.values()) c.onWorkerError(message);
+  }
+
   private spawn(): void {
-    const worker = this.createWorker();
+    let worker: Worker;
+    try {
+      worker = this.createWorker();
+    } catch (e) {
+      // Thrown synchronously (a SecurityError for a script the page may not
+      // start, a throwing factory): inside resize() nobody else would see it.
+      this.fail(`render worker could not start: ${e instanceof Error ? e.message : String(e)}`);
+      return;
+    }
     const api = Comlink.wrap<RenderWorkerApi>(worker);
     const channel = new MessageChannel();
     const w: PoolWorker = {
@@ -162,7 +188,8 @@ export class WorkerPool {
       acked: new Map(),
     };
     worker.addEventListener('error', (e) => {
-      for (const c of this.clients.values()) c.onWorkerError(e.message || 'render worker failed');
+      // A script that fails to load gives an ErrorEvent without a message.
+      this.fail(e.message || 'render worker failed to load or crashed');
     });
     channel.port1.onmessage = (e: MessageEvent<StripeResult>) => this.onResult(w, e.data);
     void api.setTaskPort(Comlink.transfer(channel.port2, [channel.port2]));

@@ -137,4 +137,12 @@ export class SharedFilmJob implements FilmJob {
   rejected(): number {
     return Atomics.load(this.ctrl, C_REJECTED);
   }
+
+  busy(): boolean {
+    // Every claim ends in a finished pass unless the generation moves on,
+    // and the controller resets (zeroing both counts) whenever it does.
+    let done = 0;
+    for (let s = 0; s < this.stripes; s++) done += Atomics.load(this.ctrl, C_DONE + s);
+    return Atomics.load(this.ctrl, C_CLAIM) > done;
+  }
 }

@@ -111,6 +111,10 @@ export class TransferFilmJob implements FilmJob {
     return this.rejectedCount;
   }
 
+  busy(): boolean {
+    return this.inFlight.includes(1);
+  }
+
   nextTask(job: number): StripeTask | null {
     if (this.paused || this.version < 0) return null;
     const stripe = this.queue.shift();

@@ -27,7 +27,7 @@ import {
 } from './attributes.ts';
 import { ELEMENT_CSS } from './styles.ts';
 import { VisibilityWatcher } from './visibility.ts';
-import { moduleWorkerFactory } from './worker-source.ts';
+import { moduleWorkerFactory } from '../view/worker-source.ts';
 
 /** Events of <pathwise-view>: the controller's, re-dispatched on the element. */
 export interface PathwiseViewEventMap

@@ -18,4 +18,4 @@ export type {
 export type { CameraDesc, Scene, Vec3 } from '../core/index.ts';
 export { PathwiseViewElement, type PathwiseViewEventMap } from './element.ts';
 export { definePathwiseView } from './define.ts';
-export { moduleWorkerFactory } from './worker-source.ts';
+export { moduleWorkerFactory } from '../view/worker-source.ts';

@@ -445,15 +445,99 @@ describe('<pathwise-view> on a page without cross-origin isolation', () => {
         'margin-top: 3000px',
       );
       await waitForEvent(page, view, 'load');
-      // Give a running tracer ample time to show a pass, were it running.
-      await waitForEvent(page, view, 'progress', 5);
+      // A visible element with the same scene and target shares the worker
+      // pool, which hands out work to its clients in turn: by the time the
+      // visible one has converged, a running tracer below would have traced
+      // too. (A paused view sends no progress heartbeat, so events cannot
+      // be counted for this.)
+      const above = await addView(page, 'above', { src: 'scenes/cornell.json', spp: '8' });
+      await page.evaluate(() => document.body.prepend(document.querySelector('#above')!));
+      await waitForEvent(page, above, 'converged');
       const before = await page.evaluate(() => {
         const el = document.querySelector<PathwiseViewElement>('#below')!;
-        return { spp: el.controller!.stats().spp, paused: el.controller!.paused };
+        const c = el.controller as PathwiseViewElement['controller'] & { segmentsTraced(): number };
+        return { spp: c.stats().spp, segments: c.segmentsTraced(), paused: c.paused };
       });
-      expect(before).toEqual({ spp: 0, paused: true });
+      expect(before).toEqual({ spp: 0, segments: 0, paused: true });
+      const progress = (await eventLog(page, view)).filter((e) => e.type === 'progress');
+      expect(progress.every((e) => (e.detail as ProgressInfo).spp === 0)).toBe(true);
       await page.evaluate(() => document.querySelector('#below')!.scrollIntoView());
       await waitForEvent(page, view, 'converged');
+      expect(errors).toEqual([]);
+    } finally {
+      await close();
+    }
+  });
+
+  test('once converged it stops drawing and reporting, and a change wakes it', async () => {
+    const { page, errors, close } = await openPage(server, 'blank.html');
+    try {
+      const view = await addView(page, 'idle', { src: 'scenes/cornell.json', spp: '2' });
+      await waitForEvent(page, view, 'converged');
+      /** The controller's frame count and progress events over 20 of the page's frames. */
+      const overFrames = () =>
+        page.evaluate(async () => {
+          const el = document.querySelector<LoggedView>('#idle')!;
+          const c = el.controller as PathwiseViewElement['controller'] & { framesRun(): number };
+          const count = () => ({
+            frames: c.framesRun(),
+            progress: el.log.filter((e) => e.type === 'progress').length,
+          });
+          // Let the frame that saw the last pass finish its bookkeeping.
+          for (let i = 0; i < 3; i++) await new Promise(requestAnimationFrame);
+          const before = count();
+          for (let i = 0; i < 20; i++) await new Promise(requestAnimationFrame);
+          return { before, after: count() };
+        });
+      const idle = await overFrames();
+      expect(idle.after).toEqual(idle.before);
+      // A display-only change wakes the loop for a redraw, then it idles again.
+      await page.evaluate(() => {
+        document.querySelector<PathwiseViewElement>('#idle')!.exposure = 2;
+      });
+      await page.waitForFunction(
+        (n) =>
+          (
+            document.querySelector<PathwiseViewElement>('#idle')!.controller as unknown as {
+              framesRun(): number;
+            }
+          ).framesRun() > n,
+        idle.after.frames,
+      );
+      const again = await overFrames();
+      expect(again.after).toEqual(again.before);
+      // A reset traces again and converges a second time.
+      await page.evaluate(() => document.querySelector<PathwiseViewElement>('#idle')!.reset());
+      await waitForEvent(page, view, 'converged', 2);
+      expect(errors).toEqual([]);
+    } finally {
+      await close();
+    }
+  });
+
+  test('destroying a WebGL2 tracer loses its context', async () => {
+    const { page, errors, close } = await openPage(server, 'blank.html');
+    try {
+      const result = await page.evaluate(async () => {
+        const m = (window as unknown as { pathwise: typeof import('../../src/widget/index.ts') })
+          .pathwise;
+        const canvas = document.createElement('canvas');
+        document.body.append(canvas);
+        const c = m.createPathTracer(canvas, {
+          src: 'scenes/cornell.json',
+          display: 'webgl2',
+          width: 16,
+          height: 16,
+          spp: 1,
+        });
+        await new Promise((resolve) => c.addEventListener('converged', resolve, { once: true }));
+        // A canvas hands out its one context again: the display's own.
+        const gl = canvas.getContext('webgl2')!;
+        const before = gl.isContextLost();
+        c.destroy();
+        return { display: c.mode.display, before, after: gl.isContextLost() };
+      });
+      expect(result).toEqual({ display: 'webgl2', before: false, after: true });
       expect(errors).toEqual([]);
     } finally {
       await close();
@@ -607,6 +691,26 @@ describe('<pathwise-view> loaded from another origin (a CDN)', () => {
     <script>record(document.getElementById('view'));</script>`,
     );
     const { page, errors, close } = await openPage(site, 'cdn-worker-url.html');
+    try {
+      await expectConvergedCornellBox(page);
+      expect(errors).toEqual([]);
+    } finally {
+      await close();
+    }
+  });
+
+  // The package's default worker URL is on the CDN too: the pool must
+  // start it through the same shim rather than fail with no one told.
+  test('without worker-url it still renders the Cornell box', async () => {
+    writeCdnPage(
+      installed.project,
+      installed.packageDir,
+      'cdn-default-worker.html',
+      cdn.url,
+      `<pathwise-view id="view" src="scenes/cornell.json" spp="16"></pathwise-view>
+    <script>record(document.getElementById('view'));</script>`,
+    );
+    const { page, errors, close } = await openPage(site, 'cdn-default-worker.html');
     try {
       await expectConvergedCornellBox(page);
       expect(errors).toEqual([]);

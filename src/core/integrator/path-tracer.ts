@@ -49,10 +49,10 @@ import {
   DIM_LIGHT_POINT,
   DIM_PER_BOUNCE,
   DIM_ROULETTE,
+  DEFAULT_SAMPLER,
   Sampler,
   type SamplerKind,
 } from '../sampling/sampler.ts';
-import { SOBOL_IMPLEMENTED } from '../sampling/sobol.ts';
 import type { CompiledScene } from '../scene/compile.ts';
 import type { CameraDesc } from '../scene/types.ts';
 
@@ -125,10 +125,7 @@ export class PathTracer {
     this.height = options.height;
     this.maxBounces = options.maxBounces;
     this.estimator = options.estimator ?? 'nee-mis';
-    if (options.sampler === 'sobol' && !SOBOL_IMPLEMENTED) {
-      throw new Error('the sobol sampler is not implemented yet');
-    }
-    this.sampler = new Sampler(options.seed ?? 0, options.sampler ?? 'independent');
+    this.sampler = new Sampler(options.seed ?? 0, options.sampler ?? DEFAULT_SAMPLER);
     this.camera = new Camera(options.camera, options.width, options.height);
   }
 

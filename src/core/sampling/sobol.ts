@@ -32,7 +32,6 @@ import { INV_2_32, hashToUnit, pcgHash, sampleKey } from '../rng/pcg.ts';
  * stratified, and the PCG hash is cheaper.
  */
 export const SOBOL_DIMENSIONS = 12;
-export const SOBOL_IMPLEMENTED = true;
 
 /**
  * How the leading dimensions are grouped, following the layout of
