@@ -19,7 +19,7 @@
  * Everything runs on the core's PCG hash with fixed seeds.
  */
 import { describe, expect, it } from 'vitest';
-import { bsdfEval, bsdfPdf, bsdfSample } from '../../src/core/bsdf/bsdf.ts';
+import { bsdfEval, bsdfPdf, bsdfSample } from '../helpers/bsdf-calls.ts';
 import { ggxD, ggxG1 } from '../../src/core/bsdf/ggx.ts';
 import { fresnelDielectric, schlickWeight } from '../../src/core/bsdf/fresnel.ts';
 import { compileMaterials } from '../../src/core/bsdf/materials.ts';

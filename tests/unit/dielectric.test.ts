@@ -7,7 +7,7 @@
  * inside index `ior`); wo.z < 0 means the path arrives from inside.
  */
 import { describe, expect, it } from 'vitest';
-import { bsdfEval, bsdfPdf, bsdfSample } from '../../src/core/bsdf/bsdf.ts';
+import { bsdfEval, bsdfPdf, bsdfSample } from '../helpers/bsdf-calls.ts';
 import { fresnelDielectric } from '../../src/core/bsdf/fresnel.ts';
 import { compileMaterials, M_DELTA, MATERIAL_STRIDE } from '../../src/core/bsdf/materials.ts';
 import { BsdfSample, BsdfValue } from '../../src/core/bsdf/records.ts';

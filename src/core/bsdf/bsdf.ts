@@ -13,80 +13,60 @@ import {
   MATERIAL_STRIDE,
   M_TYPE,
 } from './materials.ts';
-import type { BsdfSample, BsdfValue } from './records.ts';
+import type { BsdfQuery, BsdfSample, BsdfValue } from './records.ts';
 
-/** f(wo, wi) of material `m` into `out` (zero for delta lobes). */
-export function bsdfEval(
-  materials: Float64Array,
-  m: number,
-  wox: number,
-  woy: number,
-  woz: number,
-  wix: number,
-  wiy: number,
-  wiz: number,
-  out: BsdfValue,
-): void {
+/**
+ * f(q.wo, q.wi) of material `m` into `out`, with the density `bsdfSample`
+ * has for q.wi in `out.pdf` (both zero for delta lobes).
+ */
+export function bsdfEval(materials: Float64Array, m: number, q: BsdfQuery, out: BsdfValue): void {
   const o = m * MATERIAL_STRIDE;
   switch (materials[o + M_TYPE]) {
     case MATERIAL_DIFFUSE:
-      diffuseEval(materials, o, woz, wiz, out);
+      diffuseEval(materials, o, q, out);
       return;
     case MATERIAL_CONDUCTOR:
-      conductorEval(materials, o, wox, woy, woz, wix, wiy, wiz, out);
+      conductorEval(materials, o, q, out);
       return;
     default:
       out.r = 0;
       out.g = 0;
       out.b = 0;
+      out.pdf = 0;
   }
 }
 
-/** Solid-angle density with which `bsdfSample` returns wi (zero for delta lobes). */
-export function bsdfPdf(
-  materials: Float64Array,
-  m: number,
-  wox: number,
-  woy: number,
-  woz: number,
-  wix: number,
-  wiy: number,
-  wiz: number,
-): number {
+/** Solid-angle density with which `bsdfSample` returns q.wi (zero for delta lobes). */
+export function bsdfPdf(materials: Float64Array, m: number, q: BsdfQuery): number {
   const o = m * MATERIAL_STRIDE;
   switch (materials[o + M_TYPE]) {
     case MATERIAL_DIFFUSE:
-      return diffusePdf(woz, wiz);
+      return diffusePdf(q);
     case MATERIAL_CONDUCTOR:
-      return conductorPdf(materials, o, wox, woy, woz, wix, wiy, wiz);
+      return conductorPdf(materials, o, q);
     default:
       return 0;
   }
 }
 
 /**
- * Samples wi for wo from three uniform numbers (u2 picks between delta
- * lobes). Returns false when the sample carries no energy.
+ * Samples wi for q.wo from q.u0, q.u1 (the direction) and q.u2 (the choice
+ * between delta lobes). Returns false when the sample carries no energy.
  */
 export function bsdfSample(
   materials: Float64Array,
   m: number,
-  wox: number,
-  woy: number,
-  woz: number,
-  u0: number,
-  u1: number,
-  u2: number,
+  q: BsdfQuery,
   out: BsdfSample,
 ): boolean {
   const o = m * MATERIAL_STRIDE;
   switch (materials[o + M_TYPE]) {
     case MATERIAL_DIFFUSE:
-      return diffuseSample(materials, o, woz, u0, u1, out);
+      return diffuseSample(materials, o, q, out);
     case MATERIAL_CONDUCTOR:
-      return conductorSample(materials, o, wox, woy, woz, u0, u1, out);
+      return conductorSample(materials, o, q, out);
     case MATERIAL_DIELECTRIC:
-      return dielectricSample(materials, o, wox, woy, woz, u2, out);
+      return dielectricSample(materials, o, q, out);
     default:
       return false;
   }

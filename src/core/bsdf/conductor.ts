@@ -10,25 +10,27 @@
 import { ggxD, ggxG1, ggxSampleVisibleNormal } from './ggx.ts';
 import { schlickWeight } from './fresnel.ts';
 import { M_ALPHA, M_COLOR } from './materials.ts';
-import type { BsdfSample, BsdfValue } from './records.ts';
+import type { BsdfQuery, BsdfSample, BsdfValue } from './records.ts';
 
 const M = { x: 0, y: 0, z: 1 };
 
 export function conductorEval(
   materials: Float64Array,
   o: number,
-  wox: number,
-  woy: number,
-  woz: number,
-  wix: number,
-  wiy: number,
-  wiz: number,
+  q: BsdfQuery,
   out: BsdfValue,
 ): void {
   const alpha = materials[o + M_ALPHA];
+  const wox = q.wox,
+    woy = q.woy,
+    woz = q.woz;
+  const wix = q.wix,
+    wiy = q.wiy,
+    wiz = q.wiz;
   out.r = 0;
   out.g = 0;
   out.b = 0;
+  out.pdf = 0;
   if (alpha === 0 || woz <= 0 || wiz <= 0) return;
   let hx = wox + wix;
   let hy = woy + wiy;
@@ -39,7 +41,11 @@ export function conductorEval(
   hy /= hl;
   hz /= hl;
   const cosOH = wox * hx + woy * hy + woz * hz;
-  const common = (ggxD(hz, alpha) * ggxG1(woz, alpha) * ggxG1(wiz, alpha)) / (4 * woz * wiz);
+  const d = ggxD(hz, alpha);
+  const g1o = ggxG1(woz, alpha);
+  const common = (d * g1o * ggxG1(wiz, alpha)) / (4 * woz * wiz);
+  // The visible-normal density of sampling wi: G1(wo)·D(h) / (4·cosθo).
+  out.pdf = (g1o * d) / (4 * woz);
   const w = schlickWeight(cosOH);
   const r0 = materials[o + M_COLOR];
   const g0 = materials[o + M_COLOR + 1];
@@ -49,17 +55,14 @@ export function conductorEval(
   out.b = common * (b0 + (1 - b0) * w);
 }
 
-export function conductorPdf(
-  materials: Float64Array,
-  o: number,
-  wox: number,
-  woy: number,
-  woz: number,
-  wix: number,
-  wiy: number,
-  wiz: number,
-): number {
+export function conductorPdf(materials: Float64Array, o: number, q: BsdfQuery): number {
   const alpha = materials[o + M_ALPHA];
+  const wox = q.wox,
+    woy = q.woy,
+    woz = q.woz;
+  const wix = q.wix,
+    wiy = q.wiy,
+    wiz = q.wiz;
   if (alpha === 0 || woz <= 0 || wiz <= 0) return 0;
   let hx = wox + wix;
   let hy = woy + wiy;
@@ -73,13 +76,12 @@ export function conductorPdf(
 export function conductorSample(
   materials: Float64Array,
   o: number,
-  wox: number,
-  woy: number,
-  woz: number,
-  u0: number,
-  u1: number,
+  q: BsdfQuery,
   out: BsdfSample,
 ): boolean {
+  const wox = q.wox,
+    woy = q.woy,
+    woz = q.woz;
   if (woz <= 0) return false;
   const alpha = materials[o + M_ALPHA];
   const r0 = materials[o + M_COLOR];
@@ -98,7 +100,7 @@ export function conductorSample(
     out.weightB = b0 + (1 - b0) * w;
     return true;
   }
-  ggxSampleVisibleNormal(wox, woy, woz, alpha, u0, u1, M);
+  ggxSampleVisibleNormal(wox, woy, woz, alpha, q.u0, q.u1, M);
   const cosOM = wox * M.x + woy * M.y + woz * M.z;
   if (cosOM <= 0) return false;
   const wix = 2 * cosOM * M.x - wox;

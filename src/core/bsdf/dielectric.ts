@@ -13,17 +13,17 @@
  */
 import { fresnelDielectric } from './fresnel.ts';
 import { M_COLOR, M_IOR } from './materials.ts';
-import type { BsdfSample } from './records.ts';
+import type { BsdfQuery, BsdfSample } from './records.ts';
 
 export function dielectricSample(
   materials: Float64Array,
   o: number,
-  wox: number,
-  woy: number,
-  woz: number,
-  u0: number,
+  q: BsdfQuery,
   out: BsdfSample,
 ): boolean {
+  const wox = q.wox,
+    woy = q.woy,
+    woz = q.woz;
   const ior = materials[o + M_IOR];
   const entering = woz > 0;
   // eta = n2 / n1, with n1 the side of wo.
@@ -31,7 +31,7 @@ export function dielectricSample(
   const cosI = entering ? woz : -woz;
   const f = fresnelDielectric(cosI, eta);
   out.isDelta = true;
-  if (u0 < f) {
+  if (q.u2 < f) {
     out.wx = -wox;
     out.wy = -woy;
     out.wz = woz;

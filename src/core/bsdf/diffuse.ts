@@ -5,43 +5,43 @@
  */
 import { squareToCosineHemisphere, squareToCosineHemispherePdf } from '../sampling/warps.ts';
 import { M_COLOR } from './materials.ts';
-import type { BsdfSample, BsdfValue } from './records.ts';
+import type { BsdfQuery, BsdfSample, BsdfValue } from './records.ts';
 
 const INV_PI = 1 / Math.PI;
+const DIRECTION = { x: 0, y: 0, z: 1 };
 
 export function diffuseEval(
   materials: Float64Array,
   o: number,
-  woz: number,
-  wiz: number,
+  q: BsdfQuery,
   out: BsdfValue,
 ): void {
-  if (woz <= 0 || wiz <= 0) {
+  if (q.woz <= 0 || q.wiz <= 0) {
     out.r = 0;
     out.g = 0;
     out.b = 0;
+    out.pdf = 0;
     return;
   }
   out.r = materials[o + M_COLOR] * INV_PI;
   out.g = materials[o + M_COLOR + 1] * INV_PI;
   out.b = materials[o + M_COLOR + 2] * INV_PI;
+  out.pdf = squareToCosineHemispherePdf(q.wiz);
 }
 
-export function diffusePdf(woz: number, wiz: number): number {
-  return woz > 0 ? squareToCosineHemispherePdf(wiz) : 0;
+export function diffusePdf(q: BsdfQuery): number {
+  return q.woz > 0 ? squareToCosineHemispherePdf(q.wiz) : 0;
 }
 
 export function diffuseSample(
   materials: Float64Array,
   o: number,
-  woz: number,
-  u0: number,
-  u1: number,
+  q: BsdfQuery,
   out: BsdfSample,
 ): boolean {
-  if (woz <= 0) return false;
+  if (q.woz <= 0) return false;
   const w = DIRECTION;
-  squareToCosineHemisphere(u0, u1, w);
+  squareToCosineHemisphere(q.u0, q.u1, w);
   if (w.z <= 0) return false;
   out.wx = w.x;
   out.wy = w.y;
@@ -54,4 +54,3 @@ export function diffuseSample(
   out.etaScale = 1;
   return true;
 }
-const DIRECTION = { x: 0, y: 0, z: 1 };

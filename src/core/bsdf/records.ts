@@ -16,9 +16,32 @@ export class BsdfSample {
   etaScale = 1;
 }
 
-/** Result of `eval`: the BSDF value f(wo, wi) per channel (without the cosine). */
+/**
+ * The directions (local frame) and random numbers a BSDF call reads. Passing
+ * them in a record rather than as arguments keeps the doubles unboxed when
+ * the call is not inlined, so the tracer allocates nothing per bounce.
+ */
+export class BsdfQuery {
+  wox = 0;
+  woy = 0;
+  woz = 1;
+  wix = 0;
+  wiy = 0;
+  wiz = 1;
+  /** Random numbers for `sample`: u0, u1 pick the direction, u2 the lobe. */
+  u0 = 0;
+  u1 = 0;
+  u2 = 0;
+}
+
+/**
+ * Result of `eval`: the BSDF value f(wo, wi) per channel (without the
+ * cosine), and the density with which `sample` would return wi — MIS needs
+ * both at the same point, and they share most of their arithmetic.
+ */
 export class BsdfValue {
   r = 0;
   g = 0;
   b = 0;
+  pdf = 0;
 }

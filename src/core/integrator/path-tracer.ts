@@ -14,7 +14,7 @@
  * The hot loop allocates nothing: rays, hits and BSDF records are fields
  * created once, and the scene is read from typed arrays copied into locals.
  */
-import { bsdfEval, bsdfPdf, bsdfSample } from '../bsdf/bsdf.ts';
+import { bsdfEval, bsdfSample } from '../bsdf/bsdf.ts';
 import {
   MATERIAL_DIELECTRIC,
   MATERIAL_STRIDE,
@@ -23,7 +23,7 @@ import {
   M_EMISSIVE,
   M_TYPE,
 } from '../bsdf/materials.ts';
-import { BsdfSample, BsdfValue } from '../bsdf/records.ts';
+import { BsdfQuery, BsdfSample, BsdfValue } from '../bsdf/records.ts';
 import { Camera } from '../camera/camera.ts';
 import type { Film } from '../film/film.ts';
 import { Hit, Ray, SHAPE_QUAD, SHAPE_SPHERE } from '../geometry/ray.ts';
@@ -88,15 +88,6 @@ const SHADOW_SHORTEN = 1 - 2 ** -30;
 /** Russian roulette begins once a path has scattered this many times. */
 const ROULETTE_DEPTH = 3;
 
-/**
- * Draws `count` numbers from `dimension` on into `out`. Writing into a
- * typed array, rather than returning each number, keeps doubles unboxed
- * across the (too large to inline) tracing loop: no allocation per sample.
- */
-function fillSamples(sampler: Sampler, dimension: number, count: number, out: Float64Array): void {
-  for (let k = 0; k < count; k++) out[k] = sampler.get1D(dimension + k);
-}
-
 export class PathTracer {
   readonly scene: CompiledScene;
   readonly camera: Camera;
@@ -116,7 +107,8 @@ export class PathTracer {
   private readonly bs = new BsdfSample();
   private readonly fv = new BsdfValue();
   private readonly ls = new LightSample();
-  /** This bounce's random numbers (see fillSamples). */
+  /** This bounce's random numbers (see Sampler.fill). */
+  private readonly bq = new BsdfQuery();
   private readonly u = new Float64Array(DIM_PER_BOUNCE);
 
   constructor(scene: CompiledScene, options: TracerOptions) {
@@ -187,7 +179,7 @@ export class PathTracer {
 
     const u = this.u;
     sampler.startPixelSample(py * this.width + px, sampleIndex);
-    fillSamples(sampler, DIM_FILM, 4, u);
+    sampler.fill(DIM_FILM, 4, u);
     this.camera.generateRay(px + u[0], py + u[1], u[2], u[3], ray);
     let segments = 1;
     let lr = 0,
@@ -303,38 +295,32 @@ export class PathTracer {
         sz = -nz;
       }
       frame.setFromNormal(sx, sy, sz);
-      const lwox = wox * frame.sx + woy * frame.sy + woz * frame.sz;
-      const lwoy = wox * frame.tx + woy * frame.ty + woz * frame.tz;
-      const lwoz = wox * sx + woy * sy + woz * sz;
+      const bq = this.bq;
+      bq.wox = wox * frame.sx + woy * frame.sy + woz * frame.sz;
+      bq.woy = wox * frame.tx + woy * frame.ty + woz * frame.tz;
+      bq.woz = wox * sx + woy * sy + woz * sz;
       const scale = Math.max(Math.abs(x), Math.abs(y), Math.abs(z), shapeScale) * OFFSET_SCALE;
-      fillSamples(sampler, DIM_BOUNCE + depth * DIM_PER_BOUNCE, DIM_PER_BOUNCE, u);
+      sampler.fill(DIM_BOUNCE + depth * DIM_PER_BOUNCE, DIM_PER_BOUNCE, u);
 
       // Next-event estimation.
       if (nee && materials[mo + M_DELTA] === 0) {
         const ls = this.ls;
         const l = lights!.choose(u[DIM_LIGHT_CHOICE]);
-        if (
-          sampleLight(
-            lights!,
-            spheres,
-            quads,
-            l,
-            x,
-            y,
-            z,
-            u[DIM_LIGHT_POINT],
-            u[DIM_LIGHT_POINT + 1],
-            ls,
-          )
-        ) {
+        ls.refX = x;
+        ls.refY = y;
+        ls.refZ = z;
+        ls.u0 = u[DIM_LIGHT_POINT];
+        ls.u1 = u[DIM_LIGHT_POINT + 1];
+        if (sampleLight(lights!, spheres, quads, l, ls)) {
           const wix = ls.wx,
             wiy = ls.wy,
             wiz = ls.wz;
           const lwiz = wix * sx + wiy * sy + wiz * sz;
           if (lwiz > 0) {
-            const lwix = wix * frame.sx + wiy * frame.sy + wiz * frame.sz;
-            const lwiy = wix * frame.tx + wiy * frame.ty + wiz * frame.tz;
-            bsdfEval(materials, m, lwox, lwoy, lwoz, lwix, lwiy, lwiz, fv);
+            bq.wix = wix * frame.sx + wiy * frame.sy + wiz * frame.sz;
+            bq.wiy = wix * frame.tx + wiy * frame.ty + wiz * frame.tz;
+            bq.wiz = lwiz;
+            bsdfEval(materials, m, bq, fv);
             if (fv.r !== 0 || fv.g !== 0 || fv.b !== 0) {
               const sr = this.shadowRay;
               sr.ox = x + sx * scale;
@@ -350,7 +336,7 @@ export class PathTracer {
                   (lights!.kind[l] === SHAPE_QUAD
                     ? scene.quadMaterial[lights!.shape[l]]
                     : scene.sphereMaterial[lights!.shape[l]]) * MATERIAL_STRIDE;
-                const pb = bsdfPdf(materials, m, lwox, lwoy, lwoz, lwix, lwiy, lwiz);
+                const pb = fv.pdf;
                 const pl = ls.pdf;
                 const w = (pl / (pl * pl + pb * pb)) * lwiz;
                 lr += br * fv.r * materials[lm + M_EMISSION] * w;
@@ -363,21 +349,10 @@ export class PathTracer {
       }
 
       // Continue the path by sampling the BSDF.
-      if (
-        !bsdfSample(
-          materials,
-          m,
-          lwox,
-          lwoy,
-          lwoz,
-          u[DIM_BSDF],
-          u[DIM_BSDF + 1],
-          u[DIM_BSDF_LOBE],
-          bs,
-        )
-      ) {
-        break;
-      }
+      bq.u0 = u[DIM_BSDF];
+      bq.u1 = u[DIM_BSDF + 1];
+      bq.u2 = u[DIM_BSDF_LOBE];
+      if (!bsdfSample(materials, m, bq, bs)) break;
       br *= bs.weightR;
       bg *= bs.weightG;
       bb *= bs.weightB;

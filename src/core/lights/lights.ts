@@ -19,8 +19,17 @@ import {
 } from '../geometry/shapes.ts';
 import { SHAPE_QUAD } from '../geometry/ray.ts';
 
-/** What `sampleLight` writes: direction, distance, radiance and solid-angle pdf. */
+/**
+ * In: the reference point and two random numbers (set by the caller; a
+ * record rather than arguments keeps doubles unboxed across the call).
+ * Out: what `sampleLight` writes — direction, distance, point and pdf.
+ */
 export class LightSample {
+  refX = 0;
+  refY = 0;
+  refZ = 0;
+  u0 = 0;
+  u1 = 0;
   wx = 0;
   wy = 0;
   wz = 0;
@@ -70,21 +79,22 @@ export class LightList {
 }
 
 /**
- * Samples a point on light `l` as seen from (x, y, z). Writes `out` and
- * returns false when the sample cannot contribute (back side, degenerate).
+ * Samples a point on light `l` as seen from (out.refX, refY, refZ) with the
+ * numbers out.u0, out.u1. Writes `out` and returns false when the sample
+ * cannot contribute (back side, degenerate).
  */
 export function sampleLight(
   lights: LightList,
   spheres: Float64Array,
   quads: Float64Array,
   l: number,
-  x: number,
-  y: number,
-  z: number,
-  u0: number,
-  u1: number,
   out: LightSample,
 ): boolean {
+  const x = out.refX,
+    y = out.refY,
+    z = out.refZ;
+  const u0 = out.u0,
+    u1 = out.u1;
   const s = lights.shape[l];
   const choose = lights.prob[l];
   out.light = l;

@@ -11,7 +11,7 @@
  *   per bounce b, from DIM_BOUNCE + b·DIM_PER_BOUNCE: light choice, light
  *   point (2), BSDF direction (2), BSDF lobe, Russian roulette.
  */
-import { hashToUnit, sampleKey } from '../rng/pcg.ts';
+import { INV_2_32, hashToUnit, pcgHash, sampleKey } from '../rng/pcg.ts';
 import { SOBOL_DIMENSIONS, pixelKey, sobolFill } from './sobol.ts';
 
 export const DIM_FILM = 0;
@@ -60,6 +60,25 @@ export class Sampler {
     // a load: it runs ~20 times per path, this once.
     if (this.lowDiscrepancy) {
       sobolFill(pixelKey(this.seed, pixelIndex), sampleIndex, this.key, this.ld);
+    }
+  }
+
+  /**
+   * Writes dimensions [dimension, dimension + count) into out[0…count).
+   * The tracer calls this rather than get1D: numbers written to a typed
+   * array stay unboxed, where a returned double that is not inlined would
+   * be allocated on the heap.
+   */
+  fill(dimension: number, count: number, out: Float64Array): void {
+    const key = this.key;
+    for (let k = 0; k < count; k++) {
+      const d = dimension + k;
+      if (this.lowDiscrepancy && d < SOBOL_DIMENSIONS) {
+        out[k] = this.ld[d];
+      } else {
+        // hashToUnit, inlined by hand.
+        out[k] = pcgHash((key + Math.imul(d, 0x9e3779b9)) >>> 0) * INV_2_32;
+      }
     }
   }
 
