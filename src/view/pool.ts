@@ -172,7 +172,10 @@ export class WorkerPool {
     } catch (e) {
       // Thrown synchronously (a SecurityError for a script the page may not
       // start, a throwing factory): inside resize() nobody else would see it.
-      this.fail(`render worker could not start: ${e instanceof Error ? e.message : String(e)}`);
+      // Reported a microtask later, like a worker's own error event: spawns
+      // happen inside a restart, whose `load` event would hide the message.
+      const message = `render worker could not start: ${e instanceof Error ? e.message : String(e)}`;
+      queueMicrotask(() => this.fail(message));
       return;
     }
     const api = Comlink.wrap<RenderWorkerApi>(worker);

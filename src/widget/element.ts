@@ -27,7 +27,6 @@ import {
 } from './attributes.ts';
 import { ELEMENT_CSS } from './styles.ts';
 import { VisibilityWatcher } from './visibility.ts';
-import { moduleWorkerFactory } from '../view/worker-source.ts';
 
 /** Events of <pathwise-view>: the controller's, re-dispatched on the element. */
 export interface PathwiseViewEventMap
@@ -297,9 +296,12 @@ export class PathwiseViewElement extends ElementBase {
     };
     if (this.bounces !== null) options.bounces = this.bounces;
     if (this.seed !== null) options.seed = this.seed;
+    // A worker URL goes to the pool as is: it starts one on another origin
+    // through a same-origin shim, and reports a URL it cannot start as an
+    // `error` event (shown here) rather than throwing at this point.
     const workerUrl = this.workerUrl;
     if (this.workerFactory) options.workerFactory = this.workerFactory;
-    else if (workerUrl !== undefined) options.workerFactory = moduleWorkerFactory(workerUrl);
+    else if (workerUrl !== undefined) options.workerUrl = workerUrl;
     let tracer: ReturnType<typeof createPathTracer>;
     try {
       // A re-connected element starts on a fresh canvas: the old one's

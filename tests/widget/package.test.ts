@@ -369,6 +369,31 @@ describe('<pathwise-view> on a page without cross-origin isolation', () => {
     }
   });
 
+  test('a worker that cannot even be created yields an error event and message', async () => {
+    const { page, errors, close } = await openPage(server, 'blank.html');
+    try {
+      // As `new Worker` throws for a script the page may not start: the
+      // throw happens inside the pool, which must report it, not drop it.
+      await page.evaluate(() => {
+        const el = document.createElement('pathwise-view');
+        el.id = 'nofactory';
+        el.setAttribute('src', 'scenes/cornell.json');
+        el.workerFactory = () => {
+          throw new Error('workers are blocked here');
+        };
+        (window as unknown as { record(el: Element): void }).record(el);
+        document.body.append(el);
+      });
+      await waitForEvent(page, '#nofactory', 'error');
+      const message = page.locator('#nofactory [part=message]');
+      expect(await message.isVisible()).toBe(true);
+      expect(await message.innerText()).toMatch(/worker.*blocked here/);
+      expect(errors).toEqual([]);
+    } finally {
+      await close();
+    }
+  });
+
   test('elements share one worker pool; removing the last one terminates the workers', async () => {
     const { page, errors, close } = await openPage(server, 'blank.html');
     try {
@@ -450,7 +475,12 @@ describe('<pathwise-view> on a page without cross-origin isolation', () => {
       // visible one has converged, a running tracer below would have traced
       // too. (A paused view sends no progress heartbeat, so events cannot
       // be counted for this.)
-      const above = await addView(page, 'above', { src: 'scenes/cornell.json', spp: '8' });
+      const above = await addView(
+        page,
+        'above',
+        { src: 'scenes/cornell.json', spp: '8' },
+        'display: block', // on a line of its own, not on the tall line of #below
+      );
       await page.evaluate(() => document.body.prepend(document.querySelector('#above')!));
       await waitForEvent(page, above, 'converged');
       const before = await page.evaluate(() => {
