@@ -20,7 +20,7 @@ import {
 import { randomSpheresScene } from '../src/core/scene/random-spheres.ts';
 
 const counts = [1, 2, 4, 8, 12, 16, 24, 32, 48, 64, 128];
-const size = 48;
+const size = 80;
 const spp = 4;
 const reps = 5;
 let sink = 0;
@@ -52,10 +52,11 @@ function measure(count: number, bvh?: boolean): number {
 }
 
 const [mode, countArg] = process.argv.slice(2);
-if (mode === 'list' || mode === 'bvh') {
-  // Child: one measurement, printed as JSON.
+if (mode === 'list' || mode === 'bvh' || mode === 'auto') {
+  // Child: one measurement, printed as JSON (count 0 = the Cornell box).
+  const bvh = mode === 'auto' ? undefined : mode === 'bvh';
   process.stdout.write(
-    JSON.stringify({ rate: measure(Number(countArg), mode === 'bvh'), sink: sink > 0 }) + '\n',
+    JSON.stringify({ rate: measure(Number(countArg), bvh), sink: sink > 0 }) + '\n',
   );
 } else {
   const rows: { shapes: number; list: number; bvh: number }[] = [];
@@ -81,7 +82,11 @@ if (mode === 'list' || mode === 'bvh') {
   let crossover: number | null = null;
   for (let i = rows.length - 1; i >= 0 && rows[i].bvh > rows[i].list; i--)
     crossover = rows[i].shapes;
-  console.log(`BVH faster from ${crossover ?? 'none of the sizes measured'} shapes`);
+  console.log(
+    crossover === null
+      ? 'BVH faster at none of the sizes measured'
+      : `BVH faster from ${crossover} shapes`,
+  );
   // The stress case of the tracer-core issue: 10,000 spheres under an area
   // light against the Cornell box, per segment, each as the compiler builds it.
   const cornell = run('auto', 0);

@@ -69,7 +69,9 @@ const deviceFile = (name) => {
   return !quick && existsSync(f) ? path.relative(ROOT, f) : undefined;
 };
 opt['device-results'] ??=
-  [deviceFile('scaling-128.json'), deviceFile('scaling-256.json')].filter(Boolean).join(',') ||
+  [deviceFile('scaling-128.json'), deviceFile('scaling-256.json'), deviceFile('scaling-512.json')]
+    .filter(Boolean)
+    .join(',') ||
   undefined;
 opt['device-processes'] ??= deviceFile('processes.json');
 opt['device-full'] ??= deviceFile('full/bench.json');
@@ -687,6 +689,14 @@ function writeMarkdown(result, deviceFull) {
 
 // --------------------------------------------------------------------- main
 
+/** Scaling series measured elsewhere: each a scaling.json of `--only scaling` or a whole bench.json. */
+function readDeviceScaling(files) {
+  return files.split(',').map((f) => {
+    const j = JSON.parse(readFileSync(path.resolve(ROOT, f), 'utf8'));
+    return j.scaling ?? j;
+  });
+}
+
 const started = performance.now();
 const command = `npm run bench${process.argv.length > 2 ? ' -- ' + process.argv.slice(2).join(' ') : ''}`;
 const machine = machineInfo();
@@ -697,6 +707,8 @@ try {
     // Re-renders the report and plots of an existing bench.json, measuring nothing.
     const result = JSON.parse(readFileSync(path.resolve(ROOT, opt.from), 'utf8'));
     Object.assign(result, analyze(result.series));
+    // Device figures are files of their own: take the current ones.
+    if (opt['device-results']) result.device_scaling = readDeviceScaling(opt['device-results']);
     const deviceFull = result.device_full_file
       ? JSON.parse(readFileSync(path.resolve(ROOT, result.device_full_file), 'utf8'))
       : null;
@@ -725,14 +737,7 @@ try {
     );
     const time_to_target = [timeToTarget(series, winner), timeToTarget(series, other)];
     const scaling = only === 'errors' ? null : runScaling(winner);
-    const device_scaling = [];
-    if (opt['device-results']) {
-      for (const f of opt['device-results'].split(',')) {
-        // Either a scaling.json of `--only scaling` or a whole bench.json.
-        const j = JSON.parse(readFileSync(path.resolve(ROOT, f), 'utf8'));
-        device_scaling.push(j.scaling ?? j);
-      }
-    }
+    const device_scaling = opt['device-results'] ? readDeviceScaling(opt['device-results']) : [];
     const device_processes = opt['device-processes']
       ? JSON.parse(readFileSync(path.resolve(ROOT, opt['device-processes']), 'utf8'))
       : null;

@@ -19,11 +19,12 @@ import type { QuadDesc, Scene, SphereDesc } from './types.ts';
 
 /**
  * Shape count from which a BVH beats the plain loop over all shapes,
- * measured with `node scripts/run-ts.mjs bench/bvh-crossover.ts`: on this
- * project's 2-core machine the plain loop won up to 18 shapes and the BVH
- * from 26 on (bench/results/bvh-crossover.json).
+ * measured with `node scripts/run-ts.mjs bench/bvh-crossover.ts` (random
+ * spheres, 80×80, one process per point): on this project's 2-core machine
+ * the plain loop won up to 34 shapes and the BVH from 50 on
+ * (bench/results/bvh-crossover.json).
  */
-export const BVH_THRESHOLD = 24;
+export const BVH_THRESHOLD = 48;
 
 export interface CompileOptions {
   /** Force (true) or forbid (false) the BVH; default: by BVH_THRESHOLD. */
