@@ -71,8 +71,7 @@ const deviceFile = (name) => {
 opt['device-results'] ??=
   [deviceFile('scaling-128.json'), deviceFile('scaling-256.json'), deviceFile('scaling-512.json')]
     .filter(Boolean)
-    .join(',') ||
-  undefined;
+    .join(',') || undefined;
 opt['device-processes'] ??= deviceFile('processes.json');
 opt['device-full'] ??= deviceFile('full/bench.json');
 const SEED = 1;
