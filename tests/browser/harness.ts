@@ -3,26 +3,15 @@
  * or without the cross-origin isolation headers) and Debian's Chromium
  * driven by playwright-core.
  */
-import { existsSync, mkdtempSync, rmSync } from 'node:fs';
+import { mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { chromium, type Browser, type Page } from 'playwright-core';
+import type { Browser, Page } from 'playwright-core';
+import { launchChromium } from '../helpers/chromium.ts';
 import { build, createServer, preview, type PreviewServer, type ViteDevServer } from 'vite';
 
 export const root = fileURLToPath(new URL('../..', import.meta.url));
-export const CHROMIUM = process.env.CHROMIUM_PATH ?? '/usr/bin/chromium';
-
-export const chromiumArgs = [
-  '--no-sandbox',
-  '--disable-gpu',
-  '--disable-background-networking',
-  '--no-first-run',
-  '--disable-quic',
-  '--disable-component-update',
-  '--disable-sync',
-];
-
 /**
  * The demo's dev server. `isolated: false` serves it without COOP/COEP.
  * Each server gets its own dependency cache: other Vite servers on this
@@ -75,11 +64,8 @@ export async function startPreviewServer(): Promise<{ server: PreviewServer; url
   return { server, url };
 }
 
-export async function launchBrowser(): Promise<Browser> {
-  if (!existsSync(CHROMIUM)) {
-    throw new Error(`${CHROMIUM} is missing: apt-get install -y chromium (or set CHROMIUM_PATH)`);
-  }
-  return chromium.launch({ executablePath: CHROMIUM, args: chromiumArgs });
+export function launchBrowser(): Promise<Browser> {
+  return launchChromium();
 }
 
 /** Uncaught exceptions of every page opened by openDemo; the tests expect none. */

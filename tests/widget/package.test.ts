@@ -13,7 +13,7 @@ import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { decodePfm } from '../../src/core/index.ts';
 import type { FallbackInfo, ProgressInfo } from '../../src/view/types.ts';
 import type { PathwiseViewElement } from '../../src/widget/index.ts';
-import { launchChromium } from './fixture/browser.ts';
+import { launchChromium } from '../helpers/chromium.ts';
 import { isGreen, isRed, wallColors } from './fixture/cornell-colors.ts';
 import { installPackedPackage, REPO, type InstalledPackage } from './fixture/install-package.ts';
 import { writeCdnPage, writeSite, writeViteApp } from './fixture/site.ts';
