@@ -179,8 +179,10 @@ export class PathTracer {
 
     const u = this.u;
     sampler.startPixelSample(py * this.width + px, sampleIndex);
-    sampler.fill(DIM_FILM, 4, u);
-    this.camera.generateRay(px + u[0], py + u[1], u[2], u[3], ray);
+    // Film and lens dimensions are adjacent: one fill draws both pairs.
+    sampler.fill(DIM_FILM, DIM_LENS + 2 - DIM_FILM, u);
+    const lens = DIM_LENS - DIM_FILM;
+    this.camera.generateRay(px + u[0], py + u[1], u[lens], u[lens + 1], ray);
     let segments = 1;
     let lr = 0,
       lg = 0,
