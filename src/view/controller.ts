@@ -10,7 +10,16 @@
  *
  * While the user drags, the job switches to a preview film a quarter of the
  * size in each direction, so each camera step shows within a frame or two;
- * when the pointer rests the full film takes over again.
+ * when the pointer rests the full film takes over again. Each new scene
+ * starts the same way: one quick pass in the preview film puts a whole
+ * picture up at once and measures the speed from which the automatic
+ * render scale is chosen (auto-scale.ts).
+ *
+ * A restart never blanks the screen: what was shown becomes the backdrop
+ * (backdrop.ts), which the display keeps under every pixel the new pass
+ * has not reached yet, and passes visit stripes spread over the frame
+ * (stripeOrder), so the new picture refines on top of the old one
+ * everywhere at once.
  *
  * The animation-frame loop runs only while something can change on screen:
  * samples arriving, a pending resize, a redraw asked for. Paused, converged
@@ -31,6 +40,8 @@ import {
   type Scene,
 } from '../core/index.ts';
 import type { JobConfig } from '../../workers/render-protocol.ts';
+import { chooseRenderScale, RESCALE_MIN_GAIN, SpeedProbe, STEADY_PROBE_MS } from './auto-scale.ts';
+import { compositeBackdrop, type Backdrop } from './backdrop.ts';
 import type { Display, DisplayPixels } from './display.ts';
 import type { FilmJob } from './film-job.ts';
 import { Films } from './films.ts';
@@ -47,6 +58,19 @@ import type {
   ProgressInfo,
   RenderStatsInfo,
 } from './types.ts';
+
+export interface FilmSnapshot {
+  version: number;
+  width: number;
+  height: number;
+  sums: Float32Array;
+  extra: Float32Array;
+  spp: number;
+  seconds: number;
+  camera: CameraDesc;
+  bounces: number;
+  seed: number;
+}
 
 let nextJobId = 1;
 /** Noise is estimated at most this often (it reads the whole film). */
@@ -95,6 +119,23 @@ export class Controller extends EventTarget implements PathTracerController {
   private detachControls: (() => void) | null = null;
   private picker: PathTracer | null = null;
   private sceneRequested = false;
+  /** The last picture, shown where the active film has no sample yet. */
+  private backdrop: Backdrop | null = null;
+  /** The film the display showed last (its pixels are what is on screen). */
+  private shownJob: FilmJob | null = null;
+  /** The quick first pass of a new scene is running in the preview film. */
+  private probing = false;
+  private probe = new SpeedProbe();
+  /** The automatic scale awaits the warm measurement on the full film (see auto-scale.ts). */
+  private steadyProbe: SpeedProbe | null = null;
+  /** The pointer (or keyboard) is moving the camera: restarts go to the preview film. */
+  private interacting = false;
+  /** Samples per second measured by the last quick first pass (NaN before one). */
+  private measuredRate = NaN;
+  /** Tracing time of the full film since its last restart: start, paused time, pause start. */
+  private runStart = 0;
+  private pausedMs = 0;
+  private pausedAt = -1;
 
   constructor(canvas: HTMLCanvasElement, options: PathTracerOptions) {
     super();
@@ -194,6 +235,7 @@ export class Controller extends EventTarget implements PathTracerController {
       first && this.options.bounces !== undefined
         ? this.options.bounces
         : scene.settings.maxBounces;
+    this.startProbe();
     this.restart();
     this.emit('load', { scene });
   }
@@ -218,6 +260,8 @@ export class Controller extends EventTarget implements PathTracerController {
   /** New configuration version, reset of the active film, configuration to the workers. */
   private restart(): void {
     if (!this.currentScene || !this.camera || this.destroyed) return;
+    this.captureBackdrop();
+    this.films.wantPreview = this.interacting || this.probing;
     const active = this.films.select(this.target);
     this.version++;
     // Version first, then reset: a worker still holding the old
@@ -247,6 +291,8 @@ export class Controller extends EventTarget implements PathTracerController {
     this.rays.reset();
     this.noise = NaN;
     this.lastProgressSpp = -1;
+    this.startClock();
+    if (this.steadyProbe) this.steadyProbe = new SpeedProbe(1, STEADY_PROBE_MS);
     this.pool.register(this.client);
     this.pool.configure(this.client);
     this.pool.kick();
@@ -256,7 +302,9 @@ export class Controller extends EventTarget implements PathTracerController {
   reset(): void {
     const job = this.activeJob();
     if (!job || !this.config) return;
+    this.captureBackdrop();
     job.reset();
+    this.startClock();
     this.convergedSent = false;
     this.displayDirty = true;
     this.noise = NaN;
@@ -266,6 +314,7 @@ export class Controller extends EventTarget implements PathTracerController {
   }
 
   pause(): void {
+    if (!this.isPaused) this.pausedAt = performance.now();
     this.isPaused = true;
     this.activeJob()?.setPaused(true);
     // Stripes already in hand still finish and should be shown; the loop
@@ -274,6 +323,10 @@ export class Controller extends EventTarget implements PathTracerController {
   }
 
   resume(): void {
+    if (this.isPaused && this.pausedAt >= 0) this.pausedMs += performance.now() - this.pausedAt;
+    // A measurement window must not span a pause.
+    if (this.steadyProbe) this.steadyProbe = new SpeedProbe(1, STEADY_PROBE_MS);
+    this.pausedAt = -1;
     this.isPaused = false;
     this.activeJob()?.setPaused(false);
     this.pool.kick();
@@ -306,8 +359,20 @@ export class Controller extends EventTarget implements PathTracerController {
   }
 
   setRenderScale(scale: number): void {
+    this.films.autoScale = false;
+    this.steadyProbe = null;
     this.films.renderScale = Math.max(0.05, Math.min(4, scale));
     if (this.films.ensureFull(this.target)) this.restart();
+  }
+
+  /** See PathTracerOptions.sizeStep; applies from the next restart that sizes the film. */
+  setSizeStep(step: number): void {
+    this.films.sizeStep = Math.max(1, Math.floor(step));
+  }
+
+  /** Max bounces in use. */
+  get maxBounces(): number {
+    return this.bounces;
   }
 
   async setWorkers(count: number): Promise<void> {
@@ -376,15 +441,89 @@ export class Controller extends EventTarget implements PathTracerController {
 
   /** Interaction hooks: the preview film while the pointer moves, the full film when it rests. */
   beginPreview(): void {
+    this.interacting = true;
     this.films.wantPreview = true;
     this.wake();
   }
 
   endPreview(): void {
-    this.films.wantPreview = false;
-    if (!this.films.previewing) return;
-    this.films.previewing = false;
+    this.interacting = false;
+    this.films.wantPreview = this.probing;
+    // The quick first pass, if still running, hands over to the full film itself.
+    if (!this.films.previewing || this.probing) return;
     this.restart();
+  }
+
+  // ---- backdrop and the quick first pass ---------------------------------
+
+  /** What is on screen (the shown film over the old backdrop) becomes the backdrop. */
+  private captureBackdrop(): void {
+    const job = this.shownJob;
+    if (!job) return;
+    this.backdrop = compositeBackdrop(job.film.sums, job.width, job.height, this.backdrop);
+  }
+
+  private startProbe(): void {
+    this.probing = true;
+    this.probe = new SpeedProbe();
+    this.steadyProbe = null;
+  }
+
+  /**
+   * While the quick first pass runs: once it has a whole picture (and, for
+   * the automatic scale, a speed), chooses the scale and hands over to the
+   * full film, which refines on top of the picture.
+   */
+  private advanceProbe(now: number, job: FilmJob): void {
+    if (!this.films.previewing || job !== this.films.preview) return;
+    let done = job.passesDone() >= 1;
+    if (this.films.autoScale) {
+      const rate = this.probe.update(now, job.progress(), job.passesDone(), job.width * job.height);
+      if (rate === null) return;
+      this.measuredRate = rate;
+      this.films.renderScale = this.scaleFor(rate);
+      this.steadyProbe = new SpeedProbe(1, STEADY_PROBE_MS);
+      done = true;
+    }
+    if (!done) return;
+    this.probing = false;
+    if (!this.interacting) this.restart();
+  }
+
+  private scaleFor(samplesPerSecond: number): number {
+    const css = this.films.cssSize();
+    return chooseRenderScale(samplesPerSecond, css.width * css.height, css.pixelRatio);
+  }
+
+  /**
+   * The warm measurement over the full film's second pass: raises the
+   * automatic scale once if the speed allows clearly more pixels (the
+   * image refines on top of the first one).
+   */
+  private advanceSteadyProbe(now: number, job: FilmJob): void {
+    const probe = this.steadyProbe;
+    if (!probe || this.films.previewing || job !== this.films.full || this.isPaused) return;
+    const rate = probe.update(now, job.progress(), job.passesDone(), job.width * job.height);
+    if (rate === null) return;
+    this.steadyProbe = null;
+    if (!this.films.autoScale) return;
+    this.measuredRate = rate;
+    const scale = this.scaleFor(rate);
+    if (scale * scale < this.films.renderScale * this.films.renderScale * RESCALE_MIN_GAIN) return;
+    this.films.renderScale = scale;
+    if (this.films.ensureFull(this.target)) this.restart();
+  }
+
+  private startClock(): void {
+    this.runStart = performance.now();
+    this.pausedMs = 0;
+    this.pausedAt = this.isPaused ? this.runStart : -1;
+  }
+
+  /** Seconds the active film has been traced since its last restart, pauses excluded. */
+  private traceSeconds(now: number): number {
+    const paused = this.pausedMs + (this.pausedAt >= 0 ? now - this.pausedAt : 0);
+    return Math.max(0, now - this.runStart - paused) / 1000;
   }
 
   // ---- per frame ---------------------------------------------------------
@@ -398,9 +537,10 @@ export class Controller extends EventTarget implements PathTracerController {
     const cleared = job.takeCleared();
     const dirty = job.takeDirtyRows();
     if (!force && !cleared && dirty.length === 0 && !this.displayDirty) return false;
-    if (cleared) this.display.clear(job.width, job.height);
+    if (cleared) this.display.clear(job.width, job.height, this.backdrop);
     this.display.draw(job.film.sums, job.width, job.height, this.exposure, dirty);
     this.displayDirty = false;
+    this.shownJob = job;
     return true;
   }
 
@@ -416,6 +556,8 @@ export class Controller extends EventTarget implements PathTracerController {
       if (this.films.resizePending) this.wake();
       return;
     }
+    if (this.probing) this.advanceProbe(now, job);
+    else if (this.steadyProbe) this.advanceSteadyProbe(now, job);
     const segments = job.takeSegments();
     this.segmentsTotal += segments;
     this.rays.add(now, segments);
@@ -426,7 +568,8 @@ export class Controller extends EventTarget implements PathTracerController {
       this.frames.add(now, 1);
       this.changedSinceNoise = true;
     }
-    const spp = job.passesDone();
+    // Preview passes are not the image's samples: the full film has none yet.
+    const spp = this.films.previewing ? 0 : job.passesDone();
     // Once converged (or paused) nothing changes, so the film is not read
     // again for the noise estimate.
     if (this.changedSinceNoise && now - this.noiseAt > NOISE_INTERVAL_MS) {
@@ -460,6 +603,7 @@ export class Controller extends EventTarget implements PathTracerController {
       tracing ||
       owed ||
       job.busy() ||
+      this.probing ||
       this.films.resizePending ||
       this.films.wantPreview ||
       this.films.previewing
@@ -482,7 +626,7 @@ export class Controller extends EventTarget implements PathTracerController {
     const now = performance.now();
     const textureBytes = job && this.mode.display === 'webgl2' ? job.width * job.height * 16 : 0;
     return {
-      ...this.progressInfo(job ? job.passesDone() : 0),
+      ...this.progressInfo(job && !this.films.previewing ? job.passesDone() : 0),
       fps: this.frames.rate(now),
       frameMs: this.frameMs,
       width: job?.width ?? 0,
@@ -509,7 +653,43 @@ export class Controller extends EventTarget implements PathTracerController {
 
   /** Fractional passes of the active film (for a smooth progress bar). */
   progress(): number {
-    return this.activeJob()?.progress() ?? 0;
+    return this.films.previewing ? 0 : (this.activeJob()?.progress() ?? 0);
+  }
+
+  /**
+   * The render scale in use and whether it was chosen automatically (from
+   * `samplesPerSecond`, measured on the quick first pass), for the UI.
+   */
+  renderScaleInfo(): { scale: number; auto: boolean; samplesPerSecond: number } {
+    return {
+      scale: this.films.renderScale,
+      auto: this.films.autoScale,
+      samplesPerSecond: this.measuredRate,
+    };
+  }
+
+  /**
+   * The full film as it is now, for measurements off the hot path (the
+   * demo's error plot): its sums and per-pixel squared luminance (live
+   * views, not copies: read them at once), complete passes, tracing
+   * seconds, and the configuration version, which changes on every
+   * restart. Null while the preview is active.
+   */
+  filmSnapshot(): FilmSnapshot | null {
+    const job = this.films.full;
+    if (!job || this.films.previewing || !this.config || !this.camera) return null;
+    return {
+      version: this.version,
+      width: job.width,
+      height: job.height,
+      sums: job.film.sums,
+      extra: job.film.extra,
+      spp: job.passesDone(),
+      seconds: this.traceSeconds(performance.now()),
+      camera: this.camera,
+      bounces: this.bounces,
+      seed: this.seed,
+    };
   }
 
   // ---- output ------------------------------------------------------------

@@ -1,0 +1,75 @@
+/**
+ * The automatic render scale: as many pixels as the measured speed traces
+ * in one pass within PASS_BUDGET_S, so the first complete image appears in
+ * about a quarter of a second on the slowest machine we target (two
+ * cores), and the noise then falls at a pace the user can watch. The
+ * speed is measured on the quick first pass, which renders in the preview
+ * film (see controller.ts), so the decision costs no extra work.
+ */
+
+/**
+ * devicePixelRatio beyond this is not rendered by default: a DPR-3 phone
+ * would otherwise trace 9× the pixels of its CSS size for detail the eye
+ * barely resolves. The render-scale setting can still go up to it.
+ */
+export const DEFAULT_MAX_PIXEL_RATIO = 2;
+/** Seconds one pass of the full film should take at the measured speed. */
+export const PASS_BUDGET_S = 0.2;
+/** The automatic scale never goes below this (a very slow machine still gets a usable picture). */
+export const MIN_AUTO_SCALE = 0.2;
+/** The speed is measured over at least this long (rAF granularity is ~16 ms). */
+export const PROBE_MIN_MS = 50;
+/** The warm measurement runs over this long, from the end of the full film's first pass. */
+export const STEADY_PROBE_MS = 300;
+/** The warm measurement changes the scale only for at least this many times the pixels. */
+export const RESCALE_MIN_GAIN = 1.3;
+
+/**
+ * The render scale (relative to CSS size × capped devicePixelRatio) whose
+ * pass takes `budgetS` at `samplesPerSecond`, for a canvas of `cssPixels`
+ * × pixelRatio² device pixels; between MIN_AUTO_SCALE and 1.
+ */
+export function chooseRenderScale(
+  samplesPerSecond: number,
+  cssPixels: number,
+  pixelRatio: number,
+  budgetS = PASS_BUDGET_S,
+): number {
+  const full = cssPixels * pixelRatio * pixelRatio;
+  if (!(samplesPerSecond > 0) || !(full > 0)) return MIN_AUTO_SCALE;
+  const scale = Math.sqrt((samplesPerSecond * budgetS) / full);
+  return Math.max(MIN_AUTO_SCALE, Math.min(1, scale));
+}
+
+/**
+ * Samples per second of one film's passes, from its fractional progress
+ * (passes averaged over stripes) between the first frame at which the
+ * progress reached `from` and a frame at least `minMs` later with at least
+ * one whole pass done. With `from` > 0 the window opens only after that
+ * much work, once the JIT has compiled the tracer's hot loops (the first
+ * pass after start-up runs several times slower than the next ones).
+ */
+export class SpeedProbe {
+  private t0 = -1;
+  private p0 = 0;
+  private readonly from: number;
+  private readonly minMs: number;
+
+  constructor(from = Number.MIN_VALUE, minMs = PROBE_MIN_MS) {
+    this.from = from;
+    this.minMs = minMs;
+  }
+
+  /** Feeds one frame; returns samples per second once measured, else null. */
+  update(now: number, progress: number, passesDone: number, pixels: number): number | null {
+    if (progress < this.from) return null;
+    if (this.t0 < 0) {
+      this.t0 = now;
+      this.p0 = progress;
+      return null;
+    }
+    const ms = now - this.t0;
+    if (passesDone < 1 || ms < this.minMs || progress <= this.p0) return null;
+    return ((progress - this.p0) * pixels) / (ms / 1000);
+  }
+}
