@@ -358,7 +358,15 @@ export class Controller extends EventTarget implements PathTracerController {
     this.restart();
   }
 
-  setRenderScale(scale: number): void {
+  setRenderScale(scale: number | null): void {
+    if (scale === null) {
+      // Back to automatic: measure again with a quick first pass.
+      if (this.films.autoScale || this.films.fixedSize) return;
+      this.films.autoScale = true;
+      this.startProbe();
+      this.restart();
+      return;
+    }
     this.films.autoScale = false;
     this.steadyProbe = null;
     this.films.renderScale = Math.max(0.05, Math.min(4, scale));

@@ -100,7 +100,8 @@ export interface PathTracerController extends EventTarget {
   setBounces(bounces: number): void;
   setExposure(exposure: number): void;
   setSeed(seed: number): void;
-  setRenderScale(scale: number): void;
+  /** A fixed render scale, or null for the automatic one (see PathTracerOptions.renderScale). */
+  setRenderScale(scale: number | null): void;
   setWorkers(count: number): Promise<void>;
   getCamera(): CameraDesc;
   setCamera(camera: CameraDesc): void;

@@ -50,10 +50,10 @@ function runInProject(name: string, source: string): string {
 }
 
 describe('the installed package', () => {
-  test('ships only the library, its types, the command line and bin', () => {
+  test('ships only the library, its types, the command line, bin and the scenes', () => {
     const top = readdirSync(installed.packageDir).sort();
     for (const entry of top) {
-      expect(['LICENSE', 'README.md', 'bin', 'dist', 'package.json']).toContain(entry);
+      expect(['LICENSE', 'README.md', 'bin', 'dist', 'package.json', 'scenes']).toContain(entry);
     }
     expect(readdirSync(join(installed.packageDir, 'dist')).sort()).toEqual(['cli', 'lib', 'types']);
     const pkg = JSON.parse(readFileSync(join(installed.packageDir, 'package.json'), 'utf8')) as {
