@@ -9,7 +9,9 @@ import { fileURLToPath } from 'node:url';
 const entry = new URL('../dist/cli/pathwise.js', import.meta.url);
 const builder = new URL('../scripts/build-cli.mjs', import.meta.url);
 if (!existsSync(entry) && existsSync(builder)) {
-  execFileSync(process.execPath, [fileURLToPath(builder)], { stdio: ['ignore', 'ignore', 'inherit'] });
+  execFileSync(process.execPath, [fileURLToPath(builder)], {
+    stdio: ['ignore', 'ignore', 'inherit'],
+  });
 }
 if (!existsSync(entry)) {
   process.stderr.write('pathwise: the command line is not built; run `npm run build:cli`\n');
