@@ -136,6 +136,8 @@ export class Controller extends EventTarget implements PathTracerController {
   private runStart = 0;
   private pausedMs = 0;
   private pausedAt = -1;
+  /** performance.now() of the latest scene load, its first picture and first full image (NaN: not yet). */
+  private readonly times = { sceneLoaded: NaN, firstPicture: NaN, firstImage: NaN };
 
   constructor(canvas: HTMLCanvasElement, options: PathTracerOptions) {
     super();
@@ -235,6 +237,9 @@ export class Controller extends EventTarget implements PathTracerController {
       first && this.options.bounces !== undefined
         ? this.options.bounces
         : scene.settings.maxBounces;
+    this.times.sceneLoaded = performance.now();
+    this.times.firstPicture = NaN;
+    this.times.firstImage = NaN;
     this.startProbe();
     this.restart();
     this.emit('load', { scene });
@@ -515,9 +520,9 @@ export class Controller extends EventTarget implements PathTracerController {
     if (rate === null) return;
     this.steadyProbe = null;
     if (!this.films.autoScale) return;
-    this.measuredRate = rate;
     const scale = this.scaleFor(rate);
     if (scale * scale < this.films.renderScale * this.films.renderScale * RESCALE_MIN_GAIN) return;
+    this.measuredRate = rate;
     this.films.renderScale = scale;
     if (this.films.ensureFull(this.target)) this.restart();
   }
@@ -578,6 +583,10 @@ export class Controller extends EventTarget implements PathTracerController {
     }
     // Preview passes are not the image's samples: the full film has none yet.
     const spp = this.films.previewing ? 0 : job.passesDone();
+    if (drew && Number.isNaN(this.times.firstPicture) && job.passesDone() >= 1) {
+      this.times.firstPicture = now;
+    }
+    if (drew && Number.isNaN(this.times.firstImage) && spp >= 1) this.times.firstImage = now;
     // Once converged (or paused) nothing changes, so the film is not read
     // again for the noise estimate.
     if (this.changedSinceNoise && now - this.noiseAt > NOISE_INTERVAL_MS) {
@@ -654,6 +663,16 @@ export class Controller extends EventTarget implements PathTracerController {
     return this.framesCount;
   }
 
+  /**
+   * When the latest scene was loaded, and when the first whole picture
+   * (any film, the quick preview pass included) and the first whole image
+   * of the full film were drawn (frame times, performance.now()), for
+   * benchmarks of the time to first image.
+   */
+  timeline(): { sceneLoaded: number; firstPicture: number; firstImage: number } {
+    return { ...this.times };
+  }
+
   /** Segments traced since the controller was made (for benchmarks: a difference over time). */
   segmentsTraced(): number {
     return this.segmentsTotal;
@@ -665,8 +684,8 @@ export class Controller extends EventTarget implements PathTracerController {
   }
 
   /**
-   * The render scale in use and whether it was chosen automatically (from
-   * `samplesPerSecond`, measured on the quick first pass), for the UI.
+   * The render scale in use, whether it was chosen automatically, and the
+   * measured speed (samples per second) it was chosen from.
    */
   renderScaleInfo(): { scale: number; auto: boolean; samplesPerSecond: number } {
     return {
