@@ -3,7 +3,8 @@
  * tests and benchmarks, and switches that force the fallback paths, e.g.
  * `?scene=spheres`, `?width=64&height=64&seed=1&spp=8`, `?shared=off`,
  * `?display=canvas2d` (or `webgl2`, even on a software renderer), `?workers=2`,
- * `?bench=2` (a 2-second benchmark).
+ * `?bench=2` (a 2-second benchmark), `?scale=1&dpr=3` (a fixed render scale;
+ * devicePixelRatio counted up to 3 instead of 2).
  */
 import type { PathTracerOptions } from '../view/index.ts';
 import { PRESETS, type PresetName } from './presets.ts';
@@ -39,6 +40,7 @@ export function readParams(search: string): DemoParams {
   const known = Object.hasOwn(PRESETS, name);
   const preset: PresetName = known ? (name as PresetName) : 'cornell';
   const scale = Number(q.get('scale'));
+  const dpr = Number(q.get('dpr'));
   const options: PathTracerOptions = {
     width: positiveInt(q.get('width')),
     height: positiveInt(q.get('height')),
@@ -47,6 +49,7 @@ export function readParams(search: string): DemoParams {
     bounces: nonNegativeInt(q.get('bounces')),
     workers: positiveInt(q.get('workers')),
     renderScale: scale > 0 ? scale : undefined,
+    maxPixelRatio: dpr > 0 ? dpr : undefined,
     display: displayParam(q.get('display')),
     shared: q.get('shared') === 'off' ? 'off' : 'auto',
   };

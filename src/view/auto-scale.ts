@@ -18,7 +18,7 @@ export const PASS_BUDGET_S = 0.2;
 /** The automatic scale never goes below this (a very slow machine still gets a usable picture). */
 export const MIN_AUTO_SCALE = 0.2;
 /** The speed is measured over at least this long (rAF granularity is ~16 ms). */
-export const PROBE_MIN_MS = 50;
+export const PROBE_MIN_MS = 20;
 /** The warm measurement runs over this long, from the end of the full film's first pass. */
 export const STEADY_PROBE_MS = 300;
 /** The warm measurement changes the scale only for at least this many times the pixels. */

@@ -500,6 +500,8 @@ export class Controller extends EventTarget implements PathTracerController {
     }
     if (!done) return;
     this.probing = false;
+    // The whole preview pass becomes the backdrop the full film starts on.
+    if (Number.isNaN(this.times.firstPicture)) this.times.firstPicture = now;
     if (!this.interacting) this.restart();
   }
 
@@ -562,6 +564,11 @@ export class Controller extends EventTarget implements PathTracerController {
     if (this.destroyed) return;
     this.framesCount++;
     if (this.films.follow(now, this.target)) this.restart();
+    // The speed measurements may hand over to another film (a restart):
+    // this frame then draws that one, over the picture captured as backdrop.
+    const before = this.activeJob();
+    if (before && this.probing) this.advanceProbe(now, before);
+    else if (before && this.steadyProbe) this.advanceSteadyProbe(now, before);
     const job = this.activeJob();
     // No scene yet: setScene's restart wakes the loop. A resize waiting to
     // settle is checked again on the next frame.
@@ -569,8 +576,6 @@ export class Controller extends EventTarget implements PathTracerController {
       if (this.films.resizePending) this.wake();
       return;
     }
-    if (this.probing) this.advanceProbe(now, job);
-    else if (this.steadyProbe) this.advanceSteadyProbe(now, job);
     const segments = job.takeSegments();
     this.segmentsTotal += segments;
     this.rays.add(now, segments);
