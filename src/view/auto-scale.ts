@@ -15,8 +15,13 @@
 export const DEFAULT_MAX_PIXEL_RATIO = 2;
 /** Seconds one pass of the full film should take at the measured speed. */
 export const PASS_BUDGET_S = 0.2;
-/** The automatic scale never goes below this (a very slow machine still gets a usable picture). */
-export const MIN_AUTO_SCALE = 0.2;
+/**
+ * The automatic scale never goes below this many pixels (256²), or the
+ * canvas's own size when smaller: a small view is always rendered at full
+ * size (the quick pass of a tiny preview times the JIT's warm-up more than
+ * the tracer), and a very slow or busy machine still gets a usable picture.
+ */
+export const MIN_AUTO_PIXELS = 65_536;
 /** The speed is measured over at least this long (rAF granularity is ~16 ms). */
 export const PROBE_MIN_MS = 20;
 /** The warm measurement runs over this long, from the end of the full film's first pass. */
@@ -27,7 +32,8 @@ export const RESCALE_MIN_GAIN = 1.3;
 /**
  * The render scale (relative to CSS size × capped devicePixelRatio) whose
  * pass takes `budgetS` at `samplesPerSecond`, for a canvas of `cssPixels`
- * × pixelRatio² device pixels; between MIN_AUTO_SCALE and 1.
+ * × pixelRatio² device pixels: at most 1, and at least the scale of
+ * MIN_AUTO_PIXELS.
  */
 export function chooseRenderScale(
   samplesPerSecond: number,
@@ -36,9 +42,10 @@ export function chooseRenderScale(
   budgetS = PASS_BUDGET_S,
 ): number {
   const full = cssPixels * pixelRatio * pixelRatio;
-  if (!(samplesPerSecond > 0) || !(full > 0)) return MIN_AUTO_SCALE;
-  const scale = Math.sqrt((samplesPerSecond * budgetS) / full);
-  return Math.max(MIN_AUTO_SCALE, Math.min(1, scale));
+  if (!(full > 0)) return 1;
+  const floor = Math.min(1, Math.sqrt(MIN_AUTO_PIXELS / full));
+  const scale = samplesPerSecond > 0 ? Math.sqrt((samplesPerSecond * budgetS) / full) : 0;
+  return Math.max(floor, Math.min(1, scale));
 }
 
 /**
@@ -54,14 +61,30 @@ export class SpeedProbe {
   private p0 = 0;
   private readonly from: number;
   private readonly minMs: number;
+  private readonly start: number;
 
-  constructor(from = Number.MIN_VALUE, minMs = PROBE_MIN_MS) {
+  /** `start`: when the film began (for a film that finishes before a window fits). */
+  constructor(from = Number.MIN_VALUE, minMs = PROBE_MIN_MS, start = -1) {
     this.from = from;
     this.minMs = minMs;
+    this.start = start;
   }
 
-  /** Feeds one frame; returns samples per second once measured, else null. */
-  update(now: number, progress: number, passesDone: number, pixels: number): number | null {
+  /**
+   * Feeds one frame; returns samples per second once measured, else null.
+   * `finished`: the film reached its target, so no window can open any
+   * more; the rate is then taken from `start` (start-up included: low).
+   */
+  update(
+    now: number,
+    progress: number,
+    passesDone: number,
+    pixels: number,
+    finished = false,
+  ): number | null {
+    if (finished && passesDone >= 1 && this.start >= 0 && now > this.start) {
+      return (progress * pixels) / ((now - this.start) / 1000);
+    }
     if (progress < this.from) return null;
     if (this.t0 < 0) {
       this.t0 = now;

@@ -478,7 +478,7 @@ export class Controller extends EventTarget implements PathTracerController {
 
   private startProbe(): void {
     this.probing = true;
-    this.probe = new SpeedProbe();
+    this.probe = new SpeedProbe(undefined, undefined, performance.now());
     this.steadyProbe = null;
   }
 
@@ -491,7 +491,14 @@ export class Controller extends EventTarget implements PathTracerController {
     if (!this.films.previewing || job !== this.films.preview) return;
     let done = job.passesDone() >= 1;
     if (this.films.autoScale) {
-      const rate = this.probe.update(now, job.progress(), job.passesDone(), job.width * job.height);
+      const finished = job.passesDone() >= this.target;
+      const rate = this.probe.update(
+        now,
+        job.progress(),
+        job.passesDone(),
+        job.width * job.height,
+        finished,
+      );
       if (rate === null) return;
       this.measuredRate = rate;
       this.films.renderScale = this.scaleFor(rate);
@@ -625,7 +632,7 @@ export class Controller extends EventTarget implements PathTracerController {
       tracing ||
       owed ||
       job.busy() ||
-      this.probing ||
+      (this.probing && !this.isPaused) ||
       this.films.resizePending ||
       this.films.wantPreview ||
       this.films.previewing

@@ -9,7 +9,7 @@
  */
 import type { Page } from 'playwright-core';
 import { describe, expect, it } from 'vitest';
-import { PASS_BUDGET_S } from '../../src/view/auto-scale.ts';
+import { MIN_AUTO_PIXELS, PASS_BUDGET_S } from '../../src/view/auto-scale.ts';
 import { WEBGL, useDemo } from './context.ts';
 import { openDemo, waitForSpp } from './harness.ts';
 
@@ -214,7 +214,8 @@ describe('progressive display while dragging (Chromium)', () => {
     expect(r.info.scale).toBeLessThanOrEqual(1);
     // The scale's pixels take the pass budget at the measured speed (unless clamped).
     const pixels = r.cw * r.ch * 4 * r.info.scale ** 2;
-    if (r.info.scale > 0.2 && r.info.scale < 1) {
+    const floor = Math.sqrt(MIN_AUTO_PIXELS / (r.cw * r.ch * 4));
+    if (r.info.scale > floor * 1.0001 && r.info.scale < 1) {
       expect(pixels / r.info.samplesPerSecond).toBeCloseTo(PASS_BUDGET_S, 6);
     }
     // The first whole picture came before the first full image, both after the scene loaded.

@@ -14,7 +14,7 @@ import {
   parseScene,
   tonemapSums,
 } from '../../src/core/index.ts';
-import { chooseRenderScale, MIN_AUTO_SCALE, SpeedProbe } from '../../src/view/auto-scale.ts';
+import { chooseRenderScale, MIN_AUTO_PIXELS, SpeedProbe } from '../../src/view/auto-scale.ts';
 import { compositeBackdrop, tonemapOverBackdrop } from '../../src/view/backdrop.ts';
 import { stripeOrder } from '../../workers/render-protocol.ts';
 
@@ -144,14 +144,19 @@ describe('backdrop', () => {
 });
 
 describe('automatic render scale', () => {
-  it('picks the scale whose pass takes the budget, within [MIN_AUTO_SCALE, 1]', () => {
+  it('picks the scale whose pass takes the budget, at most 1, never below MIN_AUTO_PIXELS', () => {
     // 1000 × 800 CSS pixels at a pixel ratio of 2: 3.2 M device pixels.
     const scale = chooseRenderScale(800_000, 1000 * 800, 2, 0.2);
     const pixels = 1000 * 800 * 4 * scale * scale;
     expect(pixels / 800_000).toBeCloseTo(0.2, 10);
     expect(chooseRenderScale(1e12, 1000 * 800, 2)).toBe(1);
-    expect(chooseRenderScale(1, 1000 * 800, 2)).toBe(MIN_AUTO_SCALE);
-    expect(chooseRenderScale(NaN, 1000 * 800, 2)).toBe(MIN_AUTO_SCALE);
+    // A slow (or unmeasured) machine still gets MIN_AUTO_PIXELS.
+    for (const rate of [1, NaN]) {
+      const floor = chooseRenderScale(rate, 1000 * 800, 2);
+      expect(1000 * 800 * 4 * floor * floor).toBeCloseTo(MIN_AUTO_PIXELS, 6);
+    }
+    // A view smaller than that renders at full size, however slow.
+    expect(chooseRenderScale(1, 64 * 64, 1)).toBe(1);
   });
 
   it('measures samples per second from progress between two frames, after a whole pass', () => {
@@ -161,5 +166,13 @@ describe('automatic render scale', () => {
     expect(probe.update(40, 1.5, 1, 1000)).toBeNull(); // too short a window
     // 2 passes of 1000 pixels in 100 ms.
     expect(probe.update(110, 2.5, 2, 1000)).toBeCloseTo(20_000, 6);
+  });
+
+  it('times a film that reached its target before a window fitted from its start', () => {
+    const probe = new SpeedProbe(Number.MIN_VALUE, 50, 100);
+    expect(probe.update(120, 2, 2, 500)).toBeNull(); // the window opens only now
+    expect(probe.update(125, 2, 2, 500)).toBeNull(); // and the progress stalls (target 2)
+    // Finished: 2 passes of 500 pixels in the 50 ms since the start.
+    expect(probe.update(150, 2, 2, 500, true)).toBeCloseTo(20_000, 6);
   });
 });
