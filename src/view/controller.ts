@@ -40,17 +40,18 @@ import {
   type Scene,
 } from '../core/index.ts';
 import type { JobConfig } from '../../workers/render-protocol.ts';
-import { chooseRenderScale, RESCALE_MIN_GAIN, SpeedProbe, STEADY_PROBE_MS } from './auto-scale.ts';
 import { compositeBackdrop, type Backdrop } from './backdrop.ts';
 import type { Display, DisplayPixels } from './display.ts';
-import type { FilmJob } from './film-job.ts';
+import type { FilmJob, FilmSnapshot } from './film-job.ts';
 import { Films } from './films.ts';
+import { FirstPass, type Timeline } from './first-pass.ts';
 import { attachCameraControls } from './interaction.ts';
 import { chooseCompute, createDisplay } from './mode.ts';
 import { dollyCamera, orbitCamera } from './orbit.ts';
 import { releasePool, sharedPool, type PoolClient, type WorkerPool } from './pool.ts';
 import { RateMeter } from './rate-meter.ts';
 import { SharedFilmJob } from './shared-job.ts';
+import { TraceClock } from './trace-clock.ts';
 import type {
   FallbackInfo,
   PathTracerController,
@@ -58,19 +59,6 @@ import type {
   ProgressInfo,
   RenderStatsInfo,
 } from './types.ts';
-
-export interface FilmSnapshot {
-  version: number;
-  width: number;
-  height: number;
-  sums: Float32Array;
-  extra: Float32Array;
-  spp: number;
-  seconds: number;
-  camera: CameraDesc;
-  bounces: number;
-  seed: number;
-}
 
 let nextJobId = 1;
 /** Noise is estimated at most this often (it reads the whole film). */
@@ -123,22 +111,12 @@ export class Controller extends EventTarget implements PathTracerController {
   private backdrop: Backdrop | null = null;
   /** The film the display showed last (its pixels are what is on screen). */
   private shownJob: FilmJob | null = null;
-  /** The quick first pass of a new scene is running in the preview film. */
-  private probing = false;
-  private probe = new SpeedProbe();
-  /** The automatic scale awaits the warm measurement on the full film (see auto-scale.ts). */
-  private steadyProbe: SpeedProbe | null = null;
   /** The pointer (or keyboard) is moving the camera: restarts go to the preview film. */
   private interacting = false;
-  /** Samples per second measured by the last quick first pass (NaN before one). */
-  private measuredRate = NaN;
-  /** Tracing time of the full film since its last restart: start, paused time, pause start. */
-  private runStart = 0;
-  private pausedMs = 0;
-  private pausedAt = -1;
-  /** performance.now() of the latest scene load, its first picture and first full image (NaN: not yet). */
-  private readonly times = { sceneLoaded: NaN, firstPicture: NaN, firstImage: NaN };
-
+  /** The quick first pass of a new scene and the automatic scale. */
+  private readonly firstPass: FirstPass;
+  /** Tracing time of the active film since its last restart. */
+  private readonly clock = new TraceClock();
   constructor(canvas: HTMLCanvasElement, options: PathTracerOptions) {
     super();
     this.canvas = canvas;
@@ -157,6 +135,7 @@ export class Controller extends EventTarget implements PathTracerController {
     };
     this.pool = sharedPool(options, options.workers);
     this.films = new Films(canvas, options, compute.compute, () => this.pool.size);
+    this.firstPass = new FirstPass(this.films);
     if (options.workers !== undefined && options.workers !== this.pool.size) {
       void this.pool.setSize(options.workers);
     }
@@ -237,10 +216,7 @@ export class Controller extends EventTarget implements PathTracerController {
       first && this.options.bounces !== undefined
         ? this.options.bounces
         : scene.settings.maxBounces;
-    this.times.sceneLoaded = performance.now();
-    this.times.firstPicture = NaN;
-    this.times.firstImage = NaN;
-    this.startProbe();
+    this.firstPass.sceneLoaded(performance.now());
     this.restart();
     this.emit('load', { scene });
   }
@@ -266,7 +242,7 @@ export class Controller extends EventTarget implements PathTracerController {
   private restart(): void {
     if (!this.currentScene || !this.camera || this.destroyed) return;
     this.captureBackdrop();
-    this.films.wantPreview = this.interacting || this.probing;
+    this.films.wantPreview = this.interacting || this.firstPass.active;
     const active = this.films.select(this.target);
     this.version++;
     // Version first, then reset: a worker still holding the old
@@ -296,8 +272,8 @@ export class Controller extends EventTarget implements PathTracerController {
     this.rays.reset();
     this.noise = NaN;
     this.lastProgressSpp = -1;
-    this.startClock();
-    if (this.steadyProbe) this.steadyProbe = new SpeedProbe(1, STEADY_PROBE_MS);
+    this.clock.restart(performance.now(), this.isPaused);
+    this.firstPass.interrupted();
     this.pool.register(this.client);
     this.pool.configure(this.client);
     this.pool.kick();
@@ -309,7 +285,7 @@ export class Controller extends EventTarget implements PathTracerController {
     if (!job || !this.config) return;
     this.captureBackdrop();
     job.reset();
-    this.startClock();
+    this.clock.restart(performance.now(), this.isPaused);
     this.convergedSent = false;
     this.displayDirty = true;
     this.noise = NaN;
@@ -319,7 +295,7 @@ export class Controller extends EventTarget implements PathTracerController {
   }
 
   pause(): void {
-    if (!this.isPaused) this.pausedAt = performance.now();
+    this.clock.pause(performance.now());
     this.isPaused = true;
     this.activeJob()?.setPaused(true);
     // Stripes already in hand still finish and should be shown; the loop
@@ -328,10 +304,9 @@ export class Controller extends EventTarget implements PathTracerController {
   }
 
   resume(): void {
-    if (this.isPaused && this.pausedAt >= 0) this.pausedMs += performance.now() - this.pausedAt;
+    this.clock.resume(performance.now());
     // A measurement window must not span a pause.
-    if (this.steadyProbe) this.steadyProbe = new SpeedProbe(1, STEADY_PROBE_MS);
-    this.pausedAt = -1;
+    if (this.isPaused) this.firstPass.interrupted();
     this.isPaused = false;
     this.activeJob()?.setPaused(false);
     this.pool.kick();
@@ -368,12 +343,12 @@ export class Controller extends EventTarget implements PathTracerController {
       // Back to automatic: measure again with a quick first pass.
       if (this.films.autoScale || this.films.fixedSize) return;
       this.films.autoScale = true;
-      this.startProbe();
+      this.firstPass.start(performance.now());
       this.restart();
       return;
     }
     this.films.autoScale = false;
-    this.steadyProbe = null;
+    this.firstPass.manual();
     this.films.renderScale = Math.max(0.05, Math.min(4, scale));
     if (this.films.ensureFull(this.target)) this.restart();
   }
@@ -461,91 +436,19 @@ export class Controller extends EventTarget implements PathTracerController {
 
   endPreview(): void {
     this.interacting = false;
-    this.films.wantPreview = this.probing;
+    this.films.wantPreview = this.firstPass.active;
     // The quick first pass, if still running, hands over to the full film itself.
-    if (!this.films.previewing || this.probing) return;
+    if (!this.films.previewing || this.firstPass.active) return;
     this.restart();
   }
 
-  // ---- backdrop and the quick first pass ---------------------------------
+  // ---- backdrop ------------------------------------------------------------
 
   /** What is on screen (the shown film over the old backdrop) becomes the backdrop. */
   private captureBackdrop(): void {
     const job = this.shownJob;
     if (!job) return;
     this.backdrop = compositeBackdrop(job.film.sums, job.width, job.height, this.backdrop);
-  }
-
-  private startProbe(): void {
-    this.probing = true;
-    this.probe = new SpeedProbe(undefined, undefined, performance.now());
-    this.steadyProbe = null;
-  }
-
-  /**
-   * While the quick first pass runs: once it has a whole picture (and, for
-   * the automatic scale, a speed), chooses the scale and hands over to the
-   * full film, which refines on top of the picture.
-   */
-  private advanceProbe(now: number, job: FilmJob): void {
-    if (!this.films.previewing || job !== this.films.preview) return;
-    let done = job.passesDone() >= 1;
-    if (this.films.autoScale) {
-      const finished = job.passesDone() >= this.target;
-      const rate = this.probe.update(
-        now,
-        job.progress(),
-        job.passesDone(),
-        job.width * job.height,
-        finished,
-      );
-      if (rate === null) return;
-      this.measuredRate = rate;
-      this.films.renderScale = this.scaleFor(rate);
-      this.steadyProbe = new SpeedProbe(1, STEADY_PROBE_MS);
-      done = true;
-    }
-    if (!done) return;
-    this.probing = false;
-    // The whole preview pass becomes the backdrop the full film starts on.
-    if (Number.isNaN(this.times.firstPicture)) this.times.firstPicture = now;
-    if (!this.interacting) this.restart();
-  }
-
-  private scaleFor(samplesPerSecond: number): number {
-    const css = this.films.cssSize();
-    return chooseRenderScale(samplesPerSecond, css.width * css.height, css.pixelRatio);
-  }
-
-  /**
-   * The warm measurement over the full film's second pass: raises the
-   * automatic scale once if the speed allows clearly more pixels (the
-   * image refines on top of the first one).
-   */
-  private advanceSteadyProbe(now: number, job: FilmJob): void {
-    const probe = this.steadyProbe;
-    if (!probe || this.films.previewing || job !== this.films.full || this.isPaused) return;
-    const rate = probe.update(now, job.progress(), job.passesDone(), job.width * job.height);
-    if (rate === null) return;
-    this.steadyProbe = null;
-    if (!this.films.autoScale) return;
-    const scale = this.scaleFor(rate);
-    if (scale * scale < this.films.renderScale * this.films.renderScale * RESCALE_MIN_GAIN) return;
-    this.measuredRate = rate;
-    this.films.renderScale = scale;
-    if (this.films.ensureFull(this.target)) this.restart();
-  }
-
-  private startClock(): void {
-    this.runStart = performance.now();
-    this.pausedMs = 0;
-    this.pausedAt = this.isPaused ? this.runStart : -1;
-  }
-
-  /** Seconds the active film has been traced since its last restart, pauses excluded. */
-  private traceSeconds(now: number): number {
-    const paused = this.pausedMs + (this.pausedAt >= 0 ? now - this.pausedAt : 0);
-    return Math.max(0, now - this.runStart - paused) / 1000;
   }
 
   // ---- per frame ---------------------------------------------------------
@@ -574,8 +477,10 @@ export class Controller extends EventTarget implements PathTracerController {
     // The speed measurements may hand over to another film (a restart):
     // this frame then draws that one, over the picture captured as backdrop.
     const before = this.activeJob();
-    if (before && this.probing) this.advanceProbe(now, before);
-    else if (before && this.steadyProbe) this.advanceSteadyProbe(now, before);
+    const paused = this.isPaused;
+    if (before && this.firstPass.advance(now, before, this.target, paused, this.interacting)) {
+      this.restart();
+    }
     const job = this.activeJob();
     // No scene yet: setScene's restart wakes the loop. A resize waiting to
     // settle is checked again on the next frame.
@@ -595,10 +500,7 @@ export class Controller extends EventTarget implements PathTracerController {
     }
     // Preview passes are not the image's samples: the full film has none yet.
     const spp = this.films.previewing ? 0 : job.passesDone();
-    if (drew && Number.isNaN(this.times.firstPicture) && job.passesDone() >= 1) {
-      this.times.firstPicture = now;
-    }
-    if (drew && Number.isNaN(this.times.firstImage) && spp >= 1) this.times.firstImage = now;
+    if (drew) this.firstPass.drew(now, job, spp);
     // Once converged (or paused) nothing changes, so the film is not read
     // again for the noise estimate.
     if (this.changedSinceNoise && now - this.noiseAt > NOISE_INTERVAL_MS) {
@@ -632,7 +534,7 @@ export class Controller extends EventTarget implements PathTracerController {
       tracing ||
       owed ||
       job.busy() ||
-      (this.probing && !this.isPaused) ||
+      (this.firstPass.active && !this.isPaused) ||
       this.films.resizePending ||
       this.films.wantPreview ||
       this.films.previewing
@@ -681,8 +583,8 @@ export class Controller extends EventTarget implements PathTracerController {
    * of the full film were drawn (frame times, performance.now()), for
    * benchmarks of the time to first image.
    */
-  timeline(): { sceneLoaded: number; firstPicture: number; firstImage: number } {
-    return { ...this.times };
+  timeline(): Timeline {
+    return { ...this.firstPass.times };
   }
 
   /** Segments traced since the controller was made (for benchmarks: a difference over time). */
@@ -703,7 +605,7 @@ export class Controller extends EventTarget implements PathTracerController {
     return {
       scale: this.films.renderScale,
       auto: this.films.autoScale,
-      samplesPerSecond: this.measuredRate,
+      samplesPerSecond: this.firstPass.rate,
     };
   }
 
@@ -724,7 +626,7 @@ export class Controller extends EventTarget implements PathTracerController {
       sums: job.film.sums,
       extra: job.film.extra,
       spp: job.passesDone(),
-      seconds: this.traceSeconds(performance.now()),
+      seconds: this.clock.seconds(performance.now()),
       camera: this.camera,
       bounces: this.bounces,
       seed: this.seed,
