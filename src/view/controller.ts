@@ -563,7 +563,7 @@ export class Controller extends EventTarget implements PathTracerController {
       width: job?.width ?? 0,
       height: job?.height ?? 0,
       workers: this.pool.size,
-      memoryBytes: this.films.memoryBytes + textureBytes,
+      memoryBytes: this.films.memoryBytes + textureBytes + (this.backdrop?.rgba.byteLength ?? 0),
       rejected: job?.rejected() ?? 0,
       paused: this.isPaused,
     };

@@ -1,8 +1,8 @@
 /**
  * The demo's live error plot on the Cornell box, in Chromium: the true
  * relMSE against the shipped Mitsuba reference falls as samples accrue,
- * sits at or below the variance estimate (Sobol sampling), equals the Node
- * core's figure for the same film bit for bit, is withdrawn when the view
+ * sits at or below the variance estimate (Sobol sampling), equals the
+ * figures Node computes from the same film exactly, is withdrawn when the view
  * leaves the reference's camera and comes back with Reset view.
  */
 import { readFileSync } from 'node:fs';
@@ -13,11 +13,10 @@ import type { ErrorPoint } from '../../src/app/error-plot.ts';
 import { decodePfm } from '../../src/core/index.ts';
 import { useDemo } from './context.ts';
 import { openDemo, root, waitForSpp } from './harness.ts';
-import { nodeFilm } from './node-reference.ts';
 
 const ctx = useDemo();
 const SIZE = 128;
-const SPP = 48;
+const SPP = 64;
 
 function points(page: import('playwright-core').Page): Promise<ErrorPoint[]> {
   return page.evaluate(() => (window as any).__pathwise.errorMeter.points);
@@ -25,10 +24,11 @@ function points(page: import('playwright-core').Page): Promise<ErrorPoint[]> {
 
 describe('live error plot (Chromium)', () => {
   it('shows the true error against the Mitsuba reference falling on the Cornell box', async () => {
+    // One worker: slow enough for several points before the target.
     const page = await openDemo(
       ctx.browser,
       ctx.url,
-      `width=${SIZE}&height=${SIZE}&seed=1&spp=${SPP}`,
+      `width=${SIZE}&height=${SIZE}&seed=1&spp=${SPP}&workers=1`,
     );
     await waitForSpp(page, SPP);
     // The meter takes its last point a moment after convergence.
@@ -56,13 +56,20 @@ describe('live error plot (Chromium)', () => {
     expect(last.truth / last.estimated).toBeGreaterThan(0.3);
     expect(last.truth / last.estimated).toBeLessThan(1.1);
 
-    // The same figures as the Node core's film against the same reference, exactly.
-    const film = nodeFilm('cornell', SIZE, SIZE, 1, SPP);
+    // The page's film is the Node core's bit for bit (demo.test.ts); the
+    // figures computed on it in the page equal Node's, exactly.
+    const film = await page.evaluate(() => {
+      const snap = (window as any).__pathwise.controller.filmSnapshot();
+      return {
+        sums: Array.from(snap.sums as Float32Array),
+        extra: Array.from(snap.extra as Float32Array),
+      };
+    });
     const pfm = decodePfm(readFileSync(join(root, 'tests/references/cornell.pfm')));
     const f = errorFigures(
       SIZE,
-      film.sums,
-      film.extra,
+      Float32Array.from(film.sums),
+      Float32Array.from(film.extra),
       gridLayout(SIZE, SIZE, pfm.width, pfm.height)!,
       referenceLuminance(pfm.width, pfm.height, pfm.rgb),
     );
