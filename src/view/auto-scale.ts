@@ -1,10 +1,13 @@
 /**
  * The automatic render scale: as many pixels as the measured speed traces
- * in one pass within PASS_BUDGET_S, so the first complete image appears in
- * about a quarter of a second on the slowest machine we target (two
- * cores), and the noise then falls at a pace the user can watch. The
- * speed is measured on the quick first pass, which renders in the preview
- * film (see controller.ts), so the decision costs no extra work.
+ * in one pass within PASS_BUDGET_S, aiming at a first complete image
+ * within about 0.3 s of the scene on an idle two-core machine (start-up,
+ * the quick pass, one full pass; bench/first-image.mjs measures it), after
+ * which the noise falls at a pace the user can watch. The speed is measured twice, at no extra cost
+ * (first-pass.ts): on the quick first pass in the preview film, which sizes
+ * the first full image, and again over the full film's next passes once the
+ * JIT has warmed up; the first measurement runs low, so the second may
+ * raise the scale once, and the image refines on top of the first one.
  */
 
 /**
