@@ -18,7 +18,9 @@
  *   i32 12, 13   left, right child: an interior node's index (≥ 0), or a
  *                leaf as ~(first << BVH_LEAF_BITS | count) (< 0): its
  *                references are refs[first, first + count)
- *   i32 14, 15   unused (keeps nodes on cache-line boundaries)
+ *   i32 14       the split axis (0, 1, 2): a ray going down that axis
+ *                visits the right child first
+ *   i32 15       unused (keeps nodes on cache-line boundaries)
  * Boxes are Float32, rounded outwards (and padded by one float ulp), so they
  * always contain the exact double-precision primitive: the box test may let a
  * ray through that misses, never the reverse. Node 0 is the root; there are
@@ -32,6 +34,7 @@ export const N_LEFT_BOX = 0;
 export const N_RIGHT_BOX = 6;
 export const N_LEFT = 12;
 export const N_RIGHT = 13;
+export const N_AXIS = 14;
 /** Bits of a leaf code that hold its reference count. */
 export const BVH_LEAF_BITS = 3;
 export const BVH_LEAF_MASK = (1 << BVH_LEAF_BITS) - 1;
@@ -296,6 +299,7 @@ class Builder {
     if (depth > this.maxDepth) this.maxDepth = depth;
     const split = this.split;
     const o = node * BVH_NODE_WORDS;
+    this.words[o + N_AXIS] = axis;
     for (let k = 0; k < 6; k++) {
       this.nodes[o + N_LEFT_BOX + k] = split[k];
       this.nodes[o + N_RIGHT_BOX + k] = split[6 + k];

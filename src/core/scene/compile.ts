@@ -8,11 +8,15 @@ import { buildBvh, type Bvh } from '../accel/bvh.ts';
 import { PrimitiveBoxes, quadBoxes, sphereBoxes } from '../accel/primitives.ts';
 import { compileMaterials, MATERIAL_STRIDE, M_EMISSION, M_EMISSIVE } from '../bsdf/materials.ts';
 import { SHAPE_QUAD, SHAPE_SPHERE } from '../geometry/ray.ts';
+import { RAY_RECORD_WORDS } from '../geometry/trace.ts';
 import {
   compileQuads,
   compileSpheres,
   QUAD_STRIDE,
   Q_AREA,
+  Q_CORNER,
+  Q_U,
+  Q_V,
   SPHERE_STRIDE,
 } from '../geometry/shapes.ts';
 import { LightList } from '../lights/lights.ts';
@@ -43,6 +47,14 @@ export class CompiledScene {
   readonly quads: Float64Array;
   readonly quadMaterial: Int32Array;
   readonly quadLight: Int32Array;
+  /**
+   * Per shape, the magnitude its hit points' rounding error scales with
+   * (largest |coordinate| of the centre plus the radius; of a quad, of the
+   * corner plus those of its two edges): the integrator's ray offsets read
+   * it rather than recomputing it at every hit.
+   */
+  readonly sphereScale: Float64Array;
+  readonly quadScale: Float64Array;
   readonly lights: LightList | null;
   readonly envR: number;
   readonly envG: number;
@@ -50,12 +62,12 @@ export class CompiledScene {
   readonly hasEnvironment: boolean;
   readonly bvh: Bvh | null;
   /**
-   * Traversal stacks (node indices and entry distances), sized for the
-   * BVH's depth plus one (stackT[0] holds the nearest hit so far). Per
-   * scene object, never shared between threads.
+   * Scratch of the ray queries (geometry/trace.ts): the traversal stack,
+   * sized for the BVH's depth, and the ray record. Per scene object, never
+   * shared between threads.
    */
   readonly stack: Int32Array;
-  readonly stackT: Float64Array;
+  readonly ray = new Float64Array(RAY_RECORD_WORDS);
 
   constructor(scene: Scene, options: CompileOptions = {}) {
     const names = Object.keys(scene.materials);
@@ -70,6 +82,26 @@ export class CompiledScene {
     this.sphereMaterial = Int32Array.from(spheres, (s) => materialIndex.get(s.material)!);
     this.quadMaterial = Int32Array.from(quads, (s) => materialIndex.get(s.material)!);
     this.sphereLight = new Int32Array(this.sphereCount).fill(-1);
+    this.sphereScale = new Float64Array(this.sphereCount);
+    for (let i = 0; i < this.sphereCount; i++) {
+      const o = i * SPHERE_STRIDE;
+      const sp = this.spheres;
+      this.sphereScale[i] =
+        Math.max(Math.abs(sp[o]), Math.abs(sp[o + 1]), Math.abs(sp[o + 2])) + sp[o + 3];
+    }
+    this.quadScale = new Float64Array(this.quadCount);
+    for (let i = 0; i < this.quadCount; i++) {
+      const o = i * QUAD_STRIDE;
+      const q = this.quads;
+      this.quadScale[i] =
+        Math.max(
+          Math.abs(q[o + Q_CORNER]),
+          Math.abs(q[o + Q_CORNER + 1]),
+          Math.abs(q[o + Q_CORNER + 2]),
+        ) +
+        Math.max(Math.abs(q[o + Q_U]), Math.abs(q[o + Q_U + 1]), Math.abs(q[o + Q_U + 2])) +
+        Math.max(Math.abs(q[o + Q_V]), Math.abs(q[o + Q_V + 1]), Math.abs(q[o + Q_V + 2]));
+    }
     this.quadLight = new Int32Array(this.quadCount).fill(-1);
 
     const kinds: number[] = [];
@@ -121,7 +153,6 @@ export class CompiledScene {
     }
     this.bvh = bvh;
     this.stack = new Int32Array((bvh?.depth ?? 0) + 2);
-    this.stackT = new Float64Array(this.stack.length);
   }
 }
 
