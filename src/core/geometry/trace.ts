@@ -15,7 +15,6 @@ import {
   BVH_LEAF_BITS,
   BVH_LEAF_MASK,
   BVH_NODE_WORDS,
-  N_AXIS,
   N_LEFT,
   N_RIGHT,
   N_RIGHT_BOX,
@@ -137,9 +136,10 @@ function occludedList(scene: CompiledScene, r: Float64Array): boolean {
 /**
  * Nearest hit through the BVH (layout in accel/bvh.ts). The loop visits
  * items: an interior node tests both children's boxes and, when both are
- * hit, enters the one on the ray's side of the node's split plane first and
- * pushes the other; a leaf tests its primitives. Leaves are handled in one
- * place so that each kind's test is inlined once.
+ * hit, enters the nearer first and pushes the other with its entry
+ * distance (skipped when popped if a closer hit was found meanwhile); a
+ * leaf tests its primitives. Leaves are handled in one place so that each
+ * kind's test is inlined once.
  *
  * Boxes are tested in the pairwise form of the slab test (Williams et al.,
  * "An Efficient and Robust Ray–Box Intersection Algorithm", JGT 2005, for
@@ -167,16 +167,16 @@ function intersectBvh(scene: CompiledScene, r: Float64Array, hit: Hit): boolean 
   const spheres = scene.spheres;
   const quads = scene.quads;
   const stack = scene.stack;
+  const stackT = scene.stackT;
   const nearX = ix < 0 ? 3 : 0,
     nearY = iy < 0 ? 4 : 1,
     nearZ = iz < 0 ? 5 : 2;
   const farX = 3 - nearX,
     farY = 5 - nearY,
     farZ = 7 - nearZ;
-  const negMask = (ix < 0 ? 1 : 0) | (iy < 0 ? 2 : 0) | (iz < 0 ? 4 : 0);
   let sp = 0;
   let item = 0;
-  for (;;) {
+  traversal: for (;;) {
     if (item >= 0) {
       const b = item * BVH_NODE_WORDS;
       const t = r[6];
@@ -199,6 +199,9 @@ function intersectBvh(scene: CompiledScene, r: Float64Array, hit: Hit): boolean 
         Number(fx >= 0) &
         Number(fy >= 0) &
         Number(fz >= 0);
+      const lx = nx,
+        ly = ny,
+        lz = nz;
       const c = b + N_RIGHT_BOX;
       nx = (nodes[c + nearX] - ox) * ix;
       ny = (nodes[c + nearY] - oy) * iy;
@@ -220,10 +223,23 @@ function intersectBvh(scene: CompiledScene, r: Float64Array, hit: Hit): boolean 
         Number(fy >= 0) &
         Number(fz >= 0);
       if ((hitL & hitR) !== 0) {
-        // Both: first the child on the ray's side of the split plane.
-        const first = (negMask >> words[b + N_AXIS]) & 1;
-        stack[sp++] = words[b + N_RIGHT - first];
-        item = words[b + N_LEFT + first];
+        // Both: the nearer first; the other is pushed with its entry
+        // distance, to be skipped if a closer hit is found meanwhile.
+        let eL = lx;
+        if (ly > eL) eL = ly;
+        if (lz > eL) eL = lz;
+        let eR = nx;
+        if (ny > eR) eR = ny;
+        if (nz > eR) eR = nz;
+        if (eR < eL) {
+          stack[sp] = words[b + N_LEFT];
+          stackT[sp++] = eL;
+          item = words[b + N_RIGHT];
+        } else {
+          stack[sp] = words[b + N_RIGHT];
+          stackT[sp++] = eR;
+          item = words[b + N_LEFT];
+        }
         continue;
       }
       if (hitL !== 0) {
@@ -257,8 +273,12 @@ function intersectBvh(scene: CompiledScene, r: Float64Array, hit: Hit): boolean 
         }
       }
     }
-    if (sp === 0) break;
-    item = stack[--sp];
+    // The latest pending child that may still hold a closer hit.
+    do {
+      if (sp === 0) break traversal;
+      sp--;
+    } while (!(stackT[sp] < r[6]));
+    item = stack[sp];
   }
   if (kind < 0) return false;
   hit.kind = kind;

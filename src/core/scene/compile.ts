@@ -67,6 +67,7 @@ export class CompiledScene {
    * shared between threads.
    */
   readonly stack: Int32Array;
+  readonly stackT: Float64Array;
   readonly ray = new Float64Array(RAY_RECORD_WORDS);
 
   constructor(scene: Scene, options: CompileOptions = {}) {
@@ -153,6 +154,7 @@ export class CompiledScene {
     }
     this.bvh = bvh;
     this.stack = new Int32Array((bvh?.depth ?? 0) + 2);
+    this.stackT = new Float64Array(this.stack.length);
   }
 }
 
