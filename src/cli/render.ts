@@ -28,12 +28,12 @@ export interface RenderRequest {
 export interface RenderResult {
   film: Film;
   stats: RenderStats;
-  /** From starting the workers to the last one finished. */
+  /** From starting the workers (compilation overlaps their start-up) to the last one finished. */
   seconds: number;
   threads: number;
   /** Compiling the scene and building its BVH, once, on the main thread. */
   compileSeconds: number;
-  /** From the start of compilation to the first / last worker ready to trace. */
+  /** From starting the workers to the first / last one ready to trace. */
   firstReadySeconds: number;
   lastReadySeconds: number;
   /** Bytes of the packed scene, shared by every worker. */
@@ -55,11 +55,22 @@ export async function renderWithWorkers(req: RenderRequest): Promise<RenderResul
   const threads = req.threads ?? availableParallelism();
   // Enough stripes for load balance (~16 per thread), each at least a row.
   const stripeRows = req.stripeRows ?? Math.max(1, Math.floor(req.height / (threads * 16)));
-  const compileStart = performance.now();
-  const startedAt = performance.timeOrigin + compileStart;
+  const filmBuffer = new SharedArrayBuffer(Film.byteLength(req.width, req.height));
+  const counterBuffer = new SharedArrayBuffer(8);
+  const counter = new Int32Array(counterBuffer);
+  const stripes = stripeCount(req.height, stripeRows);
+  const stats = new RenderStats();
+  const start = performance.now();
+  const startedAt = performance.timeOrigin + start;
+  // The workers start first: their start-up (a new V8 isolate each, loading
+  // the worker script) overlaps the compilation below.
+  const workers = Array.from(
+    { length: threads },
+    () => new Worker(req.workerUrl, { workerData: { film: filmBuffer, counter: counterBuffer } }),
+  );
   // Compiled once here; every worker maps the same shared buffer.
   const scene = packScene(compileScene(req.scene), true);
-  const compileSeconds = (performance.now() - compileStart) / 1000;
+  const compileSeconds = (performance.now() - start) / 1000;
   const job: StripeJob = {
     camera: req.scene.camera,
     width: req.width,
@@ -70,19 +81,7 @@ export async function renderWithWorkers(req: RenderRequest): Promise<RenderResul
     sampler: req.sampler,
     stripeRows,
   };
-  const filmBuffer = new SharedArrayBuffer(Film.byteLength(req.width, req.height));
-  const counterBuffer = new SharedArrayBuffer(8);
-  const counter = new Int32Array(counterBuffer);
-  const stripes = stripeCount(req.height, stripeRows);
-  const stats = new RenderStats();
-  const start = performance.now();
-  const workers = Array.from(
-    { length: threads },
-    () =>
-      new Worker(req.workerUrl, {
-        workerData: { job, scene, spp: req.spp, film: filmBuffer, counter: counterBuffer },
-      }),
-  );
+  for (const w of workers) w.postMessage({ job, scene, spp: req.spp });
   const timer = req.onProgress
     ? setInterval(() => req.onProgress!(Math.min(1, Atomics.load(counter, 1) / stripes)), 200)
     : undefined;
