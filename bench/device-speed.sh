@@ -21,11 +21,11 @@ log "bench:core (pathwise against the anchor, same run)"
 "$NODE" bench/core.mjs --reps 3 --out "$OUT/core.json" >&2
 
 log "steady state in one thread, no start-up (in-process)"
-for s in scenes/cornell.json "$OUT/spheres-10k.json"; do
+for s in scenes/cornell.json /tmp/spheres-10k.json; do
   [ -f "$s" ] || "$NODE" bench/scenes.mjs spheres 10000 > "$s"
   "$NODE" dist/bench/inproc.mjs "$s" 128 128 16 6 5 >> "$OUT/inproc.jsonl"
 done
-for s in scenes/cornell.json "$OUT/spheres-10k.json"; do
+for s in scenes/cornell.json /tmp/spheres-10k.json; do
   /tmp/pathwise-native-anchor/pt "$s" --width 128 --height 128 --spp 16 --threads 1 --max-bounces 6 --quiet --out /tmp/n.pfm >> "$OUT/inproc-native.jsonl"
 done
 
