@@ -174,7 +174,7 @@ export class PathTracer {
     // Film and lens dimensions are adjacent: one fill draws both pairs.
     sampler.fill(DIM_FILM, DIM_LENS + 2 - DIM_FILM, u);
     const lens = DIM_LENS - DIM_FILM;
-    this.camera.generateRay(px + u[0], py + u[1], u[lens], u[lens + 1], ray);
+    this.camera.generateRayFromSamples(px, py, u, lens, ray);
     let segments = 1;
     let lr = 0,
       lg = 0,
@@ -273,7 +273,10 @@ export class PathTracer {
         sy = -ny;
         sz = -nz;
       }
-      frame.setFromNormal(sx, sy, sz);
+      frame.nx = sx;
+      frame.ny = sy;
+      frame.nz = sz;
+      frame.setFromN();
       const bq = this.bq;
       bq.wox = wox * frame.sx + woy * frame.sy + woz * frame.sz;
       bq.woy = wox * frame.tx + woy * frame.ty + woz * frame.tz;
