@@ -20,22 +20,26 @@ nproc >&2
 log "bench:core (pathwise against the anchor, same run)"
 "$NODE" bench/core.mjs --reps 3 --out "$OUT/core.json" >&2
 
-log "steady state in one thread, no start-up (in-process)"
+log "steady state in one thread, no start-up (in-process), against the anchor's render time"
+[ -f /tmp/spheres-10k.json ] || "$NODE" bench/scenes.mjs spheres 10000 > /tmp/spheres-10k.json
 for s in scenes/cornell.json /tmp/spheres-10k.json; do
-  [ -f "$s" ] || "$NODE" bench/scenes.mjs spheres 10000 > "$s"
-  "$NODE" dist/bench/inproc.mjs "$s" 128 128 16 6 5 >> "$OUT/inproc.jsonl"
-done
-for s in scenes/cornell.json /tmp/spheres-10k.json; do
-  /tmp/pathwise-native-anchor/pt "$s" --width 128 --height 128 --spp 16 --threads 1 --max-bounces 6 --quiet --out /tmp/n.pfm >> "$OUT/inproc-native.jsonl"
+  echo "{\"which\":\"pathwise\",\"scene\":\"$s\",\"r\":$("$NODE" dist/bench/inproc.mjs "$s" 128 128 16 6 5)}" >> "$OUT/inproc.jsonl"
+  # Before this work (commit 27f0092), when its bundle is there: the same harness.
+  if [ -f dist/bench/inproc-base.mjs ]; then
+    echo "{\"which\":\"before\",\"scene\":\"$s\",\"r\":$("$NODE" dist/bench/inproc-base.mjs "$s" 128 128 16 6 5)}" >> "$OUT/inproc.jsonl"
+  fi
+  for k in 1 2 3; do
+    echo "{\"which\":\"native\",\"scene\":\"$s\",\"r\":$(/tmp/pathwise-native-anchor/pt "$s" --width 128 --height 128 --spp 16 --threads 1 --max-bounces 6 --quiet --out /tmp/n.pfm)}" >> "$OUT/inproc.jsonl"
+  done
 done
 
 log "command-line thread scaling, cornell 512x512, 16 spp"
 for t in 1 2 4 8 12 16; do
-  "$NODE" bin/pathwise.js render scenes/cornell.json --width 512 --height 512 --spp 16 --threads $t --json --out /tmp/s.pfm >> "$OUT/cli-scaling.jsonl"
+  echo "{\"v8pool\":\"default\",\"r\":$("$NODE" bin/pathwise.js render scenes/cornell.json --width 512 --height 512 --spp 16 --threads $t --json --out /tmp/s.pfm)}" >> "$OUT/cli-scaling.jsonl"
 done
-log "the same at 8 and 16 threads with V8's platform pool as large as the core count"
+log "the same at 16 and 8 threads with V8's platform pool as large as the core count"
 for t in 16 8; do
-  "$NODE" --v8-pool-size=0 bin/pathwise.js render scenes/cornell.json --width 512 --height 512 --spp 16 --threads $t --json --out /tmp/s.pfm >> "$OUT/cli-scaling-v8pool.jsonl"
+  echo "{\"v8pool\":\"cores\",\"r\":$("$NODE" --v8-pool-size=0 bin/pathwise.js render scenes/cornell.json --width 512 --height 512 --spp 16 --threads $t --json --out /tmp/s.pfm)}" >> "$OUT/cli-scaling.jsonl"
 done
 
 log "the browser's pool code in Node, shared and transfer modes"
