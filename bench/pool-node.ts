@@ -160,6 +160,7 @@ const report = {
   cpu: os.cpus()[0]?.model,
   cores: os.availableParallelism(),
   node: process.version,
+  node_options: process.execArgv,
   config: { scene: sceneFile, size, spp, mode },
   films_bit_identical: identical,
   points,
