@@ -47,6 +47,9 @@ log "the browser's pool code in Node, shared and transfer modes"
 "$NODE" --v8-pool-size=0 dist/bench/pool-node.mjs --size 512 --spp 16 --threads 1,4,8,16 --mode shared --out "$OUT/pool-shared.json" > /dev/null
 "$NODE" --v8-pool-size=0 dist/bench/pool-node.mjs --size 512 --spp 16 --threads 1,16 --mode transfer --out "$OUT/pool-transfer.json" > /dev/null
 
+log "BVH build, 1M triangle-sized boxes"
+"$NODE" dist/bench/bvh-build.mjs 1000000 > "$OUT/bvh-build.jsonl"
+
 log "independent single-thread processes (the hardware's ceiling)"
 "$NODE" bench/processes.mjs --spp 16 --out "$OUT/processes.json" >&2
 log "done"
