@@ -809,6 +809,26 @@ function anchorSection(L) {
       );
       L.push('');
     }
+    const devCore = readJson(dev('speed-core.json'));
+    if (devCore?.throughput?.length) {
+      const parts = [];
+      for (const name of [...new Set(devCore.throughput.map((t) => t.case))]) {
+        const rows = devCore.throughput.filter((t) => t.case === name && t.native);
+        const one = rows.find((t) => t.threads === 1);
+        const all = rows.find((t) => t.threads > 1);
+        if (!one || !all) continue;
+        const f = (w) => all[w].mpaths_per_s / one[w].mpaths_per_s;
+        parts.push(
+          `${name} 1 → ${all.threads} threads: native ${fmt(f('native'))}× (${((f('native') / all.threads) * 100).toFixed(0)} %), pathwise ${fmt(f('pathwise'))}× (${((f('pathwise') / all.threads) * 100).toFixed(0)} %)`,
+        );
+      }
+      if (parts.length) {
+        L.push(
+          `Same lease, bench:core above (512×512 against 128×128, the same work per thread): ${parts.join('; ')}.`,
+        );
+        L.push('');
+      }
+    }
     if (procs) {
       L.push(
         'Independent processes: ' +
