@@ -74,7 +74,7 @@ export function decodePfm(bytes: Uint8Array, options: PfmDecodeOptions = {}): Pf
   const [magic, ws, hs, ss] = tokens;
   if (magic === 'Pf') fail('grayscale PFM (Pf) is not supported; only colour (PF)');
   if (magic !== 'PF') fail(`not a colour PFM: it starts with ${quote(magic)}, not "PF"`);
-  if (!/^[0-9]{1,9}$/.test(ws) || !/^[0-9]{1,9}$/.test(hs)) {
+  if (!/^[0-9]{1,12}$/.test(ws) || !/^[0-9]{1,12}$/.test(hs)) {
     fail(`width and height must be decimal integers, got ${quote(ws)} and ${quote(hs)}`);
   }
   const width = Number(ws);
