@@ -26,6 +26,38 @@ export const Q_SAXIS = 13;
 export const Q_TAXIS = 16;
 export const Q_AREA = 19;
 
+/**
+ * Relative size of the offset that lifts a spawned ray off its surface:
+ * 2^-36 of the magnitude of the coordinates involved. Doubles carry 2^-52
+ * relative error, so this clears the rounding of a hit point by a factor of
+ * ~65,000 while staying far below any visible scale — and, being relative,
+ * it behaves the same for a scene scaled by 1e-4 or 1e4.
+ */
+export const OFFSET_SCALE = 2 ** -36;
+
+/** Magnitude of a sphere's coordinates, for OFFSET_SCALE. */
+export function sphereScale(spheres: Float64Array, i: number): number {
+  const o = i * SPHERE_STRIDE;
+  return (
+    Math.max(Math.abs(spheres[o]), Math.abs(spheres[o + 1]), Math.abs(spheres[o + 2])) +
+    spheres[o + 3]
+  );
+}
+
+/** Magnitude of a quad's coordinates (corner plus both edges), for OFFSET_SCALE. */
+export function quadScale(quads: Float64Array, i: number): number {
+  const o = i * QUAD_STRIDE;
+  return (
+    Math.max(
+      Math.abs(quads[o + Q_CORNER]),
+      Math.abs(quads[o + Q_CORNER + 1]),
+      Math.abs(quads[o + Q_CORNER + 2]),
+    ) +
+    Math.max(Math.abs(quads[o + Q_U]), Math.abs(quads[o + Q_U + 1]), Math.abs(quads[o + Q_U + 2])) +
+    Math.max(Math.abs(quads[o + Q_V]), Math.abs(quads[o + Q_V + 1]), Math.abs(quads[o + Q_V + 2]))
+  );
+}
+
 export function compileSpheres(shapes: SphereDesc[]): Float64Array {
   const out = new Float64Array(shapes.length * SPHERE_STRIDE);
   shapes.forEach((s, i) => {
