@@ -343,10 +343,15 @@ export interface MutatedArgs {
 
 /**
  * An argument list for `render` (without the word `render`): a valid base (the scene,
- * --out, small size) with 1 to 3 tokens (or option-value pairs) inserted, deleted or replaced. Accepted sizes
+ * --out, small size) with 1 to 3 tokens (or option-value pairs) inserted, deleted or replaced;
+ * with `pairsOnly`, only option-value pairs appended (the values stay hostile). Accepted sizes
  * stay small (numbers are at most 33, with the base scene's 12 x 10 pixels and 2 spp).
  */
-export function mutatedArgs(scene: string, out: string): fc.Arbitrary<string[]> {
+export function mutatedArgs(
+  scene: string,
+  out: string,
+  { pairsOnly = false } = {},
+): fc.Arbitrary<string[]> {
   const base = [scene, '--out', out];
   // Well-formed pairs (an option that takes a value, and a value), or a switch alone.
   const pair = fc.oneof(
@@ -370,7 +375,9 @@ export function mutatedArgs(scene: string, out: string): fc.Arbitrary<string[]> 
     fc.constant(['--json']),
   );
   const edit = fc.record({
-    kind: fc.constantFrom('append', 'append', 'insert', 'delete', 'replace'),
+    kind: pairsOnly
+      ? fc.constant('append')
+      : fc.constantFrom('append', 'append', 'insert', 'delete', 'replace'),
     at: fc.nat(),
     token: fc.oneof(optionToken, valueToken, fc.string({ unit: 'binary', maxLength: 6 })),
     pair,

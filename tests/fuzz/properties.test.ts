@@ -283,7 +283,15 @@ describe('properties, through the real command line (a sample)', () => {
     const numRuns = runs(16);
     const scene = join(CORPUS_DIR, 'valid-base.json');
     const out = join(dir, 'a.pfm');
-    const samples = fc.sample(mutatedArgs(scene, out), { seed: SEED, numRuns });
+    // Half of them with only option-value pairs appended, so that some are accepted and
+    // the whole path to a written image is exercised too.
+    const samples = [
+      ...fc.sample(mutatedArgs(scene, out), { seed: SEED, numRuns: numRuns / 2 }),
+      ...fc.sample(mutatedArgs(scene, out, { pairsOnly: true }), {
+        seed: SEED,
+        numRuns: numRuns / 2,
+      }),
+    ];
     const t0 = performance.now();
     let ok = 0;
     for (const argv of samples) {
