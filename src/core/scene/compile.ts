@@ -14,10 +14,9 @@ import {
   compileSpheres,
   QUAD_STRIDE,
   Q_AREA,
-  Q_CORNER,
-  Q_U,
-  Q_V,
+  quadScale as quadScaleOf,
   SPHERE_STRIDE,
+  sphereScale as sphereScaleOf,
 } from '../geometry/shapes.ts';
 import { LightList } from '../lights/lights.ts';
 import type { QuadDesc, Scene, SphereDesc } from './types.ts';
@@ -59,10 +58,11 @@ export interface SceneData {
   quadMaterial: Int32Array;
   quadLight: Int32Array;
   quadScale: Float64Array;
-  /** Emitters: kind (SHAPE_*), shape index and selection weight (LightList). */
+  /** Emitters: kind (SHAPE_*), shape index, selection weight and offset scale (LightList). */
   lightKind: Int32Array;
   lightShape: Int32Array;
   lightPower: Float64Array;
+  lightScale: Float64Array;
   /** Constant environment radiance, RGB. */
   environment: Float64Array;
   /** The BVH's nodes (as 32-bit words) and references; empty without a BVH. */
@@ -85,6 +85,7 @@ export const SCENE_ARRAYS = [
   'lightKind',
   'lightShape',
   'lightPower',
+  'lightScale',
   'environment',
   'bvhNodes',
   'bvhRefs',
@@ -143,6 +144,7 @@ export class CompiledScene {
             Array.from(data.lightKind),
             Array.from(data.lightShape),
             Array.from(data.lightPower),
+            Array.from(data.lightScale),
           )
         : null;
     this.envR = data.environment[0];
@@ -180,29 +182,14 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
   const sphereLight = new Int32Array(sphereCount).fill(-1);
   const quadLight = new Int32Array(quadCount).fill(-1);
   const sphereScale = new Float64Array(sphereCount);
-  for (let i = 0; i < sphereCount; i++) {
-    const o = i * SPHERE_STRIDE;
-    sphereScale[i] =
-      Math.max(Math.abs(spheres[o]), Math.abs(spheres[o + 1]), Math.abs(spheres[o + 2])) +
-      spheres[o + 3];
-  }
+  for (let i = 0; i < sphereCount; i++) sphereScale[i] = sphereScaleOf(spheres, i);
   const quadScale = new Float64Array(quadCount);
-  for (let i = 0; i < quadCount; i++) {
-    const o = i * QUAD_STRIDE;
-    const q = quads;
-    quadScale[i] =
-      Math.max(
-        Math.abs(q[o + Q_CORNER]),
-        Math.abs(q[o + Q_CORNER + 1]),
-        Math.abs(q[o + Q_CORNER + 2]),
-      ) +
-      Math.max(Math.abs(q[o + Q_U]), Math.abs(q[o + Q_U + 1]), Math.abs(q[o + Q_U + 2])) +
-      Math.max(Math.abs(q[o + Q_V]), Math.abs(q[o + Q_V + 1]), Math.abs(q[o + Q_V + 2]));
-  }
+  for (let i = 0; i < quadCount; i++) quadScale[i] = quadScaleOf(quads, i);
 
   const kinds: number[] = [];
   const shapes: number[] = [];
   const power: number[] = [];
+  const scale: number[] = [];
   const emitted = (m: number): number => {
     const o = m * MATERIAL_STRIDE;
     if (materials[o + M_EMISSIVE] === 0) return 0;
@@ -223,6 +210,7 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
     kinds.push(SHAPE_SPHERE);
     shapes.push(i);
     power.push(lum * 4 * Math.PI * r * r);
+    scale.push(sphereScale[i]);
   }
   for (let i = 0; i < quadCount; i++) {
     const lum = emitted(quadMaterial[i]);
@@ -231,6 +219,7 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
     kinds.push(SHAPE_QUAD);
     shapes.push(i);
     power.push(lum * quads[i * QUAD_STRIDE + Q_AREA]);
+    scale.push(quadScale[i]);
   }
   const total = sphereCount + quadCount;
   const useBvh = options.bvh ?? total >= BVH_THRESHOLD;
@@ -255,6 +244,7 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
     lightKind: Int32Array.from(kinds),
     lightShape: Int32Array.from(shapes),
     lightPower: Float64Array.from(power),
+    lightScale: Float64Array.from(scale),
     environment: Float64Array.from(scene.environment),
     bvhNodes: bvh ? bvh.words : new Int32Array(0),
     bvhRefs: bvh ? bvh.refs : new Int32Array(0),
