@@ -157,6 +157,19 @@ export class Controller extends EventTarget implements PathTracerController {
         this.wake();
       },
       onWorkerError: (message) => this.emit('error', { message }),
+      onTaskLost: (task) => {
+        const job = this.activeJob();
+        if (job && task.version === this.version) job.onTaskLost?.(task);
+        this.wake();
+      },
+      recover: () => {
+        let done = true;
+        for (const job of [this.films.full, this.films.preview]) {
+          if (job?.recover && !job.recover()) done = false;
+        }
+        this.wake();
+        return done;
+      },
     };
     if (options.cameraControls !== false) {
       this.detachControls = attachCameraControls(this, canvas);
@@ -273,6 +286,7 @@ export class Controller extends EventTarget implements PathTracerController {
     active.setTarget(this.target);
     active.setPaused(this.isPaused);
     active.reset();
+    active.takeRenewed?.();
     const shared = active instanceof SharedFilmJob ? active : null;
     this.config = {
       mode: this.mode.compute,
@@ -289,6 +303,7 @@ export class Controller extends EventTarget implements PathTracerController {
       stripeRows: active.stripeRows,
       film: shared?.filmBuffer,
       ctrl: shared?.ctrlBuffer,
+      journal: shared?.journalBuffer,
     };
     this.convergedSent = false;
     this.rays.reset();
@@ -307,6 +322,17 @@ export class Controller extends EventTarget implements PathTracerController {
     if (!job || !this.config) return;
     this.captureBackdrop();
     job.reset();
+    if (job instanceof SharedFilmJob && job.takeRenewed()) {
+      // The film moved to new buffers (a lock its holder would not let go):
+      // the workers need them.
+      this.config = {
+        ...this.config,
+        film: job.filmBuffer,
+        ctrl: job.ctrlBuffer,
+        journal: job.journalBuffer,
+      };
+      this.pool.configure(this.client);
+    }
     this.clock.restart(performance.now(), this.isPaused);
     this.convergedSent = false;
     this.displayDirty = true;
