@@ -214,4 +214,11 @@ export interface RenderWorkerApi {
    * transfer mode: instead of answering the next task).
    */
   crash(rows: number): void;
+  /**
+   * Test hook (the pool's hangWorker): stop dead, for good, at point `step`
+   * of the next row commit (shared-claims.ts commitRow), holding the lock,
+   * as a worker frozen by the system would; the test then terminates it,
+   * which Chromium completes two seconds later, wherever it stands.
+   */
+  hang(step: number): void;
 }

@@ -45,6 +45,7 @@ import {
   hasReclaims,
   swapClaim,
   takeClaim,
+  type Die,
 } from './shared-claims.ts';
 
 interface Job {
@@ -67,10 +68,12 @@ let stopping = false;
 let stopped: (() => void) | undefined;
 /** Slot and lock token, from the pool's init. */
 let setup: WorkerSetup = { slot: 0, token: 2, lifeLock: null };
-/** Test hook (crash): rows still to commit before throwing; -1 when no crash is asked for. */
-let crashAfterRows = -1;
+/** Test hook (crash): rows still to commit before throwing; 0 when no crash is asked for. */
+let crashAfterRows = 0;
 /** An uncaught error happened: the pool is replacing this worker, which renders nothing more. */
 let broken = false;
+/** Test hook (hang): commitRow's `die`, which spins for ever at the chosen step. */
+let hangAt: Die | undefined;
 /** init has answered: shared-mode claims wait for it, so that a death is always noticed. */
 let initialised = false;
 
@@ -237,11 +240,11 @@ function renderOneStripe(job: Job): boolean {
     const rejected = stats.rejected;
     job.tracer.renderRow(rowFilm, y, pass, pass + 1, stats);
     lock(ctrl, token);
-    commitRow(ctrl, layout, film, journal, rowFilm, y, pass, gen);
+    commitRow(ctrl, layout, film, journal, rowFilm, y, pass, gen, hangAt);
     ctrl[C_SEGMENTS] = (ctrl[C_SEGMENTS] + (stats.segments - segments)) | 0;
     ctrl[C_REJECTED] += stats.rejected - rejected;
     unlock(ctrl);
-    if (crashAfterRows >= 0 && --crashAfterRows < 0) {
+    if (crashAfterRows > 0 && --crashAfterRows === 0) {
       throw new Error('render worker crashed (test hook)');
     }
   }
@@ -307,8 +310,8 @@ const api: RenderWorkerApi = {
   setTaskPort(port: MessagePort) {
     port.onmessage = (e: MessageEvent<StripeTask>) => {
       if (e.data.type !== 'task' || broken) return;
-      if (crashAfterRows >= 0) {
-        crashAfterRows = -1;
+      if (crashAfterRows > 0) {
+        crashAfterRows = 0;
         die(new Error('render worker crashed (test hook)'));
         return;
       }
@@ -316,7 +319,15 @@ const api: RenderWorkerApi = {
     };
   },
   crash(rows: number) {
-    crashAfterRows = Math.max(0, Math.floor(rows));
+    crashAfterRows = Math.max(1, Math.floor(rows));
+  },
+  hang(step: number) {
+    hangAt = (at) => {
+      if (at !== step) return;
+      for (;;) {
+        // Frozen inside the commit, holding the lock, until terminated.
+      }
+    };
   },
 };
 

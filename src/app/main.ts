@@ -5,6 +5,8 @@
  */
 import { validateScene } from '../core/index.ts';
 import { createPathTracer } from '../view/index.ts';
+import { currentPool } from '../view/pool.ts';
+import { faults } from '../view/worker-deaths.ts';
 import { BENCHMARK_SECONDS, BENCHMARK_WARMUP_S, runBenchmark } from './benchmark.ts';
 import { attachControls } from './controls.ts';
 import { gridStep } from './error-grid.ts';
@@ -57,11 +59,14 @@ const meter = new ErrorMeter(
 );
 
 // Test hook for the browser tests (tests/browser): the controller, the
-// error meter, and the factory so a test can put a second view on the page.
+// error meter, the factory so a test can put a second view on the page, and
+// the worker pool's fault hooks with the page's fault counts.
 (window as unknown as { __pathwise: unknown }).__pathwise = {
   controller,
   createPathTracer,
   errorMeter: meter,
+  pool: currentPool,
+  faults,
 };
 
 /** A loaded scene is a preset when it is one exactly (a file may share a preset's name only). */

@@ -190,13 +190,25 @@ export class WorkerPool {
 
   /**
    * Test hook, not API: makes a running worker throw an uncaught error in
-   * its next stripe after committing `rows` rows of it (transfer mode: on
+   * its next stripe after committing `rows` (≥ 1) rows of it (transfer mode: on
    * its next task), as a bug would. Returns false when none is running.
    */
   crashWorker(index = 0, rows = 1): boolean {
     const running = this.workers.filter((w) => w.ready && !w.gone && !w.retiring);
     if (running.length === 0) return false;
     void running[Math.abs(Math.floor(index)) % running.length].api.crash(rows).catch(() => {});
+    return true;
+  }
+
+  /**
+   * Test hook, not API: makes a running worker freeze for good inside its
+   * next row commit (at `step` of commitRow), holding the lock; pair it
+   * with killWorker. Returns false when none is running.
+   */
+  hangWorker(index = 0, step = 2): boolean {
+    const running = this.workers.filter((w) => w.ready && !w.gone && !w.retiring);
+    if (running.length === 0) return false;
+    void running[Math.abs(Math.floor(index)) % running.length].api.hang(step).catch(() => {});
     return true;
   }
 
@@ -468,6 +480,11 @@ export class WorkerPool {
 }
 
 let shared: WorkerPool | null = null;
+
+/** Test hook, not API: the page's pool, if one is running. */
+export function currentPool(): WorkerPool | null {
+  return shared;
+}
 
 /** The page's pool, created on first use with the first caller's worker source. */
 export function sharedPool(source: WorkerSource, size?: number): WorkerPool {

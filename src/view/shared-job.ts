@@ -130,6 +130,7 @@ export class SharedFilmJob implements FilmJob {
     this.abandoned.push({ ctrl: old, stripes: this.stripes });
     this.seen.fill(-1);
     this.renewed = true;
+    faults.renewals++;
   }
 
   /** True once after the job moved to new buffers: the workers need them (a new configuration). */

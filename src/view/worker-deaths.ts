@@ -21,6 +21,8 @@ export interface FaultCounts extends RecoveryReport {
   replaced: number;
   /** Transfer mode: stripes handed out again because their worker died. */
   tasksResent: number;
+  /** Films moved to new buffers because a lock's holder would not let go (shared-job.ts). */
+  renewals: number;
 }
 
 export const faults: FaultCounts = {
@@ -31,6 +33,7 @@ export const faults: FaultCounts = {
   confirmed: 0,
   replaced: 0,
   tasksResent: 0,
+  renewals: 0,
 };
 
 const dead = new Set<number>();
