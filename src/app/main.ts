@@ -93,10 +93,15 @@ controller.addEventListener('error', (e) =>
 meter.start();
 
 const mode = document.getElementById('mode') as HTMLElement;
-const m = controller.mode;
-mode.textContent = `Display: ${m.display === 'webgl2' ? 'WebGL2' : 'Canvas 2D'} · Compute: ${
-  m.compute === 'shared' ? 'shared memory' : 'transferred stripes'
-} — ${m.reason}.`;
+function showMode(): void {
+  const m = controller.mode;
+  mode.textContent = `Display: ${m.display === 'webgl2' ? 'WebGL2' : 'Canvas 2D'} · Compute: ${
+    m.compute === 'shared' ? 'shared memory' : 'transferred stripes'
+  } — ${m.reason}.`;
+}
+showMode();
+// The display changes while a lost WebGL2 context is away (and when it is back).
+controller.addEventListener('fallback', showMode);
 
 for (const button of document.querySelectorAll<HTMLButtonElement>('[data-preset]')) {
   button.addEventListener('click', () => {

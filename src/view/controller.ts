@@ -47,6 +47,7 @@ import { sceneSizeProblem } from '../core/scene/load.ts';
 import type { JobConfig } from '../../workers/render-protocol.ts';
 import { compositeBackdrop, type Backdrop } from './backdrop.ts';
 import type { Display, DisplayPixels } from './display.ts';
+import { StandInDisplay } from './display-standin.ts';
 import type { FilmJob, FilmSnapshot } from './film-job.ts';
 import { Films } from './films.ts';
 import { FirstPass, type Timeline } from './first-pass.ts';
@@ -72,7 +73,7 @@ const NOISE_INTERVAL_MS = 500;
 
 export class Controller extends EventTarget implements PathTracerController {
   readonly canvas: HTMLCanvasElement;
-  readonly mode: FallbackInfo;
+  private modeInfo: FallbackInfo;
   private readonly options: PathTracerOptions;
   private readonly id = nextJobId++;
   private readonly pool: WorkerPool;
@@ -136,11 +137,20 @@ export class Controller extends EventTarget implements PathTracerController {
     const compute = chooseCompute(options);
     const { display, why } = createDisplay(canvas, options);
     this.display = display;
-    this.mode = {
+    this.modeInfo = {
       display: display.mode,
       compute: compute.compute,
       reason: `${why}; ${compute.why}`,
     };
+    if (display instanceof StandInDisplay) {
+      display.onChange = (_event, reason) => {
+        // The picture moved to another canvas (or back): draw it all, now.
+        this.modeInfo = { ...this.modeInfo, display: display.mode, reason };
+        this.displayDirty = true;
+        this.emit('fallback', this.mode);
+        this.wake();
+      };
+    }
     this.pool = sharedPool(options, options.workers);
     this.films = new Films(canvas, options, compute.compute, () => this.pool.size);
     this.firstPass = new FirstPass(this.films);
@@ -197,6 +207,11 @@ export class Controller extends EventTarget implements PathTracerController {
   private wake(): void {
     if (this.destroyed || this.raf !== 0) return;
     this.raf = requestAnimationFrame(this.frame);
+  }
+
+  /** How it runs now: the display changes while a lost WebGL2 context is away. */
+  get mode(): FallbackInfo {
+    return this.modeInfo;
   }
 
   get scene(): Scene | null {
