@@ -49,7 +49,8 @@ import { compositeBackdrop, type Backdrop } from './backdrop.ts';
 import type { Display, DisplayPixels } from './display.ts';
 import { StandInDisplay } from './display-standin.ts';
 import type { FilmJob, FilmSnapshot } from './film-job.ts';
-import { Films } from './films.ts';
+import { MAX_FILM_SIDE } from './film-cap.ts';
+import { FilmMemoryError, Films } from './films.ts';
 import { FirstPass, type Timeline } from './first-pass.ts';
 import { attachCameraControls } from './interaction.ts';
 import { chooseCompute, createDisplay } from './mode.ts';
@@ -126,6 +127,8 @@ export class Controller extends EventTarget implements PathTracerController {
   private readonly firstPass: FirstPass;
   /** Tracing time of the active film since its last restart. */
   private readonly clock = new TraceClock();
+  /** The accumulator-cap reason last reported with a `fallback` event (null: none). */
+  private capReported: string | null = null;
   constructor(canvas: HTMLCanvasElement, options: PathTracerOptions) {
     super();
     this.canvas = canvas;
@@ -153,6 +156,10 @@ export class Controller extends EventTarget implements PathTracerController {
     }
     this.pool = sharedPool(options, options.workers);
     this.films = new Films(canvas, options, compute.compute, () => this.pool.size);
+    // A film wider than a texture could not be shown.
+    if (display instanceof StandInDisplay) {
+      this.films.maxSide = Math.min(MAX_FILM_SIDE, display.maxTextureSize);
+    }
     this.firstPass = new FirstPass(this.films);
     if (options.workers !== undefined && options.workers !== this.pool.size) {
       void this.pool.setSize(options.workers);
@@ -248,12 +255,24 @@ export class Controller extends EventTarget implements PathTracerController {
       this.emit('error', { message });
       throw new Error(message);
     }
+    let compiled: CompiledScene;
+    let packed: PackedScene;
+    try {
+      // Compiled once here (the picker uses it too) and shipped packed: the
+      // workers neither parse nor compile nor build a BVH.
+      compiled = compileScene(scene);
+      packed = packScene(compiled, this.mode.compute === 'shared');
+    } catch (e) {
+      if (!(e instanceof RangeError)) throw e;
+      // Memory the scene's arrays (shared ones, when isolated) could not get.
+      const message = `could not allocate memory for the compiled scene: ${e.message}`;
+      this.emit('error', { message });
+      throw new Error(message);
+    }
     const first = this.currentScene === null;
     this.currentScene = scene;
-    this.compiled = compileScene(scene);
-    // Compiled once here (the picker uses it too) and shipped packed: the
-    // workers neither parse nor compile nor build a BVH.
-    this.packed = packScene(this.compiled, this.mode.compute === 'shared');
+    this.compiled = compiled;
+    this.packed = packed;
     this.picker = null;
     this.sceneId++;
     this.camera = { ...scene.camera };
@@ -293,7 +312,14 @@ export class Controller extends EventTarget implements PathTracerController {
     if (!this.currentScene || !this.camera || this.destroyed) return;
     this.captureBackdrop();
     this.films.wantPreview = this.interacting || this.firstPass.active;
-    const active = this.films.select(this.target);
+    let active: FilmJob;
+    try {
+      active = this.films.select(this.target);
+    } catch (e) {
+      this.filmFailed(e);
+      return;
+    }
+    this.reportCap();
     this.version++;
     // Version first, then reset: a worker still holding the old
     // configuration can claim nothing once the version moved on.
@@ -330,6 +356,22 @@ export class Controller extends EventTarget implements PathTracerController {
     this.pool.configure(this.client);
     this.pool.kick();
     this.wake();
+  }
+
+  /** No film could be made (the accumulator cap, or no memory): said once, as an error. */
+  private filmFailed(e: unknown): void {
+    if (!(e instanceof FilmMemoryError)) throw e;
+    this.emit('error', { message: e.message });
+  }
+
+  /** A full film smaller than the canvas asks is reported once per size, as a fallback. */
+  private reportCap(): void {
+    if (this.films.previewing) return;
+    const cap = this.films.capped;
+    const reason = cap?.reason ?? null;
+    if (reason === this.capReported) return;
+    this.capReported = reason;
+    if (cap) this.emit('fallback', { ...this.mode, reason, renderScale: cap.scale });
   }
 
   reset(): void {
@@ -413,7 +455,11 @@ export class Controller extends EventTarget implements PathTracerController {
     this.films.autoScale = false;
     this.firstPass.manual();
     this.films.renderScale = Math.max(0.05, Math.min(4, scale));
-    if (this.films.ensureFull(this.target)) this.restart();
+    try {
+      if (this.films.ensureFull(this.target)) this.restart();
+    } catch (e) {
+      this.filmFailed(e);
+    }
   }
 
   /** See PathTracerOptions.sizeStep; applies from the next restart that sizes the film. */
@@ -536,7 +582,11 @@ export class Controller extends EventTarget implements PathTracerController {
     this.raf = 0;
     if (this.destroyed) return;
     this.framesCount++;
-    if (this.films.follow(now, this.target)) this.restart();
+    try {
+      if (this.films.follow(now, this.target)) this.restart();
+    } catch (e) {
+      this.filmFailed(e);
+    }
     // The speed measurements may hand over to another film (a restart):
     // this frame then draws that one, over the picture captured as backdrop.
     const before = this.activeJob();

@@ -45,6 +45,11 @@ export class StandInDisplay implements Display {
     return this.cpu ? 'canvas2d' : 'webgl2';
   }
 
+  /** The largest texture side the WebGL2 context takes. */
+  get maxTextureSize(): number {
+    return this.gl.maxTextureSize;
+  }
+
   /** Whether the WebGL2 context is lost now (the stand-in is showing). */
   get contextLost(): boolean {
     return this.cpu !== null;

@@ -48,6 +48,8 @@ export class WebGLDisplay implements Display {
   private backdrop!: WebGLTexture;
   private uExposure: WebGLUniformLocation | null = null;
   private uCanvasSize: WebGLUniformLocation | null = null;
+  /** The largest texture side (MAX_TEXTURE_SIZE, at least 2048 in WebGL2). */
+  readonly maxTextureSize: number;
   private texWidth = 0;
   private texHeight = 0;
   /**
@@ -69,6 +71,7 @@ export class WebGLDisplay implements Display {
     if (!gl) throw new Error('WebGL2 is unavailable');
     this.canvas = canvas;
     this.gl = gl;
+    this.maxTextureSize = Number(gl.getParameter(gl.MAX_TEXTURE_SIZE)) || 2048;
     this.build(null);
   }
 
