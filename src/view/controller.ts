@@ -117,6 +117,14 @@ export class Controller extends EventTarget implements PathTracerController {
   private detachControls: (() => void) | null = null;
   private picker: PathTracer | null = null;
   private sceneRequested = false;
+  /**
+   * Bumped by every scene request (setScene, load) and by destroy: a request
+   * that is no longer the latest when its fetch or file read ends is
+   * dropped, so the last request always wins.
+   */
+  private sceneRequest = 0;
+  /** Aborts the fetch of a load that a newer request superseded. */
+  private loadAbort: AbortController | null = null;
   /** The last picture, shown where the active film has no sample yet. */
   private backdrop: Backdrop | null = null;
   /** The film the display showed last (its pixels are what is on screen). */
@@ -239,17 +247,34 @@ export class Controller extends EventTarget implements PathTracerController {
 
   // ---- scene -------------------------------------------------------------
 
+  /**
+   * Loads a scene. A request superseded by a later one (setScene or load)
+   * before it was read resolves without loading anything.
+   */
   async setScene(value: unknown): Promise<void> {
+    return this.applyScene(value, this.newSceneRequest());
+  }
+
+  private newSceneRequest(): number {
     this.sceneRequested = true;
+    this.loadAbort?.abort();
+    this.loadAbort = null;
+    return ++this.sceneRequest;
+  }
+
+  private async applyScene(value: unknown, request: number): Promise<void> {
     let scene: Scene;
     try {
       // Bytes and files get the loader's byte bound and strict UTF-8, as on the command line.
       if (value instanceof Blob) value = await readBlobBounded(value, LIMITS.fileBytes);
+      if (request !== this.sceneRequest) return;
       scene =
         typeof value === 'string' || value instanceof Uint8Array
           ? parseScene(value)
           : validateScene(value);
     } catch (e) {
+      // A superseded request's failure is nobody's concern any more.
+      if (request !== this.sceneRequest) return;
       if (e instanceof ByteLimitError) e = new SceneError([sceneSizeProblem(e.size, e.exact)]);
       const message = e instanceof Error ? e.message : String(e);
       this.emit('error', { message });
@@ -285,14 +310,18 @@ export class Controller extends EventTarget implements PathTracerController {
     this.emit('load', { scene });
   }
 
+  /** Fetches and loads a scene; superseded like setScene (its fetch is aborted then). */
   async load(url: string): Promise<void> {
-    this.sceneRequested = true;
+    const request = this.newSceneRequest();
+    const abort = typeof AbortController !== 'undefined' ? new AbortController() : null;
+    this.loadAbort = abort;
     let bytes: Uint8Array;
     try {
-      const response = await fetch(url);
+      const response = await fetch(url, abort ? { signal: abort.signal } : undefined);
       if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
       bytes = await readResponseBounded(response, LIMITS.fileBytes);
     } catch (e) {
+      if (request !== this.sceneRequest) return;
       const message =
         e instanceof ByteLimitError
           ? `${url}: ${sceneSizeProblem(e.size, e.exact)}`
@@ -302,7 +331,8 @@ export class Controller extends EventTarget implements PathTracerController {
       this.emit('error', { message });
       throw new Error(message);
     }
-    await this.setScene(bytes);
+    if (this.loadAbort === abort) this.loadAbort = null;
+    await this.applyScene(bytes, request);
   }
 
   // ---- restart machinery -------------------------------------------------
@@ -789,6 +819,8 @@ export class Controller extends EventTarget implements PathTracerController {
   destroy(): void {
     if (this.destroyed) return;
     this.destroyed = true;
+    // A scene still loading is dropped (and its fetch aborted).
+    this.newSceneRequest();
     cancelAnimationFrame(this.raf);
     this.raf = 0;
     this.resizeObserver?.disconnect();
