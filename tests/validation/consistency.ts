@@ -93,8 +93,12 @@ const CONFIGS: Record<'A' | 'B' | 'C', { estimator: Estimator; sampler: SamplerK
  * adds β·Le at each of its ≤ B+1 vertices and β·Lenv once at the end. Its
  * throughput β is a product of sample weights, each ≤ 1 (Lambertian:
  * albedo; GGX with visible normals: F·G1 ≤ 1; smooth dielectric: 1 or
- * colour, chosen by Fresnel), of at most max(1, ior²) per dielectric
- * solid crossed out of glass (the (n1/n2)² of radiance), and of Russian
+ * colour, chosen by Fresnel), of the (n1/n2)² of radiance at each
+ * refraction — entering a solid divides by ior², leaving it multiplies, so
+ * the running product stays ≤ 1 per solid a path starts outside of and
+ * ≤ ior² for the one it starts in (the generator gives every glass object
+ * its own material: one factor max(1, ior²) per dielectric material covers
+ * both) — and of Russian
  * roulette's 1/(1−q) with q = max(0.05, 1 − max β·etaScale), which can
  * lift the largest channel by at most 1/0.95 per bounce from the third.
  * With a = the largest diffuse albedo (1 as soon as any conductor or
@@ -104,20 +108,13 @@ export function bsdfSampleBound(scene: Scene): number {
   let le = 0;
   let a = 0;
   let eta = 1;
-  const dielectricMaterials = new Set<string>();
-  for (const [name, m] of Object.entries(scene.materials)) {
+  for (const m of Object.values(scene.materials)) {
     le = Math.max(le, ...m.emission);
     if (m.type === 'diffuse') a = Math.max(a, ...m.albedo);
     else a = 1;
-    if (m.type === 'dielectric') dielectricMaterials.add(name);
+    if (m.type === 'dielectric') eta *= Math.max(1, m.ior * m.ior);
   }
   const B = scene.settings.maxBounces;
-  for (const s of scene.shapes) {
-    if (dielectricMaterials.has(s.material)) {
-      const m = scene.materials[s.material] as { ior: number };
-      eta *= Math.max(1, m.ior * m.ior);
-    }
-  }
   let sum = 0;
   for (let k = 0; k <= B; k++) sum += a ** k;
   const env = Math.max(...scene.environment);
@@ -233,7 +230,7 @@ export const OPTIONS: ConsistencyOptions = {
   width: 32,
   height: 24,
   seeds: 32,
-  budget: 900_000,
+  budget: 2_700_000,
   maxSpp: 32,
 };
 export const TESTS_PER_SCENE = 2 * imageRegions(OPTIONS.width, OPTIONS.height).length * 3;

@@ -31,7 +31,7 @@ const SEEDS = 64;
 const WIDTH = 32;
 const HEIGHT = 24;
 /** Work per scene in segment-equivalents (a path = its segments + 2), as in consistency.ts. */
-const BUDGET = 700_000;
+const BUDGET = 1_400_000;
 /**
  * Float32 storage and Mitsuba's float32 accumulation: 1e-5 of the value,
  * as in tests/helpers/render.ts (a constant environment of 0.05 reads
