@@ -5,6 +5,7 @@
  * BVH_THRESHOLD), so the hot loops never pay for kinds that are absent.
  */
 import { buildBvh, type Bvh } from '../accel/bvh.ts';
+import { PrimitiveBoxes, quadBoxes, sphereBoxes } from '../accel/primitives.ts';
 import { compileMaterials, MATERIAL_STRIDE, M_EMISSION, M_EMISSIVE } from '../bsdf/materials.ts';
 import { SHAPE_QUAD, SHAPE_SPHERE } from '../geometry/ray.ts';
 import {
@@ -12,7 +13,9 @@ import {
   compileSpheres,
   QUAD_STRIDE,
   Q_AREA,
+  quadScale,
   SPHERE_STRIDE,
+  sphereScale,
 } from '../geometry/shapes.ts';
 import { LightList } from '../lights/lights.ts';
 import type { QuadDesc, Scene, SphereDesc } from './types.ts';
@@ -48,6 +51,13 @@ export class CompiledScene {
   readonly envB: number;
   readonly hasEnvironment: boolean;
   readonly bvh: Bvh | null;
+  /**
+   * Traversal stacks (node indices and entry distances), sized for the
+   * BVH's depth plus one (stackT[0] holds the nearest hit so far). Per
+   * scene object, never shared between threads.
+   */
+  readonly stack: Int32Array;
+  readonly stackT: Float64Array;
 
   constructor(scene: Scene, options: CompileOptions = {}) {
     const names = Object.keys(scene.materials);
@@ -67,6 +77,7 @@ export class CompiledScene {
     const kinds: number[] = [];
     const shapes: number[] = [];
     const power: number[] = [];
+    const scale: number[] = [];
     const emitted = (m: number): number => {
       const o = m * MATERIAL_STRIDE;
       if (this.materials[o + M_EMISSIVE] === 0) return 0;
@@ -89,6 +100,7 @@ export class CompiledScene {
       kinds.push(SHAPE_SPHERE);
       shapes.push(i);
       power.push(lum * 4 * Math.PI * r * r);
+      scale.push(sphereScale(this.spheres, i));
     }
     for (let i = 0; i < this.quadCount; i++) {
       const lum = emitted(this.quadMaterial[i]);
@@ -97,16 +109,24 @@ export class CompiledScene {
       kinds.push(SHAPE_QUAD);
       shapes.push(i);
       power.push(lum * this.quads[i * QUAD_STRIDE + Q_AREA]);
+      scale.push(quadScale(this.quads, i));
     }
-    this.lights = kinds.length > 0 ? new LightList(kinds, shapes, power) : null;
+    this.lights = kinds.length > 0 ? new LightList(kinds, shapes, power, scale) : null;
     [this.envR, this.envG, this.envB] = scene.environment;
     this.hasEnvironment = this.envR > 0 || this.envG > 0 || this.envB > 0;
     const total = this.sphereCount + this.quadCount;
     const useBvh = options.bvh ?? total >= BVH_THRESHOLD;
-    this.bvh =
-      useBvh && total > 0
-        ? buildBvh(this.spheres, this.sphereCount, this.quads, this.quadCount)
-        : null;
+    let bvh: Bvh | null = null;
+    if (useBvh && total > 0) {
+      // One hierarchy over every primitive, whatever its kind.
+      const prims = new PrimitiveBoxes(total);
+      sphereBoxes(this.spheres, this.sphereCount, prims);
+      quadBoxes(this.quads, this.quadCount, prims);
+      bvh = buildBvh(prims.boxes, prims.refs, total);
+    }
+    this.bvh = bvh;
+    this.stack = new Int32Array((bvh?.depth ?? 0) + 2);
+    this.stackT = new Float64Array(this.stack.length);
   }
 }
 
