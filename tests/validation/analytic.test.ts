@@ -7,8 +7,10 @@
  *    exact scene at scales 1e-4 and 1e4;
  * 2. the form factor of rectangle lights onto a point (Lambert's polygon
  *    formula), parallel, tilted, standing, near and large;
- * 3. a thin quad light seen edge-on: lighting a wall from 1e-4…0.1 rad off
- *    its plane (the issue's third case), and seen by the camera itself.
+ * 3. a thin quad light seen edge-on: the issue's light, tilted 1e-4…0.1 rad
+ *    off a floor, lighting a wall point 1e-4…0.2 below its plane (the
+ *    issue's third case), and a quad light seen by the camera itself
+ *    0.1…0.001 rad off its plane.
  *
  * Each case renders a tiny image whose every pixel sees (nearly) one
  * point, with K = 32 independent seeds; the estimate is the mean over
