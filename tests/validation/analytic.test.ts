@@ -201,7 +201,12 @@ const tilt = (a: number): Vec3 => [0, Math.sin(a), Math.cos(a)];
 const rectangles = [
   rectangleCase('1 × 1, parallel, centred, 1 above', [-0.5, 1, -0.5], [1, 0, 0], [0, 0, 1]),
   rectangleCase('2 × 0.5, parallel, off-centre', [0.3, 0.8, -0.2], [2, 0, 0], [0, 0, 0.5]),
-  rectangleCase('1 × 1, 0.01 above (near)', [-0.5, 0.01, -0.5], [1, 0, 0], [0, 0, 1]),
+  rectangleCase(
+    '1 × 1, 0.01 above, 0.1 in from an edge (near)',
+    [-0.1, 0.01, -0.5],
+    [1, 0, 0],
+    [0, 0, 1],
+  ),
   rectangleCase('100 × 100, 1 above (large)', [-50, 1, -50], [100, 0, 0], [0, 0, 100]),
   rectangleCase('1 × 1, tilted 40°', [-0.5, 0.7, -0.3], [1, 0, 0], tilt(0.7)),
   rectangleCase('1 × 0.6, standing beside the point', [-0.5, 0, 0.4], [0, 0.6, 0], [1, 0, 0]),

@@ -22,6 +22,7 @@ import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
 import { compileScene, decodePfm, parseScene, type PfmImage } from '../../src/core/index.ts';
+import { bsdfSampleBound } from './consistency.ts';
 import { imageRegions, pilotSegments, renderReplicas, replicaMean } from './replicas.ts';
 import { welch } from './stats.ts';
 
@@ -60,13 +61,38 @@ const coverage = JSON.parse(readFileSync(`${DIR}set.json`, 'utf8')) as Record<
  * compared with the other one only, and the two must still disagree (so
  * the entry is removed once the reference is re-rendered right).
  */
-export const KNOWN_REFERENCE_ERRORS: Record<string, { renderer: Renderer; reason: string }> = {};
+export const KNOWN_REFERENCE_ERRORS: Record<string, { renderer: Renderer; reason: string }> = {
+  // mitsuba_ref.py caps a huge sphere only when the bounding boxes of everything else lie
+  // outside it; here a small sphere's box dips below the ground, so the ground sphere
+  // (radius 1e5 × the scene's scale) stays a float32 sphere, whose hit points are off
+  // the surface by ~ulp(R): paths self-intersect and the ground reads dark (Mitsuba
+  // 0.040 and 0.024 against the native anchor's 0.067 and 0.066 for the image).
+  'gen-ground-2006': {
+    renderer: 'mitsuba',
+    reason: 'uncapped float32 ground sphere of radius 1e5',
+  },
+  'gen-ground-2009': {
+    renderer: 'mitsuba',
+    reason: 'uncapped float32 ground sphere of radius 1e5',
+  },
+};
 
 const names = Object.keys(manifest).sort();
 const regions = imageRegions(WIDTH, HEIGHT);
 // Per scene and region and channel: pathwise vs Mitsuba, pathwise vs native, Mitsuba vs native.
 const comparisons = names.length * 3 * regions.length * 3;
 const ALPHA_PER_TEST = ALPHA / comparisons;
+
+/**
+ * A bound on any one sample of the three renderers: all are unidirectional
+ * path tracers with NEE and power-heuristic MIS, whose light-sampled term
+ * at a vertex is β·Le·(f cos/p_bsdf)·p_l p_bsdf/(p_l² + p_bsdf²) ≤ β·Le/2
+ * (f cos/p_bsdf ≤ 1 for these BSDFs), plus at most β·Le where a path lands
+ * on a light: 1.5 times the BSDF-only bound of consistency.ts.
+ */
+function bound(name: string): number {
+  return 1.5 * bsdfSampleBound(parseScene(readFileSync(`${DIR}${manifest[name].scene}`, 'utf8')));
+}
 
 function load(name: string, renderer: Renderer, suffix = ''): PfmImage {
   return decodePfm(readFileSync(`${DIR}${name}.${renderer}${suffix}.pfm`));
@@ -139,12 +165,36 @@ function referenceRegions(name: string, renderer: Renderer) {
       const precision = FLOAT32_REL * Math.abs(mean);
       return {
         mean,
+        samples: n * parts * manifest[name][renderer].sppPerPart,
         variance: v / (n * n) + precision * precision,
         // Satterthwaite: a sum of per-pixel variances, each on parts − 1 dof.
         dof: v2 > 0 ? (v * v) / (v2 / (parts - 1)) : Infinity,
       };
     }),
   );
+}
+
+interface Estimate {
+  mean: number;
+  variance: number;
+  dof: number;
+  samples: number;
+}
+
+/**
+ * Welch's test of two renders whose every sample lies in [0, V]. Heavy
+ * tails (a tiny bright light seen directly or through glass) make the side
+ * with fewer samples miss rare huge samples and read low with a small
+ * spread; as in consistency.ts, the side that reads low by Δ gets the
+ * variance floor ΔV/N (missed samples of size ≤ V), which rejects only when
+ * ≥ z² ≈ 30 expected rare samples would all have been missed.
+ */
+function compare(a: Estimate, b: Estimate, bound: number) {
+  const floor = (low: Estimate, high: Estimate) => ((high.mean - low.mean) * bound) / low.samples;
+  let [va, dfa, vb, dfb] = [a.variance, a.dof, b.variance, b.dof];
+  if (a.mean < b.mean && floor(a, b) > va) [va, dfa] = [floor(a, b), Infinity];
+  if (b.mean < a.mean && floor(b, a) > vb) [vb, dfb] = [floor(b, a), Infinity];
+  return welch(a.mean, va, dfa, b.mean, vb, dfb);
 }
 
 function describeFailure(
@@ -165,20 +215,15 @@ describe.each(names)('%s', (name) => {
   const entry = manifest[name];
   const known = KNOWN_REFERENCE_ERRORS[name];
 
+  const V = bound(name);
+
   it('has two references that agree with each other (or a known, explained error)', () => {
     const m = referenceRegions(name, 'mitsuba');
     const n = referenceRegions(name, 'native');
     const failures: string[] = [];
     for (let r = 0; r < regions.length; r++) {
       for (let c = 0; c < 3; c++) {
-        const w = welch(
-          m[r][c].mean,
-          m[r][c].variance,
-          m[r][c].dof,
-          n[r][c].mean,
-          n[r][c].variance,
-          n[r][c].dof,
-        );
+        const w = compare(m[r][c], n[r][c], V);
         if (!(w.p >= ALPHA_PER_TEST))
           failures.push(
             describeFailure('mitsuba vs native', regions[r].name, c, m[r][c].mean, n[r][c].mean, w),
@@ -206,9 +251,10 @@ describe.each(names)('%s', (name) => {
       const ref = referenceRegions(name, renderer);
       for (let r = 0; r < regions.length; r++) {
         for (let c = 0; c < 3; c++) {
-          const a = replicaMean(ours, r, c);
+          const m = replicaMean(ours, r, c);
+          const a = { ...m, dof: SEEDS - 1, samples: ours.samples[r] };
           const b = ref[r][c];
-          const w = welch(a.mean, a.variance, SEEDS - 1, b.mean, b.variance, b.dof);
+          const w = compare(a, b, V);
           if (!(w.p >= ALPHA_PER_TEST))
             failures.push(
               describeFailure(`pathwise vs ${renderer}`, regions[r].name, c, a.mean, b.mean, w),
