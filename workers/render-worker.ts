@@ -18,7 +18,7 @@
  * controller and serves them in turn.
  */
 import * as Comlink from 'comlink';
-import { Film, PathTracer, RenderStats, compileScene, type Scene } from '../src/core/index.ts';
+import { Film, PathTracer, RenderStats, unpackScene } from '../src/core/index.ts';
 import type { CompiledScene } from '../src/core/index.ts';
 import {
   C_CLAIM,
@@ -32,6 +32,7 @@ import {
   C_TARGET,
   lock,
   rowStampBase,
+  stripeOrder,
   unlock,
   type JobConfig,
   type RenderWorkerApi,
@@ -41,13 +42,14 @@ import {
 
 interface Job {
   config: JobConfig;
-  scene: Scene;
   compiled: CompiledScene;
   tracer: PathTracer;
   film?: Film;
   ctrl?: Int32Array;
   /** One-row film the rows are rendered into before they are committed. */
   row?: Film;
+  /** Claim k of a pass renders stripe order[k] (see stripeOrder). */
+  order?: Int32Array;
 }
 
 const jobs = new Map<number, Job>();
@@ -56,16 +58,17 @@ let running = false;
 let stopping = false;
 let stopped: (() => void) | undefined;
 
-/** Rebuilds only what the new configuration changes: compile once per scene, tracer per size/seed. */
+/**
+ * Rebuilds only what the new configuration changes: the scene arrives
+ * compiled and packed (unpacked here into views, once per scene), the
+ * tracer per size/seed.
+ */
 function configure(id: number, config: JobConfig): void {
   const old = jobs.get(id);
-  let scene: Scene;
   let compiled: CompiledScene;
   if (config.scene) {
-    scene = config.scene;
-    compiled = compileScene(scene);
+    compiled = unpackScene(config.scene);
   } else if (old && old.config.sceneId === config.sceneId) {
-    scene = old.scene;
     compiled = old.compiled;
   } else {
     throw new Error(`job ${id}: configuration without its scene`);
@@ -95,7 +98,7 @@ function configure(id: number, config: JobConfig): void {
       camera: config.camera,
     });
   }
-  const job: Job = { config: { ...config, scene: undefined }, scene, compiled, tracer };
+  const job: Job = { config: { ...config, scene: undefined }, compiled, tracer };
   if (config.mode === 'shared') {
     job.film =
       old?.config.film === config.film && old?.film
@@ -104,6 +107,8 @@ function configure(id: number, config: JobConfig): void {
     job.ctrl =
       old?.config.ctrl === config.ctrl && old?.ctrl ? old.ctrl : new Int32Array(config.ctrl!);
     job.row = old?.row && old.row.width === config.width ? old.row : new Film(config.width, 1);
+    const stripes = Math.ceil(config.height / config.stripeRows);
+    job.order = old?.order?.length === stripes ? old.order : stripeOrder(stripes);
   }
   jobs.set(id, job);
   kick();
@@ -161,7 +166,7 @@ function renderOneStripe(job: Job): boolean {
   const gen = ctrl[C_GEN];
   unlock(ctrl);
   const pass = Math.floor(claim / stripes);
-  const stripe = claim - pass * stripes;
+  const stripe = job.order![claim - pass * stripes];
 
   // Pass `pass` of this stripe may start only once pass − 1 is committed.
   // Claims are taken in order, so the worker holding that pass is already

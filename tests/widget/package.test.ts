@@ -50,20 +50,27 @@ function runInProject(name: string, source: string): string {
 }
 
 describe('the installed package', () => {
-  test('ships only the library, its types, the command line and bin', () => {
+  test('ships only the library, its types, the command line, bin and the scenes', () => {
     const top = readdirSync(installed.packageDir).sort();
     for (const entry of top) {
-      expect(['LICENSE', 'README.md', 'bin', 'dist', 'package.json']).toContain(entry);
+      expect(['LICENSE', 'README.md', 'bin', 'dist', 'package.json', 'scenes']).toContain(entry);
     }
     expect(readdirSync(join(installed.packageDir, 'dist')).sort()).toEqual(['cli', 'lib', 'types']);
     const pkg = JSON.parse(readFileSync(join(installed.packageDir, 'package.json'), 'utf8')) as {
       exports: Record<string, string | Record<string, string>>;
       sideEffects: string[];
     };
-    // Every target of the exports map is really there.
+    // Every target of the exports map is really there (a pattern: some file matches).
     for (const target of Object.values(pkg.exports)) {
       for (const file of typeof target === 'string' ? [target] : Object.values(target)) {
-        expect(existsSync(join(installed.packageDir, file)), file).toBe(true);
+        if (file.endsWith('/*')) {
+          expect(
+            readdirSync(join(installed.packageDir, file.slice(0, -2))).length,
+            file,
+          ).toBeGreaterThan(0);
+        } else {
+          expect(existsSync(join(installed.packageDir, file)), file).toBe(true);
+        }
       }
     }
     // Only the registering entry is marked as having side effects among the shipped files.
@@ -328,6 +335,9 @@ describe('<pathwise-view> on a page without cross-origin isolation', () => {
     const { page, errors, close } = await openPage(server, 'blank.html');
     try {
       const missing = await addView(page, 'missing', { src: 'scenes/no-such-scene.json' });
+      // Strict UTF-8 and duplicate keys, with the same messages as the command line.
+      const utf8 = await addView(page, 'utf8', { src: 'scenes/invalid-utf8-names.json' });
+      const twice = await addView(page, 'twice', { src: 'scenes/duplicate-radius.json' });
       const invalid = await addView(page, 'invalid', {});
       // A real scene with one broken key, so the message must name that key.
       await page.evaluate(async () => {
@@ -337,6 +347,8 @@ describe('<pathwise-view> on a page without cross-origin isolation', () => {
       });
       for (const [selector, pattern] of [
         [missing, /404/],
+        [utf8, /^scene file is not valid UTF-8 at byte 351 \(line 29\): byte 0xff/],
+        [twice, /^shapes\[1\]\.radius appears twice in one object \(line 78, column 21\)/],
         [invalid, /shapes/],
       ] as const) {
         await waitForEvent(page, selector, 'error');
