@@ -279,7 +279,7 @@ function renderTask(task: StripeTask, port: MessagePort): void {
 const api: RenderWorkerApi = {
   async init(given: WorkerSetup): Promise<boolean> {
     setup = given;
-    const locks = (navigator as Navigator & { locks?: LockManager }).locks;
+    const locks = typeof navigator !== 'undefined' ? navigator.locks : undefined;
     let held = false;
     if (given.lifeLock && locks) {
       // Held until the worker is gone: the pool's request for the same lock

@@ -422,7 +422,11 @@ export class WorkerPool {
         }
         this.pump();
       },
-      () => {},
+      (e: unknown) => {
+        // It loaded but cannot start: as a start-up failure, said once.
+        if (!w.gone)
+          this.fail(`render worker could not start: ${e instanceof Error ? e.message : String(e)}`);
+      },
     );
     this.workers.push(w);
     for (const c of this.clients.values()) this.sendConfig(w, c);
