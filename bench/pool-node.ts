@@ -68,6 +68,7 @@ class NodeWebWorker {
   addEventListener(type: string, listener: (event: { data?: unknown; message?: string }) => void) {
     if (type === 'message') this.w.on('message', (data) => listener({ data }));
     if (type === 'error') this.w.on('error', (e) => listener({ message: e.message }));
+    if (type === 'exit') this.w.on('exit', () => listener({}));
   }
   removeEventListener(): void {}
   terminate(): void {

@@ -12,7 +12,8 @@
  * Workers die: an uncaught error, the browser reclaiming memory, the test
  * hook. The pool notices (an `error` event after start-up, or the worker's
  * life lock — a Web Lock it holds while it lives — being granted to the
- * pool), starts a replacement at once, and, once the death is certain,
+ * pool; an `exit` event where a stand-in for Worker has one), starts a
+ * replacement at once, and, once the death is certain,
  * lets each client hand the dead worker's claims to the living
  * (workers/shared-claims.ts) — or, in transfer mode, sends the stripe it
  * held out again. A worker that fails to start (a bad URL, a CSP) is not
@@ -175,41 +176,49 @@ export class WorkerPool {
     this.workers.length = 0;
   }
 
-  /**
-   * Test hook, not API: terminates a running worker now, in the middle of
-   * whatever it does (`index` among the running ones, modulo their count).
-   * Returns false when none is running.
-   */
-  killWorker(index = 0): boolean {
+  /** Test hook: the running worker `index` (modulo their count), or null when none runs. */
+  private running(index: number): PoolWorker | null {
     const running = this.workers.filter((w) => w.ready && !w.gone && !w.retiring);
-    if (running.length === 0) return false;
+    if (running.length === 0) return null;
+    return running[Math.abs(Math.floor(index)) % running.length];
+  }
+
+  /**
+   * Test hook, not API: terminates running worker `index` (modulo their
+   * count) now, in the middle of whatever it does; or the worker with lock
+   * token `token`. Returns the token of the worker killed, 0 when none.
+   */
+  killWorker(index = 0, token = 0): number {
+    const w = token ? this.workers.find((x) => x.token === token && !x.gone) : this.running(index);
+    if (!w) return 0;
     faults.killed++;
-    this.lose(running[Math.abs(Math.floor(index)) % running.length]);
-    return true;
+    this.lose(w);
+    return w.token;
   }
 
   /**
-   * Test hook, not API: makes a running worker throw an uncaught error in
-   * its next stripe after committing `rows` (≥ 1) rows of it (transfer mode: on
-   * its next task), as a bug would. Returns false when none is running.
+   * Test hook, not API: makes running worker `index` throw an uncaught
+   * error in its next stripe after committing `rows` (≥ 1) rows of it
+   * (transfer mode: on its next task), as a bug would. Returns its token, 0
+   * when none runs.
    */
-  crashWorker(index = 0, rows = 1): boolean {
-    const running = this.workers.filter((w) => w.ready && !w.gone && !w.retiring);
-    if (running.length === 0) return false;
-    void running[Math.abs(Math.floor(index)) % running.length].api.crash(rows).catch(() => {});
-    return true;
+  crashWorker(index = 0, rows = 1): number {
+    const w = this.running(index);
+    if (!w) return 0;
+    void w.api.crash(rows).catch(() => {});
+    return w.token;
   }
 
   /**
-   * Test hook, not API: makes a running worker freeze for good inside its
-   * next row commit (at `step` of commitRow), holding the lock; pair it
-   * with killWorker. Returns false when none is running.
+   * Test hook, not API: makes running worker `index` freeze for good inside
+   * its next row commit (at `step` of commitRow), holding the lock; pair it
+   * with killWorker(0, token). Returns its token, 0 when none runs.
    */
-  hangWorker(index = 0, step = 2): boolean {
-    const running = this.workers.filter((w) => w.ready && !w.gone && !w.retiring);
-    if (running.length === 0) return false;
-    void running[Math.abs(Math.floor(index)) % running.length].api.hang(step).catch(() => {});
-    return true;
+  hangWorker(index = 0, step = 2): number {
+    const w = this.running(index);
+    if (!w) return 0;
+    void w.api.hang(step).catch(() => {});
+    return w.token;
   }
 
   /** Workers started and not yet found dead or ended (test hook). */
@@ -410,6 +419,9 @@ export class WorkerPool {
       this.noteCrash(message);
       this.lose(w);
     });
+    // Not a Web Worker event: a stand-in (Node's worker_threads behind a
+    // shim, as in the benchmarks and tests) may say when its thread ended.
+    worker.addEventListener('exit', () => this.bury(w));
     channel.port1.onmessage = (e: MessageEvent<StripeResult>) => this.onResult(w, e.data);
     void api.setTaskPort(Comlink.transfer(channel.port2, [channel.port2]));
     void api.init({ slot, token, lifeLock: w.lifeLock || null }).then(

@@ -137,13 +137,13 @@ describe('render workers dying mid-render (Chromium)', () => {
       const w = window as any;
       const pool = w.__pathwise.pool();
       // Frozen after publishing its row in the journal, before the film copy.
-      pool.hangWorker(0, 2);
+      const token = pool.hangWorker(0, 2);
       await new Promise((r) => setTimeout(r, 300));
       // A reset meanwhile must not freeze the page on the held lock.
       const t0 = performance.now();
       w.__pathwise.controller.reset();
       const resetMs = performance.now() - t0;
-      pool.killWorker(0);
+      pool.killWorker(0, token);
       return resetMs;
     });
     expect(waited).toBeLessThan(1000);
@@ -164,9 +164,9 @@ describe('render workers dying mid-render (Chromium)', () => {
     await waitForSpp(page, 2);
     await page.evaluate(async () => {
       const pool = (window as any).__pathwise.pool();
-      pool.hangWorker(0, 2);
+      const token = pool.hangWorker(0, 2);
       await new Promise((r) => setTimeout(r, 300));
-      pool.killWorker(0);
+      pool.killWorker(0, token);
     });
     await waitForBurials(page, 1);
     await waitForSpp(page, PASSES);
