@@ -177,20 +177,17 @@ function renderOneStripe(job: Job): boolean {
   const row = job.row!;
   const y0 = stripe * stripeRows;
   const y1 = Math.min(height, y0 + stripeRows);
-  const n = width * 4;
   const stamps = rowStampBase(stripes);
   for (let y = y0; y < y1; y++) {
     if (Atomics.load(ctrl, C_GEN) !== gen) return true;
     const rowFilm = new Film(width, 1, row.buffer, y);
-    rowFilm.sums.set(film.sums.subarray(y * n, y * n + n));
-    rowFilm.extra.set(film.extra.subarray(y * n, y * n + n));
+    rowFilm.copyRowsFrom(film);
     const segments = stats.segments;
     const rejected = stats.rejected;
     job.tracer.renderRow(rowFilm, y, pass, pass + 1, stats);
     lock(ctrl);
     if (ctrl[C_GEN] === gen) {
-      film.sums.set(rowFilm.sums, y * n);
-      film.extra.set(rowFilm.extra, y * n);
+      film.copyRowsFrom(rowFilm);
       ctrl[stamps + y] = ++ctrl[C_COMMITS];
     }
     ctrl[C_SEGMENTS] = (ctrl[C_SEGMENTS] + (stats.segments - segments)) | 0;

@@ -3,6 +3,12 @@
  * UsageError with a one-line message; the caller exits with status 2.
  */
 import { DEFAULT_SAMPLER, SAMPLER_KINDS, type Estimator, type SamplerKind } from '../core/index.ts';
+import {
+  BATCH_OPTION_NAMES,
+  BATCH_USAGE,
+  parseBatchOptions,
+  type BatchOptions,
+} from './batch-args.ts';
 
 export class UsageError extends Error {
   override name = 'UsageError';
@@ -22,9 +28,11 @@ export interface RenderArgs {
   sampler: SamplerKind;
   json: boolean;
   stripeRows?: number;
+  batch: BatchOptions;
 }
 
-export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png [options]
+export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png|FILE.film [options]
+       pathwise merge PART.film... --out FILE.pfm|FILE.png|FILE.film (see pathwise merge --help)
   --spp N             samples per pixel (default: the scene's settings.spp)
   --width W --height H  image size (default: the scene's settings)
   --bounces B         maximum scattering events per path (default: settings.maxBounces)
@@ -34,7 +42,8 @@ export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png 
   --estimator nee-mis|bsdf  next-event estimation with MIS (default) or BSDF sampling only
   --sampler sobol|independent  random numbers: Owen-scrambled Sobol for the leading dimensions (default), or the independent PCG hash
   --stripe-rows R     rows per work stripe (default: automatic; the image does not depend on it)
-  --json              print one JSON line of statistics on stdout`;
+  --json              print one JSON line of statistics on stdout
+${BATCH_USAGE}`;
 
 const INTEGER_OPTIONS = new Set([
   'spp',
@@ -84,6 +93,7 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     'sampler',
     'json',
     'help',
+    ...BATCH_OPTION_NAMES,
   ]);
   for (const name of options.keys()) {
     if (!known.has(name)) throw new UsageError(`unknown option --${name}`);
@@ -96,9 +106,9 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     );
   }
   const out = options.get('out');
-  if (typeof out !== 'string') throw new UsageError('missing --out FILE.pfm|FILE.png');
-  if (!/\.(pfm|png)$/i.test(out))
-    throw new UsageError(`--out must end in .pfm or .png, got ${JSON.stringify(out)}`);
+  if (typeof out !== 'string') throw new UsageError('missing --out FILE.pfm|FILE.png|FILE.film');
+  if (!/\.(pfm|png|film)$/i.test(out))
+    throw new UsageError(`--out must end in .pfm, .png or .film, got ${JSON.stringify(out)}`);
   const int = (name: string, min: number, max: number): number | undefined => {
     const v = options.get(name);
     return typeof v === 'string' ? parseInteger(name, v, min, max) : undefined;
@@ -139,5 +149,6 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     sampler: sampler as SamplerKind,
     json: options.has('json'),
     stripeRows: int('stripe-rows', 1, 1 << 24),
+    batch: parseBatchOptions(options),
   };
 }

@@ -2,19 +2,17 @@
  * The `pathwise` command line. Exit status: 0 on success, 2 with a
  * one-line message for bad arguments or a bad scene, 1 for anything else.
  */
-import { readFileSync, statSync, writeFileSync } from 'node:fs';
-import { deflateSync } from 'node:zlib';
+import { readFileSync, statSync } from 'node:fs';
 import {
+  FilmFileError,
   LIMITS,
   SceneError,
-  encodePfm,
-  encodePng,
   parseScene,
-  tonemapSums,
   validateSettingsOverride,
 } from '../core/index.ts';
 import { USAGE, UsageError, parseRenderArgs } from './args.ts';
-import { renderWithWorkers } from './render.ts';
+import { merge } from './merge.ts';
+import { renderCommand } from './render-command.ts';
 
 async function render(argv: string[]): Promise<void> {
   if (argv.includes('--help')) {
@@ -47,49 +45,7 @@ async function render(argv: string[]): Promise<void> {
     { width: args.width, height: args.height, maxBounces: args.bounces, spp: args.spp },
     (key) => names[key],
   );
-  const tty = process.stderr.isTTY === true;
-  const result = await renderWithWorkers({
-    scene,
-    width: settings.width,
-    height: settings.height,
-    maxBounces: settings.maxBounces,
-    spp: settings.spp,
-    seed: args.seed,
-    threads: args.threads,
-    estimator: args.estimator,
-    sampler: args.sampler,
-    stripeRows: args.stripeRows,
-    workerUrl: new URL('./render-worker.js', import.meta.url),
-    onProgress: tty
-      ? (f) => process.stderr.write(`\rrendering ${(f * 100).toFixed(0).padStart(3)}%`)
-      : undefined,
-  });
-  if (tty) process.stderr.write('\n');
-  const { film, stats, seconds } = result;
-  const bytes = /\.pfm$/i.test(args.out)
-    ? encodePfm(settings.width, settings.height, film.mean())
-    : (() => {
-        const rgba = new Uint8Array(settings.width * settings.height * 4);
-        tonemapSums(film.sums, args.exposure, rgba);
-        return encodePng(settings.width, settings.height, rgba, (raw) => deflateSync(raw));
-      })();
-  writeFileSync(args.out, bytes);
-  if (args.json) {
-    process.stdout.write(
-      JSON.stringify({
-        seconds,
-        spp: settings.spp,
-        width: settings.width,
-        height: settings.height,
-        threads: result.threads,
-        paths: stats.paths,
-        segments: stats.segments,
-        mpaths_per_s: stats.paths / seconds / 1e6,
-        msegments_per_s: stats.segments / seconds / 1e6,
-        rejected_samples: stats.rejected,
-      }) + '\n',
-    );
-  }
+  await renderCommand(args, scene, settings);
 }
 
 async function main(argv: string[]): Promise<number> {
@@ -97,6 +53,10 @@ async function main(argv: string[]): Promise<number> {
   try {
     if (command === 'render') {
       await render(rest);
+      return 0;
+    }
+    if (command === 'merge') {
+      await merge(rest);
       return 0;
     }
     if (command === undefined || command === '--help' || command === 'help') {
@@ -107,7 +67,7 @@ async function main(argv: string[]): Promise<number> {
       `unknown command ${JSON.stringify(command)} (try: pathwise render --help)`,
     );
   } catch (e) {
-    if (e instanceof UsageError || e instanceof SceneError) {
+    if (e instanceof UsageError || e instanceof SceneError || e instanceof FilmFileError) {
       process.stderr.write(`pathwise: ${e.message}\n`);
       return 2;
     }

@@ -13,7 +13,7 @@ export interface FilmJob {
   readonly width: number;
   readonly height: number;
   readonly stripeRows: number;
-  /** Approximate bytes held for this film (sums, Kahan terms, control). */
+  /** Approximate bytes held for this film (sums, exact sums, control). */
   readonly memoryBytes: number;
   /** Clears the film and drops all work in flight. */
   reset(): void;
