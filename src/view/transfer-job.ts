@@ -2,9 +2,9 @@
  * The fallback without SharedArrayBuffer: the film lives on the main
  * thread, and each task ships one stripe's rows (every plane of the film) to
  * a worker, which adds one pass and ships them back. A stripe is out at
- * most once at a time and stripes are handed out pass by pass, so every
- * pixel still receives samples 0, 1, 2, … in order and the image is the
- * same, bit for bit, as the shared path's.
+ * most once at a time (its rows come back whole and replace the film's),
+ * and the film's sums are exact, so the image is the same, bit for bit,
+ * as the shared path's.
  */
 import { Film } from '../core/index.ts';
 import type { StripeResult, StripeTask } from '../../workers/render-protocol.ts';
