@@ -3,7 +3,15 @@
  * checkpoints) and the arguments of `pathwise merge`. Every problem is a
  * UsageError with a one-line message (exit status 2).
  */
+import { LIMITS } from '../core/index.ts';
+import { quote, sanitize } from '../core/scene/message.ts';
 import { UsageError } from './args.ts';
+import {
+  POSITIVE_DECIMAL,
+  parseDecimalValue,
+  parseIntegerValue,
+  switchWithoutValue,
+} from './values.ts';
 
 export interface BatchOptions {
   /** --samples A:B: render only samples [A, B) of every pixel. */
@@ -43,17 +51,22 @@ export const MERGE_USAGE = `usage: pathwise merge PART.film... --out FILE.pfm|FI
   --exposure E        PNG exposure multiplier (default 1)
   --json              print one JSON line describing the result on stdout`;
 
-function positiveNumber(name: string, text: string): number {
-  const value = Number(text);
-  if (text.trim() === '' || !Number.isFinite(value) || value <= 0) {
-    throw new UsageError(`--${name} must be a finite number > 0, got ${JSON.stringify(text)}`);
+/** Runs a values.ts parser, turning its CliError into a UsageError. */
+function usage<T>(parse: () => T): T {
+  try {
+    return parse();
+  } catch (e) {
+    throw new UsageError((e as Error).message);
   }
-  return value;
+}
+
+function positiveNumber(name: string, text: string): number {
+  return usage(() => parseDecimalValue(`--${name}`, text, POSITIVE_DECIMAL));
 }
 
 function filmPath(name: string, value: string): string {
   if (!/\.film$/i.test(value)) {
-    throw new UsageError(`--${name} must end in .film, got ${JSON.stringify(value)}`);
+    throw new UsageError(`--${name} must end in .film, got ${quote(value, 240)}`);
   }
   return value;
 }
@@ -67,13 +80,11 @@ export function parseBatchOptions(options: Map<string, string | true>): BatchOpt
   const out: BatchOptions = { checkpointEvery: 60 };
   const samples = text('samples');
   if (samples !== undefined) {
-    const m = /^(\d{1,16}):(\d{1,16})$/.exec(samples);
+    const m = /^([0-9]{1,16}):([0-9]{1,16})$/.exec(samples);
     const a = m ? Number(m[1]) : NaN;
     const b = m ? Number(m[2]) : NaN;
     if (!m || !Number.isSafeInteger(a) || !Number.isSafeInteger(b) || a >= b) {
-      throw new UsageError(
-        `--samples must be A:B with integers 0 <= A < B, got ${JSON.stringify(samples)}`,
-      );
+      throw new UsageError(`--samples must be A:B with integers 0 <= A < B, got ${quote(samples)}`);
     }
     out.samples = [a, b];
   }
@@ -113,36 +124,33 @@ export function parseMergeArgs(argv: string[]): MergeArgs {
     }
     const eq = a.indexOf('=');
     const name = eq >= 0 ? a.slice(2, eq) : a.slice(2);
-    if (options.has(name)) throw new UsageError(`--${name} is given twice`);
+    if (options.has(name)) throw new UsageError(`--${sanitize(name)} is given twice`);
     if (name === 'json' || name === 'allow-gaps' || name === 'help') {
-      if (eq >= 0) throw new UsageError(`--${name} takes no value`);
+      if (eq >= 0) usage(() => switchWithoutValue(`--${name}`, a));
       options.set(name, true);
       continue;
     }
     if (!['out', 'spp', 'exposure'].includes(name)) {
-      throw new UsageError(`unknown option --${name} (try: pathwise merge --help)`);
+      throw new UsageError(`unknown option --${sanitize(name)} (try: pathwise merge --help)`);
     }
     const value = eq >= 0 ? a.slice(eq + 1) : argv[++i];
-    if (value === undefined) throw new UsageError(`--${name} needs a value`);
+    if (value === undefined) throw new UsageError(`--${sanitize(name)} needs a value`);
     options.set(name, value);
   }
   if (parts.length === 0) throw new UsageError('merge needs at least one PART.film');
   for (const p of parts) {
     if (!/\.film$/i.test(p))
-      throw new UsageError(`parts must be .film files, got ${JSON.stringify(p)}`);
+      throw new UsageError(`parts must be .film files, got ${quote(p, 240)}`);
   }
   const out = options.get('out');
   if (typeof out !== 'string') throw new UsageError('missing --out FILE.pfm|FILE.png|FILE.film');
   if (!/\.(pfm|png|film)$/i.test(out)) {
-    throw new UsageError(`--out must end in .pfm, .png or .film, got ${JSON.stringify(out)}`);
+    throw new UsageError(`--out must end in .pfm, .png or .film, got ${quote(out, 240)}`);
   }
   let spp: number | undefined;
   const sppText = options.get('spp');
   if (typeof sppText === 'string') {
-    spp = Number(sppText);
-    if (!/^\d{1,16}$/.test(sppText) || !Number.isSafeInteger(spp) || spp < 1) {
-      throw new UsageError(`--spp must be an integer >= 1, got ${JSON.stringify(sppText)}`);
-    }
+    spp = usage(() => parseIntegerValue('--spp', sppText, 1, LIMITS.spp));
   }
   let exposure = 1;
   const exposureText = options.get('exposure');

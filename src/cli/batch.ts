@@ -42,7 +42,7 @@ export interface BatchPlan {
 
 export interface BatchHooks {
   /** Writes the film as holding samples [start, n). */
-  checkpoint?: (n: number) => void;
+  checkpoint?: (n: number) => Promise<void>;
   /** Called every 200 ms while rendering. */
   progress?: (state: BatchProgress) => void;
 }
@@ -156,7 +156,7 @@ export async function runBatch(
         return { end: n, stop: 'noise', passSeconds, checkpoints };
       }
       if (every !== undefined && processSeconds() - lastCheckpoint >= every && n < plan.end) {
-        hooks.checkpoint!(n);
+        await hooks.checkpoint!(n);
         checkpoints++;
         lastCheckpoint = processSeconds();
       }

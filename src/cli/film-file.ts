@@ -1,35 +1,27 @@
 /**
  * `.film` files on disk: the identity of a render (hashes of the scene and
- * of the settings that change its pixels), bounded reading with one clear
- * error per problem, and atomic writing (write a temporary file, flush it,
- * rename it over the target: a crash leaves the old file or the new one,
- * never a torn one).
+ * of the settings that change its pixels), and bounded reading with one
+ * clear error per problem. (Writing is output.ts's atomic OutputFile.)
  */
 import { createHash } from 'node:crypto';
-import {
-  closeSync,
-  fstatSync,
-  fsyncSync,
-  openSync,
-  readSync,
-  renameSync,
-  rmSync,
-  writeSync,
-} from 'node:fs';
+import { closeSync, fstatSync, openSync, readSync, statSync } from 'node:fs';
 import {
   FILM_FORMAT,
   FilmFileError,
+  LIMITS,
   MAX_HEADER_BYTES,
   SCALE_BITS,
   decodeFilmFile,
   decodeFilmHeader,
+  filmFileLength,
   type FilmFile,
   type FilmHeader,
   type FilmSettings,
   type Scene,
 } from '../core/index.ts';
 import packageJson from '../../package.json' with { type: 'json' };
-import { UsageError } from './args.ts';
+import { CliError } from './errors.ts';
+import { readBounded, reason, showPath } from './read-bounded.ts';
 
 export const RENDERER = `pathwise ${packageJson.version}`;
 
@@ -85,6 +77,9 @@ export function makeHeader(
   };
 }
 
+/** The largest `.film` a header may describe (its pixel limit, the largest header). */
+const MAX_FILM_BYTES = filmFileLength(MAX_HEADER_BYTES, LIMITS.pixels, 1);
+
 /** Reads and checks only the header of a `.film` file (and that the file's length matches it). */
 export function readFilmHeader(path: string): FilmHeader {
   return withFile(path, (fd, total) => {
@@ -95,12 +90,23 @@ export function readFilmHeader(path: string): FilmHeader {
 }
 
 /**
- * Reads and checks a `.film` file. The header is read and checked first,
- * so the file's length is known to match it before the rest is read:
- * nothing large is allocated on a lying header. Errors are UsageErrors
- * (exit status 2) that start with the path.
+ * Reads and checks a `.film` file. From a regular file the header is read
+ * and checked first, so the file's length is known to match it before the
+ * rest is read: nothing large is allocated on a lying header. Errors are
+ * CliErrors (exit status 2) that name the file.
  */
-export function readFilmFile(path: string): FilmFile {
+export async function readFilmFile(path: string): Promise<FilmFile> {
+  let pipe = false;
+  try {
+    pipe = !statSync(path).isFile();
+  } catch {
+    // withFile names the problem.
+  }
+  if (pipe) {
+    // A pipe or device has no size to check first: read it with a bound.
+    const bytes = await readBounded(path, MAX_FILM_BYTES);
+    return named(path, () => decodeFilmFile(bytes));
+  }
   return withFile(path, (fd, total) => {
     const prefix = Buffer.alloc(Math.min(total, 20 + MAX_HEADER_BYTES));
     readFully(fd, prefix, 0);
@@ -112,21 +118,33 @@ export function readFilmFile(path: string): FilmFile {
   });
 }
 
+/** Runs `body`, naming the file in a FilmFileError. */
+function named<T>(path: string, body: () => T): T {
+  try {
+    return body();
+  } catch (e) {
+    if (e instanceof FilmFileError) throw new CliError(`${showPath(path)}: ${e.message}`);
+    throw e;
+  }
+}
+
 function withFile<T>(path: string, body: (fd: number, total: number) => T): T {
   let fd: number;
   try {
     fd = openSync(path, 'r');
   } catch (e) {
-    throw new UsageError(`cannot read ${path}: ${errorText(e)}`);
+    throw new CliError(`cannot read ${showPath(path)}: ${reason(e)}`);
   }
   try {
-    const total = fstatSync(fd).size;
-    return body(fd, total);
+    const info = fstatSync(fd);
+    if (info.isDirectory()) throw new CliError(`cannot read ${showPath(path)}: it is a directory`);
+    return named(path, () => body(fd, info.size));
   } catch (e) {
-    if (e instanceof FilmFileError) throw new UsageError(`${path}: ${e.message}`);
-    if (e instanceof RangeError) throw new UsageError(`${path}: ${e.message}`);
-    if ((e as NodeJS.ErrnoException).code)
-      throw new UsageError(`cannot read ${path}: ${errorText(e)}`);
+    if (e instanceof CliError) throw e;
+    if (e instanceof RangeError) throw new CliError(`${showPath(path)}: ${e.message}`);
+    if ((e as NodeJS.ErrnoException).code) {
+      throw new CliError(`cannot read ${showPath(path)}: ${reason(e)}`);
+    }
     throw e;
   } finally {
     closeSync(fd);
@@ -140,36 +158,4 @@ function readFully(fd: number, into: Buffer, from: number): void {
     if (n === 0) throw new FilmFileError(`truncated while reading: ${at} of ${into.length} bytes`);
     at += n;
   }
-}
-
-/**
- * Writes `bytes` to `path` atomically: into `path.tmp` first, flushed to
- * disk, then renamed over `path`.
- */
-export function writeFileAtomic(path: string, bytes: Uint8Array): void {
-  const tmp = `${path}.tmp`;
-  let fd: number | undefined;
-  try {
-    fd = openSync(tmp, 'w');
-    let at = 0;
-    while (at < bytes.length) at += writeSync(fd, bytes, at, bytes.length - at);
-    fsyncSync(fd);
-    closeSync(fd);
-    fd = undefined;
-    renameSync(tmp, path);
-  } catch (e) {
-    if (fd !== undefined) closeSync(fd);
-    rmSync(tmp, { force: true });
-    throw new UsageError(`cannot write ${path}: ${errorText(e)}`);
-  }
-}
-
-/** An fs error's code and reason ("ENOENT: no such file or directory"), without the path it repeats. */
-function errorText(e: unknown): string {
-  const err = e as NodeJS.ErrnoException;
-  if (err.code && err.syscall) {
-    const reason = err.message.split(', ')[0];
-    return reason.startsWith(err.code) ? reason : `${err.code}: ${reason}`;
-  }
-  return err.message ?? String(e);
 }

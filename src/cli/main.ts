@@ -1,18 +1,15 @@
 /**
- * The `pathwise` command line. Exit status: 0 on success, 2 with a
- * one-line message for bad arguments or a bad scene, 1 for anything else.
+ * The `pathwise` command line. Exit status: 0 on success; 2 with one printable line on
+ * stderr for bad arguments, a bad or unreadable scene, or an output that cannot be
+ * written; 1 for anything else (a bug).
  */
-import { readFileSync, statSync } from 'node:fs';
-import {
-  FilmFileError,
-  LIMITS,
-  SceneError,
-  parseScene,
-  validateSettingsOverride,
-} from '../core/index.ts';
-import { USAGE, UsageError, parseRenderArgs } from './args.ts';
+import { FilmFileError, SceneError, validateSettingsOverride } from '../core/index.ts';
+import { printableLine, quote } from '../core/scene/message.ts';
+import { SYNOPSIS, USAGE, UsageError, parseRenderArgs } from './args.ts';
+import { CliError } from './errors.ts';
 import { merge } from './merge.ts';
 import { renderCommand } from './render-command.ts';
+import { loadSceneFile } from './scene-file.ts';
 
 async function render(argv: string[]): Promise<void> {
   if (argv.includes('--help')) {
@@ -20,20 +17,7 @@ async function render(argv: string[]): Promise<void> {
     return;
   }
   const args = parseRenderArgs(argv);
-  let text: string;
-  try {
-    const size = statSync(args.scenePath).size;
-    if (size > LIMITS.fileBytes) {
-      throw new UsageError(
-        `${args.scenePath}: scene file is ${size} bytes, more than the limit of ${LIMITS.fileBytes}`,
-      );
-    }
-    text = readFileSync(args.scenePath, 'utf8');
-  } catch (e) {
-    if (e instanceof UsageError) throw e;
-    throw new UsageError(`cannot read ${args.scenePath}: ${(e as Error).message}`);
-  }
-  const scene = parseScene(text);
+  const scene = await loadSceneFile(args.scenePath);
   const names: Record<string, string> = {
     width: '--width',
     height: '--height',
@@ -59,16 +43,20 @@ async function main(argv: string[]): Promise<number> {
       await merge(rest);
       return 0;
     }
-    if (command === undefined || command === '--help' || command === 'help') {
+    if (command === undefined) {
+      // Nothing to do: say how to use it, on stderr (stdout may be a pipe into a file).
+      throw new UsageError(`no command given; ${SYNOPSIS} (pathwise --help for the options)`);
+    }
+    if (command === '--help' || command === 'help') {
       process.stdout.write(USAGE + '\n');
-      return command === undefined ? 2 : 0;
+      return 0;
     }
     throw new UsageError(
-      `unknown command ${JSON.stringify(command)} (try: pathwise render --help)`,
+      `unknown command ${quote(command)} (try: pathwise render --help, pathwise merge --help)`,
     );
   } catch (e) {
-    if (e instanceof UsageError || e instanceof SceneError || e instanceof FilmFileError) {
-      process.stderr.write(`pathwise: ${e.message}\n`);
+    if (e instanceof CliError || e instanceof SceneError || e instanceof FilmFileError) {
+      process.stderr.write(`pathwise: ${printableLine(e.message)}\n`);
       return 2;
     }
     process.stderr.write(`pathwise: ${(e as Error).stack ?? e}\n`);

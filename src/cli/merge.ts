@@ -18,14 +18,17 @@ import {
   missingRanges,
   normalizeRanges,
   rangeSamples,
+  type Film,
   type FilmHeader,
   type SampleRange,
 } from '../core/index.ts';
-import { UsageError } from './args.ts';
-import { MERGE_USAGE, parseMergeArgs } from './batch-args.ts';
+import { MERGE_USAGE, parseMergeArgs, type MergeArgs } from './batch-args.ts';
+import { encodeOutput } from './encode-output.ts';
+import { CliError } from './errors.ts';
 import { explainMismatch } from './film-compat.ts';
-import { makeHeader, readFilmFile, readFilmHeader, writeFileAtomic } from './film-file.ts';
-import { encodeOutput } from './output.ts';
+import { makeHeader, readFilmFile, readFilmHeader } from './film-file.ts';
+import { OutputFile } from './output.ts';
+import { showPath } from './read-bounded.ts';
 
 export async function merge(argv: string[]): Promise<void> {
   if (argv.includes('--help')) {
@@ -35,16 +38,16 @@ export async function merge(argv: string[]): Promise<void> {
   const args = parseMergeArgs(argv);
   const headers: FilmHeader[] = args.parts.map((p) => readFilmHeader(p));
   const first = headers[0];
-  const name = (k: number) => basename(args.parts[k]);
+  const name = (k: number) => showPath(basename(args.parts[k]));
   for (let k = 1; k < headers.length; k++) {
     const why = explainMismatch(name(0), first, name(k), headers[k]);
-    if (why) throw new UsageError(`cannot merge: ${why}`);
+    if (why) throw new CliError(`cannot merge: ${why}`);
   }
   const total = args.spp ?? first.spp;
   if (args.spp === undefined) {
     const other = headers.findIndex((h) => h.spp !== first.spp);
     if (other >= 0) {
-      throw new UsageError(
+      throw new CliError(
         `cannot merge: ${name(0)} is part of a ${first.spp}-spp render and ${name(other)} of a ${headers[other].spp}-spp one (give --spp N to choose the total)`,
       );
     }
@@ -53,7 +56,7 @@ export async function merge(argv: string[]): Promise<void> {
   for (let k = 0; k < headers.length; k++) {
     for (const r of headers[k].ranges) {
       if (r[1] > total) {
-        throw new UsageError(
+        throw new CliError(
           `cannot merge: ${name(k)} holds samples ${formatRanges([r])}, beyond the total of ${total}`,
         );
       }
@@ -61,7 +64,7 @@ export async function merge(argv: string[]): Promise<void> {
     for (let j = 0; j < k; j++) {
       const both = findOverlap(headers[j].ranges, headers[k].ranges);
       if (both) {
-        throw new UsageError(
+        throw new CliError(
           `cannot merge: ${name(j)} and ${name(k)} both hold samples ${formatRanges([both])}`,
         );
       }
@@ -71,31 +74,57 @@ export async function merge(argv: string[]): Promise<void> {
   const missing = missingRanges(union, total);
   const held = rangeSamples(union);
   if (missing.length > 0 && !args.allowGaps) {
-    throw new UsageError(
+    throw new CliError(
       `missing samples ${formatRanges(missing)}: the parts hold ${held} of ${total} samples per pixel (render the missing ranges, or give --allow-gaps to write the partial result)`,
     );
   }
-  if (held === 0) throw new UsageError('the parts hold no samples');
+  if (held === 0) throw new CliError('the parts hold no samples');
 
-  // Pixels, one part at a time.
-  const acc = readFilmFile(args.parts[0]);
-  const stats = { ...acc.header.stats };
-  for (let k = 1; k < args.parts.length; k++) {
-    const part = readFilmFile(args.parts[k]);
-    acc.film.add(part.film);
-    stats.paths += part.header.stats.paths;
-    stats.segments += part.header.stats.segments;
-    stats.rejected += part.header.stats.rejected;
+  const output = await OutputFile.prepare(args.out);
+  const abandon = (signal: NodeJS.Signals) => {
+    output.discardSync();
+    process.exit(signal === 'SIGINT' ? 130 : 143);
+  };
+  process.once('SIGINT', abandon);
+  process.once('SIGTERM', abandon);
+  try {
+    // Pixels, one part at a time.
+    const acc = await readFilmFile(args.parts[0]);
+    const stats = { ...acc.header.stats };
+    for (let k = 1; k < args.parts.length; k++) {
+      const part = await readFilmFile(args.parts[k]);
+      acc.film.add(part.film);
+      stats.paths += part.header.stats.paths;
+      stats.segments += part.header.stats.segments;
+      stats.rejected += part.header.stats.rejected;
+    }
+    const header = makeHeader(first, total, union, stats);
+    await output.commit(encodeOutput(args.out, acc.film, header, args.exposure));
+    report(args, header, acc.film, missing, held, total);
+  } finally {
+    await output.discard();
+    process.off('SIGINT', abandon);
+    process.off('SIGTERM', abandon);
   }
-  const header = makeHeader(first, total, union, stats);
-  writeFileAtomic(args.out, encodeOutput(args.out, acc.film, header, args.exposure));
+}
+
+function report(
+  args: MergeArgs,
+  header: FilmHeader,
+  film: Film,
+  missing: SampleRange[],
+  held: number,
+  total: number,
+): void {
+  const stats = header.stats;
+  const union = header.ranges;
   if (missing.length > 0) {
     process.stderr.write(
-      `pathwise: warning: ${args.out} lacks samples ${formatRanges(missing)}: it holds ${held} of ${total} samples per pixel\n`,
+      `pathwise: warning: ${showPath(args.out)} lacks samples ${formatRanges(missing)}: it holds ${held} of ${total} samples per pixel\n`,
     );
   }
   if (args.json) {
-    const noise = estimateNoise(acc.film);
+    const noise = estimateNoise(film);
     process.stdout.write(
       JSON.stringify({
         parts: args.parts.length,

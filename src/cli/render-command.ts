@@ -3,8 +3,7 @@
  * range, resume, the round loop with its stop criteria and checkpoints,
  * the output and the JSON line.
  */
-import { accessSync, constants, existsSync, statSync } from 'node:fs';
-import { dirname } from 'node:path';
+import { existsSync } from 'node:fs';
 import {
   LIMITS,
   estimateNoise,
@@ -16,16 +15,13 @@ import {
 } from '../core/index.ts';
 import { UsageError, type RenderArgs } from './args.ts';
 import { processSeconds, runBatch, type BatchProgress } from './batch.ts';
+import { encodeOutput } from './encode-output.ts';
+import { CliError } from './errors.ts';
 import { explainMismatch } from './film-compat.ts';
-import {
-  filmIdentity,
-  makeHeader,
-  readFilmFile,
-  writeFileAtomic,
-  type FilmIdentity,
-} from './film-file.ts';
-import { encodeOutput } from './output.ts';
+import { filmIdentity, makeHeader, readFilmFile, type FilmIdentity } from './film-file.ts';
+import { OutputFile } from './output.ts';
 import { ProgressBar } from './progress.ts';
+import { showPath } from './read-bounded.ts';
 import { RenderPool } from './render.ts';
 
 interface Resumed {
@@ -59,9 +55,18 @@ export async function renderCommand(
     sampler: args.sampler,
     estimator: args.estimator,
   });
-  const resumed = b.resume ? loadCheckpoint(b.resume, identity, start, end) : undefined;
-  checkWritable(args.out);
-  if (b.checkpoint) checkWritable(b.checkpoint);
+  const resumed = b.resume ? await loadCheckpoint(b.resume, identity, start, end) : undefined;
+  // The outputs are checked (the output's temporary file created) before the render starts.
+  const output = await OutputFile.prepare(args.out);
+  let checkpointFile: OutputFile | undefined;
+  if (b.checkpoint) await (await OutputFile.prepare(b.checkpoint)).discard();
+  const abandon = (signal: NodeJS.Signals) => {
+    output.discardSync();
+    checkpointFile?.discardSync();
+    process.exit(signal === 'SIGINT' ? 130 : 143);
+  };
+  process.once('SIGINT', abandon);
+  process.once('SIGTERM', abandon);
 
   const pool = new RenderPool({
     scene,
@@ -103,11 +108,13 @@ export async function renderCommand(
       },
       {
         checkpoint: b.checkpoint
-          ? (n) =>
-              writeFileAtomic(
-                b.checkpoint!,
+          ? async (n) => {
+              checkpointFile = await OutputFile.prepare(b.checkpoint!);
+              await checkpointFile.commit(
                 encodeOutput(b.checkpoint!, pool.film, header(n, end), 1),
-              )
+              );
+              checkpointFile = undefined;
+            }
           : undefined,
         progress: bar
           ? (p: BatchProgress) =>
@@ -127,10 +134,18 @@ export async function renderCommand(
     const seconds = processSeconds() - renderStart;
     bar?.finish();
     const spp = openEnded ? result.end : total;
-    writeFileAtomic(
-      args.out,
-      encodeOutput(args.out, pool.film, header(result.end, spp), args.exposure),
-    );
+    // The film rejects every sample that is not finite or out of range, so this finds
+    // nothing; it is the guarantee that no Inf or NaN is ever written silently.
+    const bad = countNonFinite(pool.film.mean());
+    if (bad > 0) throw new Error(`${bad} pixel values are not finite; nothing was written`);
+    await output.commit(encodeOutput(args.out, pool.film, header(result.end, spp), args.exposure));
+    if (pool.stats.rejected > 0) {
+      // Not an error (the image is finite and written), but never silent.
+      process.stderr.write(
+        `pathwise: warning: ${pool.stats.rejected} of ${pool.stats.paths} samples were not finite ` +
+          `(or beyond ±2^40) and were left out\n`,
+      );
+    }
     const noise = estimateNoise(pool.film);
     if (b.noise !== undefined && result.stop !== 'noise') {
       process.stderr.write(
@@ -161,7 +176,17 @@ export async function renderCommand(
     }
   } finally {
     await pool.close();
+    await output.discard();
+    process.off('SIGINT', abandon);
+    process.off('SIGTERM', abandon);
   }
+}
+
+/** Pixels of the image that are not finite (none, unless the film's guard has a bug). */
+function countNonFinite(values: Float32Array): number {
+  let n = 0;
+  for (let i = 0; i < values.length; i++) if (!Number.isFinite(values[i])) n++;
+  return n;
 }
 
 /**
@@ -170,45 +195,32 @@ export async function renderCommand(
  * written yet, so the same command line serves for the first run and for
  * every retry.
  */
-function loadCheckpoint(
+async function loadCheckpoint(
   path: string,
   identity: FilmIdentity,
   start: number,
   end: number,
-): Resumed | undefined {
+): Promise<Resumed | undefined> {
   if (!existsSync(path)) {
-    process.stderr.write(`pathwise: no checkpoint at ${path} yet; starting from sample ${start}\n`);
+    process.stderr.write(
+      `pathwise: no checkpoint at ${showPath(path)} yet; starting from sample ${start}\n`,
+    );
     return undefined;
   }
-  const { header, film } = readFilmFile(path);
-  const why = explainMismatch(path, header, 'this render', identity);
-  if (why) throw new UsageError(`cannot resume: ${why}`);
+  const { header, film } = await readFilmFile(path);
+  const why = explainMismatch(showPath(path), header, 'this render', identity);
+  if (why) throw new CliError(`cannot resume: ${why}`);
   const r = header.ranges;
   if (r.length === 0) return { film, end: start, stats: header.stats };
   if (r.length !== 1 || r[0][0] !== start) {
-    throw new UsageError(
-      `cannot resume: ${path} holds samples ${formatRanges(r)}, not one range starting at ${start}`,
+    throw new CliError(
+      `cannot resume: ${showPath(path)} holds samples ${formatRanges(r)}, not one range starting at ${start}`,
     );
   }
   if (r[0][1] > end) {
-    throw new UsageError(
-      `cannot resume: ${path} holds samples ${formatRanges(r)}, past this render's end at ${end}`,
+    throw new CliError(
+      `cannot resume: ${showPath(path)} holds samples ${formatRanges(r)}, past this render's end at ${end}`,
     );
   }
   return { film, end: r[0][1], stats: header.stats };
-}
-
-/** Fails before rendering, not after, when an output cannot be written. */
-function checkWritable(path: string): void {
-  try {
-    if (existsSync(path) && statSync(path).isDirectory()) {
-      throw new UsageError(`cannot write ${path}: it is a directory`);
-    }
-    accessSync(dirname(path) || '.', constants.W_OK);
-  } catch (e) {
-    if (e instanceof UsageError) throw e;
-    throw new UsageError(
-      `cannot write ${path}: ${(e as NodeJS.ErrnoException).code ?? (e as Error).message}`,
-    );
-  }
 }
