@@ -8,12 +8,10 @@ import { closeSync, fstatSync, openSync, readSync, statSync } from 'node:fs';
 import {
   FILM_FORMAT,
   FilmFileError,
-  LIMITS,
   MAX_HEADER_BYTES,
   SCALE_BITS,
   decodeFilmFile,
   decodeFilmHeader,
-  filmFileLength,
   type FilmFile,
   type FilmHeader,
   type FilmSettings,
@@ -21,7 +19,7 @@ import {
 } from '../core/index.ts';
 import packageJson from '../../package.json' with { type: 'json' };
 import { CliError } from './errors.ts';
-import { readBounded, reason, showPath } from './read-bounded.ts';
+import { reason, showPath } from './read-bounded.ts';
 
 export const RENDERER = `pathwise ${packageJson.version}`;
 
@@ -77,9 +75,6 @@ export function makeHeader(
   };
 }
 
-/** The largest `.film` a header may describe (its pixel limit, the largest header). */
-const MAX_FILM_BYTES = filmFileLength(MAX_HEADER_BYTES, LIMITS.pixels, 1);
-
 /** Reads and checks only the header of a `.film` file (and that the file's length matches it). */
 export function readFilmHeader(path: string): FilmHeader {
   return withFile(path, (fd, total) => {
@@ -90,23 +85,13 @@ export function readFilmHeader(path: string): FilmHeader {
 }
 
 /**
- * Reads and checks a `.film` file. From a regular file the header is read
- * and checked first, so the file's length is known to match it before the
- * rest is read: nothing large is allocated on a lying header. Errors are
- * CliErrors (exit status 2) that name the file.
+ * Reads and checks a `.film` file. The header is read and checked first,
+ * so the file's length is known to match it before the rest is read:
+ * nothing large is allocated on a lying header. (So a `.film` must be a
+ * regular file, not a pipe.) Errors are CliErrors (exit status 2) that
+ * name the file.
  */
-export async function readFilmFile(path: string): Promise<FilmFile> {
-  let pipe = false;
-  try {
-    pipe = !statSync(path).isFile();
-  } catch {
-    // withFile names the problem.
-  }
-  if (pipe) {
-    // A pipe or device has no size to check first: read it with a bound.
-    const bytes = await readBounded(path, MAX_FILM_BYTES);
-    return named(path, () => decodeFilmFile(bytes));
-  }
+export function readFilmFile(path: string): FilmFile {
   return withFile(path, (fd, total) => {
     const prefix = Buffer.alloc(Math.min(total, 20 + MAX_HEADER_BYTES));
     readFully(fd, prefix, 0);
@@ -131,13 +116,26 @@ function named<T>(path: string, body: () => T): T {
 function withFile<T>(path: string, body: (fd: number, total: number) => T): T {
   let fd: number;
   try {
+    // Not opened if not a regular file: opening a FIFO would wait for a writer.
+    const info = statSync(path);
+    if (!info.isFile() && !info.isDirectory()) {
+      throw new CliError(
+        `cannot read ${showPath(path)}: not a regular file (a .film's length is checked against its header)`,
+      );
+    }
     fd = openSync(path, 'r');
   } catch (e) {
+    if (e instanceof CliError) throw e;
     throw new CliError(`cannot read ${showPath(path)}: ${reason(e)}`);
   }
   try {
     const info = fstatSync(fd);
     if (info.isDirectory()) throw new CliError(`cannot read ${showPath(path)}: it is a directory`);
+    if (!info.isFile()) {
+      throw new CliError(
+        `cannot read ${showPath(path)}: not a regular file (a .film's length is checked against its header)`,
+      );
+    }
     return named(path, () => body(fd, info.size));
   } catch (e) {
     if (e instanceof CliError) throw e;

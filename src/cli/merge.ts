@@ -89,10 +89,10 @@ export async function merge(argv: string[]): Promise<void> {
   process.once('SIGTERM', abandon);
   try {
     // Pixels, one part at a time.
-    const acc = await readFilmFile(args.parts[0]);
+    const acc = readFilmFile(args.parts[0]);
     const stats = { ...acc.header.stats };
     for (let k = 1; k < args.parts.length; k++) {
-      const part = await readFilmFile(args.parts[k]);
+      const part = readFilmFile(args.parts[k]);
       acc.film.add(part.film);
       stats.paths += part.header.stats.paths;
       stats.segments += part.header.stats.segments;

@@ -207,7 +207,7 @@ async function loadCheckpoint(
     );
     return undefined;
   }
-  const { header, film } = await readFilmFile(path);
+  const { header, film } = readFilmFile(path);
   const why = explainMismatch(showPath(path), header, 'this render', identity);
   if (why) throw new CliError(`cannot resume: ${why}`);
   const r = header.ranges;

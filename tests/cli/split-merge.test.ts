@@ -5,6 +5,7 @@
  * is refused with one line; missing ranges are named; damaged files get
  * one clear error.
  */
+import { spawnSync } from 'node:child_process';
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { beforeAll, describe, expect, it } from 'vitest';
@@ -289,6 +290,11 @@ describe('bad input', () => {
       pathwise(['merge', at('nope.film'), '--out', at('x.pfm')]),
       /cannot read .*nope.film: no such file or directory/,
     );
+    expect(spawnSync('mkfifo', [at('pipe.film')]).status).toBe(0);
+    expectRefusal(
+      pathwise(['merge', at('pipe.film'), '--out', at('x.pfm')]),
+      /cannot read .*pipe.film: not a regular file/,
+    );
     mkdirSync(at('folder.film'));
     expectRefusal(
       pathwise(['merge', at('folder.film'), '--out', at('x.pfm')]),
@@ -324,7 +330,10 @@ describe('bad input', () => {
       ['render', 'S', '--time', '0', '--out', 'x.pfm'],
       /--time must be a decimal number > 0, got "0"/,
     ],
-    [['render', 'S', '--noise', 'low', '--out', 'x.pfm'], /--noise must be a decimal number > 0, got "low"/],
+    [
+      ['render', 'S', '--noise', 'low', '--out', 'x.pfm'],
+      /--noise must be a decimal number > 0, got "low"/,
+    ],
     [['render', 'S', '--checkpoint', 'c.pfm', '--out', 'x.pfm'], /--checkpoint must end in .film/],
     [
       ['render', 'S', '--checkpoint-every', '5', '--out', 'x.pfm'],
