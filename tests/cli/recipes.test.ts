@@ -13,7 +13,7 @@ import { spawn } from 'node:child_process';
 import { chmodSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { beforeAll, describe, expect, it } from 'vitest';
-import { BIN, pathwiseOk, readFilm, tempDir, writeCornell } from '../helpers/cli.ts';
+import { BIN, pathwiseOk, readFilm, tempDir, writeCornell } from '../helpers/batch-cli.ts';
 import { ROOT } from '../helpers/render.ts';
 
 const SPP = 16;

@@ -19,7 +19,7 @@ import {
   readFilm,
   tempDir,
   writeCornell,
-} from '../helpers/cli.ts';
+} from '../helpers/batch-cli.ts';
 import { ROOT } from '../helpers/render.ts';
 
 const dir = tempDir('resume');

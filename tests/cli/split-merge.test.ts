@@ -17,7 +17,7 @@ import {
   readFilm,
   tempDir,
   writeCornell,
-} from '../helpers/cli.ts';
+} from '../helpers/batch-cli.ts';
 
 const dir = tempDir('merge');
 const SPP = 12;
@@ -261,7 +261,7 @@ describe('bad input', () => {
     writeFileSync(at('trunc.film'), good.subarray(0, good.length - 1000));
     expectRefusal(
       pathwise(['merge', at('a.film'), at('trunc.film'), '--out', at('x.pfm')]),
-      /trunc.film: truncated: \d+ bytes, but a 24×16 film needs \d+/,
+      /trunc.film: pathwise-film\/1: truncated: \d+ bytes, but a 24×16 film needs \d+/,
     );
     const { header, film } = readFilm(at('b.film'));
     writeFileSync(
@@ -273,18 +273,18 @@ describe('bad input', () => {
     );
     expectRefusal(
       pathwise(['merge', at('a.film'), at('lying.film'), '--out', at('x.pfm')]),
-      /lying.film: stats do not add up/,
+      /lying.film: pathwise-film\/1: stats do not add up/,
     );
     film.hi[40] = NaN;
     writeFileSync(at('nan.film'), encodeFilmFile(header, film));
     expectRefusal(
       pathwise(['merge', at('a.film'), at('nan.film'), '--out', at('x.pfm')]),
-      /nan.film: pixel \(10, 0\) channel R: invalid exact sum \(NaN/,
+      /nan.film: pathwise-film\/1: pixel \(10, 0\) channel R: invalid exact sum \(NaN/,
     );
     writeFileSync(at('image.film'), readFileSync(at('full.pfm')));
     expectRefusal(
       pathwise(['merge', at('image.film'), '--out', at('x.pfm')]),
-      /image.film: not a pathwise-film\/1 file/,
+      /image.film: pathwise-film\/1: not a .film file/,
     );
     expectRefusal(
       pathwise(['merge', at('nope.film'), '--out', at('x.pfm')]),
@@ -311,7 +311,7 @@ describe('bad input', () => {
         '--out',
         at('x.pfm'),
       ]),
-      /nan.film: pixel \(10, 0\)/,
+      /nan.film: pathwise-film\/1: pixel \(10, 0\)/,
     );
   });
 

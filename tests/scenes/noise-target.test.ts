@@ -28,7 +28,7 @@
 import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
 import { exactValue } from '../../src/core/film/exact-sum.ts';
-import { pathwiseOk, readFilm, tempDir } from '../helpers/cli.ts';
+import { pathwiseOk, readFilm, tempDir } from '../helpers/batch-cli.ts';
 import { ROOT, loadReference } from '../helpers/render.ts';
 
 const REL = 0.2;

@@ -128,7 +128,7 @@ describe('pathwise-film/1', () => {
 
   it('refuses what is not a film', () => {
     expect(refusal(new TextEncoder().encode('PF\n5 3\n-1.0\n' + ' '.repeat(100)))).toMatch(
-      /not a pathwise-film\/1 file/,
+      /pathwise-film\/1: not a .film file: it does not start with "pathwise-film\/1"/,
     );
   });
 

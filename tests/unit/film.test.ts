@@ -5,7 +5,8 @@
  */
 import { describe, expect, it } from 'vitest';
 import { Film, estimateNoise } from '../../src/core/index.ts';
-import { LIMB, SAMPLE_LIMIT, SCALE } from '../../src/core/film/exact-sum.ts';
+import { LIMB, MAX_COUNT, SAMPLE_LIMIT, SCALE } from '../../src/core/film/exact-sum.ts';
+import { LUM2_LIMIT } from '../../src/core/film/film.ts';
 
 /** Deterministic PRNG for test data (mulberry32). */
 function rng(seed: number): () => number {
@@ -79,6 +80,31 @@ describe('Film', () => {
     expect(film.addSample(1, 0, 0, 0, -Infinity)).toBe(false);
     expect(Array.from(film.mean().subarray(3, 6))).toEqual([0.5, 0.25, 1]);
     expect(film.sums[7]).toBe(1);
+  });
+
+  it('keeps the sums exact and finite at the far end of their range', () => {
+    // The most a pixel can hold: MAX_COUNT samples at ±SAMPLE_LIMIT. Start one sample
+    // short of it (the state after 2^24 − 1 such samples) and add the last one.
+    const film = new Film(1, 1);
+    const units = BigInt(SAMPLE_LIMIT) * BigInt(SCALE) * BigInt(MAX_COUNT - 1);
+    film.hi[0] = Number(units / BigInt(LIMB));
+    film.lo[0] = Number(units % BigInt(LIMB));
+    film.sums[3] = MAX_COUNT - 1;
+    expect(film.addSample(0, 0, SAMPLE_LIMIT, 0, 0)).toBe(true);
+    const total = BigInt(film.hi[0]) * BigInt(LIMB) + BigInt(film.lo[0]);
+    expect(total).toBe(BigInt(SAMPLE_LIMIT) * BigInt(SCALE) * BigInt(MAX_COUNT));
+    expect(film.sums[0]).toBe(SAMPLE_LIMIT * MAX_COUNT);
+    expect(film.sums.every(Number.isFinite)).toBe(true);
+    expect(Number.isSafeInteger(film.hi[0])).toBe(true);
+  });
+
+  it('caps the squared luminance of huge samples (noise sum only); the image keeps them', () => {
+    const film = new Film(1, 1);
+    // Luminance 1e7: its square, 1e14, is above the cap of 2^40 ≈ 1.1e12.
+    expect(film.addSample(0, 0, 1e7, 1e7, 1e7)).toBe(true);
+    expect(film.mean()[0]).toBe(1e7);
+    expect(film.hi[3] * LIMB + film.lo[3]).toBe(LUM2_LIMIT * SCALE);
+    expect(film.hi.every(Number.isSafeInteger) && film.lo.every(Number.isSafeInteger)).toBe(true);
   });
 
   it('addresses a window of rows through y0', () => {

@@ -27,6 +27,7 @@
 import { LIMITS } from '../scene/types.ts';
 import { SAMPLER_KINDS, type SamplerKind } from '../sampling/sampler.ts';
 import { crc32 } from '../io/crc32.ts';
+import { FormatError } from '../io/format-error.ts';
 import { MAX_COUNT, SCALE_BITS, isValidExact } from './exact-sum.ts';
 import { Film } from './film.ts';
 import { normalizeRanges, rangeSamples, type SampleRange } from './sample-ranges.ts';
@@ -38,8 +39,13 @@ const PROLOGUE = 20;
 export const MAX_HEADER_BYTES = 1 << 20;
 const MAX_RANGES = 10_000;
 
-export class FilmFileError extends Error {
+/** One problem of a `.film` file: a FormatError naming the format, one printable line. */
+export class FilmFileError extends FormatError {
   override name = 'FilmFileError';
+
+  constructor(detail: string) {
+    super(FILM_FORMAT, detail);
+  }
 }
 
 /** Everything that changes a sample's value, besides the scene. */
@@ -131,7 +137,7 @@ export function decodeFilmHeader(
 ): { header: FilmHeader; byteLength: number } {
   const present = prefix.subarray(0, Math.min(total, MAGIC_BYTES.length));
   if (!startsWith(MAGIC_BYTES, present)) {
-    throw new FilmFileError(`not a ${FILM_FORMAT} file (it does not start with "${FILM_FORMAT}")`);
+    throw new FilmFileError(`not a .film file: it does not start with "${FILM_FORMAT}"`);
   }
   if (total < PROLOGUE) {
     throw new FilmFileError(`truncated: ${total} bytes, not even the ${PROLOGUE}-byte prologue`);

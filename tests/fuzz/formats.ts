@@ -1,0 +1,306 @@
+/**
+ * The table of file formats under the hostile-input contract (issue 9, point 3). Each
+ * entry gives a decoder, a few small valid files, and generators of the three classic
+ * attacks: truncated files, headers that lie (claiming 2^31 vertices, 10^9 x 10^9 pixels,
+ * a buffer past the end), and NaN/Inf inside binary data. tests/fuzz/formats.test.ts runs
+ * every entry through the same checks, plus random byte mutations (fast-check):
+ *
+ *   decode(bytes) returns a value that passes `check` (finite numbers, consistent sizes),
+ *   or throws FormatError with one printable line naming the format; nothing else (no
+ *   RangeError from a DataView, no allocation sized by an unchecked header, no hang).
+ *
+ * To add a format (OBJ, PLY, HDR, glTF/GLB, .film), append one entry: see README.md here.
+ */
+import { expect } from 'vitest';
+import {
+  Film,
+  crc32,
+  decodeFilmFile,
+  decodePfm,
+  encodeFilmFile,
+  encodePfm,
+  type FilmFile,
+  type FilmHeader,
+  type PfmImage,
+} from '../../src/core/index.ts';
+
+export interface FormatEntry {
+  /** As the decoder's FormatError names it (error.format), e.g. "PFM". */
+  name: string;
+  /** Decodes bytes; throws FormatError on bad input. */
+  decode: (bytes: Uint8Array) => unknown;
+  /** Asserts that a decoded value is sane: finite numbers, sizes that agree. */
+  check: (value: unknown) => void;
+  /** Small valid files (a few hundred bytes each keeps the prefix sweep fast). */
+  samples: () => Uint8Array[];
+  /** Files whose header claims more than the data holds, or absurd sizes. */
+  lyingHeaders: () => { name: string; bytes: Uint8Array; message?: RegExp }[];
+  /** Valid files with NaN or Inf written into their data. */
+  nonFinite: () => { name: string; bytes: Uint8Array; message?: RegExp }[];
+  /** Other hostile files with the message they must give. */
+  others?: () => { name: string; bytes: Uint8Array; message?: RegExp }[];
+}
+
+const ascii = (s: string) => Uint8Array.from(s, (c) => c.charCodeAt(0));
+const concat = (...parts: Uint8Array[]) => {
+  const out = new Uint8Array(parts.reduce((n, p) => n + p.length, 0));
+  let at = 0;
+  for (const p of parts) {
+    out.set(p, at);
+    at += p.length;
+  }
+  return out;
+};
+
+/** A small PFM image with distinct values. */
+function pfmSample(width: number, height: number): Uint8Array {
+  const rgb = Float32Array.from({ length: width * height * 3 }, (_, i) => i * 0.25 - 1);
+  return encodePfm(width, height, rgb);
+}
+
+/** The same image, big-endian (positive scale). */
+function pfmBigEndian(width: number, height: number): Uint8Array {
+  const header = ascii(`PF\n${width} ${height}\n1.0\n`);
+  const data = new DataView(new ArrayBuffer(width * height * 12));
+  for (let i = 0; i < width * height * 3; i++) data.setFloat32(i * 4, i * 0.5, false);
+  return concat(header, new Uint8Array(data.buffer));
+}
+
+/** The PFM file with float `index` of its data replaced by `value`. */
+function pfmWithValue(value: number, index: number): Uint8Array {
+  const bytes = pfmSample(3, 2);
+  const header = 'PF\n3 2\n-1.0\n'.length;
+  new DataView(bytes.buffer).setFloat32(header + index * 4, value, true);
+  return bytes;
+}
+
+/** A small `.film` (pathwise-film/1): `width`×`height`, samples [2, 5) of a 5-spp render. */
+function filmSample(width: number, height: number, spoil?: (f: Film) => void): Uint8Array {
+  const film = new Film(width, height);
+  for (let s = 2; s < 5; s++)
+    for (let y = 0; y < height; y++)
+      for (let x = 0; x < width; x++) film.addSample(x, y, 0.25 * s + x, y * 1e-3, 1e4 * s);
+  spoil?.(film);
+  return encodeFilmFile(filmHeader(width, height), film);
+}
+
+function filmHeader(width: number, height: number): FilmHeader {
+  return {
+    format: 'pathwise-film/1',
+    renderer: 'pathwise 0.1.0',
+    scene_sha256: '0'.repeat(64),
+    settings: { width, height, maxBounces: 4, seed: 7, sampler: 'sobol', estimator: 'nee-mis' },
+    key: '1'.repeat(64),
+    scale_bits: 40,
+    spp: 5,
+    ranges: [[2, 5]],
+    stats: { paths: width * height * 3, segments: 0, rejected: 0 },
+  };
+}
+
+/**
+ * A valid-looking `.film` with another header (an object, or raw text), the checksum
+ * recomputed so that only the header lies.
+ */
+function filmWithHeader(header: unknown, payloadOf = filmSample(2, 1)): Uint8Array {
+  const view = new DataView(payloadOf.buffer, payloadOf.byteOffset);
+  const oldLength = view.getUint32(16, true);
+  const payload = payloadOf.subarray(Math.ceil((20 + oldLength) / 8) * 8, payloadOf.length - 4);
+  const json = ascii(typeof header === 'string' ? header : JSON.stringify(header));
+  const start = Math.ceil((20 + json.length) / 8) * 8;
+  const out = new Uint8Array(start + payload.length + 4);
+  out.set(ascii('pathwise-film/1\n'));
+  new DataView(out.buffer).setUint32(16, json.length, true);
+  out.set(json, 20);
+  out.set(payload, start);
+  new DataView(out.buffer).setUint32(out.length - 4, crc32(out.subarray(0, out.length - 4)), true);
+  return out;
+}
+
+export const FORMATS: FormatEntry[] = [
+  {
+    name: 'PFM',
+    decode: (bytes) => decodePfm(bytes),
+    check: (value) => {
+      const img = value as PfmImage;
+      expect(Number.isInteger(img.width) && img.width > 0).toBe(true);
+      expect(Number.isInteger(img.height) && img.height > 0).toBe(true);
+      expect(img.rgb.length).toBe(img.width * img.height * 3);
+      expect(img.rgb.every(Number.isFinite)).toBe(true);
+    },
+    samples: () => [pfmSample(3, 2), pfmSample(1, 1), pfmBigEndian(2, 3)],
+    lyingHeaders: () => [
+      {
+        name: '10^9 x 10^9 pixels',
+        bytes: concat(ascii('PF\n1000000000 1000000000\n-1.0\n'), new Uint8Array(24)),
+        message: /must be 1 x 1 to 65536 x 65536 pixels, got 1000000000 x 1000000000/,
+      },
+      {
+        name: 'more pixels than the data holds',
+        bytes: concat(ascii('PF\n4000 4000\n-1.0\n'), new Uint8Array(36)),
+        message:
+          /truncated: the header says 4000 x 4000 pixels \(192000000 data bytes\), the file has 36/,
+      },
+      {
+        name: 'fewer pixels than the data holds',
+        bytes: concat(pfmSample(3, 2), new Uint8Array(12)),
+        message: /12 bytes after the 3 x 2 pixels/,
+      },
+      {
+        name: 'hexadecimal width',
+        bytes: concat(ascii('PF\n0x10 1\n-1.0\n'), new Uint8Array(192)),
+        message: /width and height must be decimal integers, got "0x10" and "1"/,
+      },
+      {
+        name: 'zero width',
+        bytes: ascii('PF\n0 1\n-1.0\n'),
+        message: /must be 1 x 1 to .*got 0 x 1/,
+      },
+      {
+        name: 'negative height',
+        bytes: ascii('PF\n1 -2\n-1.0\n'),
+        message: /decimal integers, got "1" and "-2"/,
+      },
+      {
+        name: 'scale NaN',
+        bytes: concat(ascii('PF\n1 1\nnan\n'), new Uint8Array(12)),
+        message: /the scale must be a non-zero number .*got "nan"/,
+      },
+      {
+        name: 'scale 0',
+        bytes: concat(ascii('PF\n1 1\n0\n'), new Uint8Array(12)),
+        message: /the scale must be a non-zero number/,
+      },
+      {
+        name: 'a header of a million digits',
+        bytes: ascii('PF\n' + '9'.repeat(1_000_000)),
+        message: /the header is longer than 256 bytes/,
+      },
+    ],
+    nonFinite: () => [
+      { name: 'NaN in red', bytes: pfmWithValue(NaN, 0), message: /pixel \(0, 1\) r is NaN/ },
+      {
+        name: '+Inf in blue',
+        bytes: pfmWithValue(Infinity, 5),
+        message: /pixel \(1, 1\) b is Infinity/,
+      },
+      {
+        name: '-Inf, top row',
+        bytes: pfmWithValue(-Infinity, 10),
+        message: /pixel \(0, 0\) g is -Infinity/,
+      },
+    ],
+    others: () => [
+      {
+        name: 'empty file',
+        bytes: new Uint8Array(0),
+        message: /truncated: the file ends inside its header/,
+      },
+      {
+        name: 'grayscale',
+        bytes: concat(ascii('Pf\n1 1\n-1\n'), new Uint8Array(4)),
+        message: /grayscale PFM \(Pf\) is not supported/,
+      },
+      {
+        name: 'not a PFM',
+        bytes: ascii('P6\n1 1\n255\n\u0000\u0000\u0000'),
+        message: /not a colour PFM: it starts with "P6"/,
+      },
+      {
+        name: 'escape codes in the magic',
+        bytes: ascii('\u001b[2J 1 1 -1\n'),
+        message: /it starts with "\\u001b\[2J"/,
+      },
+    ],
+  },
+  {
+    name: 'pathwise-film/1',
+    decode: (bytes) => decodeFilmFile(bytes),
+    check: (value) => {
+      const { header, film } = value as FilmFile;
+      expect(film.width).toBe(header.settings.width);
+      expect(film.rows).toBe(header.settings.height);
+      expect(film.sums.every(Number.isFinite)).toBe(true);
+      expect(film.hi.every(Number.isInteger)).toBe(true);
+      expect(film.lo.every(Number.isInteger)).toBe(true);
+    },
+    samples: () => [filmSample(2, 1), filmSample(1, 1)],
+    lyingHeaders: () => {
+      const h = filmHeader(2, 1);
+      return [
+        {
+          name: '10^6 x 10^6 pixels',
+          bytes: filmWithHeader({ ...h, settings: { ...h.settings, width: 1e6, height: 1e6 } }),
+          message: /settings.width \* settings.height must be at most 16777216 pixels/,
+        },
+        {
+          name: 'more pixels than the data holds',
+          bytes: filmWithHeader({ ...h, settings: { ...h.settings, width: 4000, height: 4000 } }),
+          message: /truncated: \d+ bytes, but a 4000×4000 film needs 1088000\d+/,
+        },
+        {
+          name: 'a header length of 2^32 - 1',
+          bytes: (() => {
+            const b = filmSample(2, 1);
+            new DataView(b.buffer).setUint32(16, 0xffffffff, true);
+            return b;
+          })(),
+          message: /header length 4294967295 is outside \[1, 1048576\]/,
+        },
+        {
+          name: 'more samples in a pixel than its ranges',
+          bytes: filmWithHeader({ ...h, ranges: [[4, 5]], stats: { ...h.stats, paths: 2 } }),
+          message: /pixel \(0, 0\) has 3 samples, more than the 1 of its ranges/,
+        },
+        {
+          name: 'stats that do not add up',
+          bytes: filmWithHeader({ ...h, stats: { ...h.stats, paths: 7 } }),
+          message: /stats do not add up/,
+        },
+        {
+          name: 'a range past the total',
+          bytes: filmWithHeader({ ...h, ranges: [[2, 9]] }),
+          message: /ranges\[0\]\[1\] must be an integer in \[3, 5\], got 9/,
+        },
+      ];
+    },
+    nonFinite: () => [
+      {
+        name: 'NaN in a high limb',
+        bytes: filmSample(2, 1, (f) => (f.hi[1] = NaN)),
+        message: /pixel \(0, 0\) channel G: invalid exact sum \(NaN/,
+      },
+      {
+        name: '+Inf in a low limb',
+        bytes: filmSample(2, 1, (f) => (f.lo[6] = Infinity)),
+        message: /pixel \(1, 0\) channel B: invalid exact sum/,
+      },
+      {
+        name: 'NaN in the header',
+        bytes: filmWithHeader(JSON.stringify(filmHeader(2, 1)).replace('"seed":7', '"seed":NaN')),
+        message: /header is not valid JSON/,
+      },
+    ],
+    others: () => [
+      {
+        name: 'a flipped payload bit',
+        bytes: (() => {
+          const b = filmSample(2, 1);
+          b[b.length - 20] ^= 1;
+          return b;
+        })(),
+        message: /checksum mismatch .* the file is corrupt/,
+      },
+      {
+        name: 'a PFM named .film',
+        bytes: pfmSample(2, 1),
+        message: /not a .film file: it does not start with "pathwise-film\/1"/,
+      },
+      {
+        name: 'a fractional limb',
+        bytes: filmSample(1, 1, (f) => (f.lo[0] = 0.5)),
+        message: /pixel \(0, 0\) channel R: invalid exact sum/,
+      },
+    ],
+  },
+];
