@@ -14,10 +14,11 @@
  *   the render stops at the same sample count whatever the thread count,
  *   timing, checkpoints or resumes — and the image is reproducible;
  * - --time SECONDS starts a round only if, at the measured seconds per
- *   pass, it ends inside the budget (whole-process wall time, counted
- *   from process start) with time left to write the output; rounds take
- *   half the remaining passes, so the pass rate is re-measured as the
- *   deadline nears. The first pass always runs;
+ *   pass (the slower of the last two rounds, plus 10%), it ends inside the
+ *   budget (whole-process wall time, counted from process start) with
+ *   time left to write the output; rounds take half the remaining passes,
+ *   so the pass rate is re-measured as the deadline nears. The first pass
+ *   always runs;
  * - --checkpoint ends rounds near each checkpoint time, then writes.
  */
 import { estimateNoise } from '../core/index.ts';
@@ -96,6 +97,8 @@ export async function runBatch(
   const every = hooks.checkpoint ? plan.checkpointEvery : undefined;
   let n = plan.from;
   let passSeconds = NaN;
+  /** The slower of the last two rounds' seconds per pass: what --time plans with. */
+  let planSeconds = NaN;
   let lastCheckpoint = t0;
   let checkpoints = 0;
   let noise = NaN;
@@ -134,8 +137,9 @@ export async function runBatch(
       if (plan.noise !== undefined) s1 = Math.min(s1, nextNoiseCheck(plan.start, n));
       if (plan.time !== undefined && Number.isFinite(passSeconds)) {
         const left = plan.time - processSeconds() - plan.reserve;
-        // 5% margin on the measured rate: rounds vary a little.
-        const fit = Math.floor(left / (passSeconds * 1.05));
+        // 10% margin on the slower of the last two rates: rounds vary, more so on a
+        // shared machine.
+        const fit = Math.floor(left / (planSeconds * 1.1));
         if (fit < 1) return { end: n, stop: 'time', passSeconds, checkpoints };
         s1 = Math.min(s1, n + Math.max(1, Math.ceil(fit / 2)));
       } else if (plan.time !== undefined) {
@@ -149,7 +153,9 @@ export async function runBatch(
       round = [n, s1];
       const start = processSeconds();
       await pool.round(n, s1);
+      const last = passSeconds;
       passSeconds = (processSeconds() - start) / (s1 - n);
+      planSeconds = Number.isFinite(last) ? Math.max(last, passSeconds) : passSeconds;
       n = s1;
       round = undefined;
       if (plan.noise !== undefined && isNoiseCheck(plan.start, n) && checkNoise()) {
