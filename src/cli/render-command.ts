@@ -91,7 +91,6 @@ export async function renderCommand(
         rejected: prior.rejected + pool.stats.rejected,
       });
     const bar = process.stderr.isTTY === true ? new ProgressBar(process.stderr) : undefined;
-    const renderStart = processSeconds();
     const pixels = settings.width * settings.height;
     const result = await runBatch(
       pool,
@@ -132,7 +131,8 @@ export async function renderCommand(
           : undefined,
       },
     );
-    const seconds = processSeconds() - renderStart;
+    // From starting the workers (compilation overlaps their start-up) to the last round's end.
+    const seconds = (performance.now() - pool.startedAt) / 1000;
     bar?.finish();
     const spp = openEnded ? result.end : total;
     // The film rejects every sample that is not finite or out of range, so this finds
@@ -155,6 +155,7 @@ export async function renderCommand(
     }
     if (args.json) {
       const stats = pool.stats;
+      const report = pool.report();
       process.stdout.write(
         JSON.stringify({
           seconds,
@@ -170,6 +171,11 @@ export async function renderCommand(
           mpaths_per_s: stats.paths / seconds / 1e6,
           msegments_per_s: stats.segments / seconds / 1e6,
           rejected_samples: stats.rejected,
+          compile_seconds: report.compileSeconds,
+          first_ready_seconds: report.firstReadySeconds,
+          last_ready_seconds: report.lastReadySeconds,
+          scene_bytes: report.sceneBytes,
+          worker_heap_mb_median: median(report.workerHeapBytes) / 2 ** 20,
           resumed_from: resumed ? resumed.end : null,
           checkpoints: result.checkpoints,
         }) + '\n',
@@ -181,6 +187,11 @@ export async function renderCommand(
     process.off('SIGINT', abandon);
     process.off('SIGTERM', abandon);
   }
+}
+
+function median(values: number[]): number {
+  const v = [...values].sort((a, b) => a - b);
+  return v.length === 0 ? NaN : v[v.length >> 1];
 }
 
 /** Pixels of the image that are not finite (none, unless the film's guard has a bug). */
