@@ -39,7 +39,7 @@ export {
   type FilmHeader,
   type FilmSettings,
 } from './film/film-file.ts';
-export { SCALE_BITS, SAMPLE_LIMIT } from './film/exact-sum.ts';
+export { SCALE_BITS, SAMPLE_LIMIT, exactValue } from './film/exact-sum.ts';
 export {
   findOverlap,
   formatRanges,
