@@ -22,6 +22,8 @@ export interface ProgressState {
   noiseTarget?: number;
   /** Samples per pixel at which `noise` was estimated. */
   noiseSpp?: number;
+  /** The render has stopped (by whichever criterion): 100%, nothing left. */
+  done?: boolean;
 }
 
 /** "0:07", "12:34", "1:02:03" */
@@ -40,6 +42,7 @@ export function formatDuration(seconds: number): string {
  * The noise criterion predicts the samples it needs from noise ∝ 1/√spp.
  */
 export function estimateProgress(p: ProgressState): { fraction: number; eta: number } {
+  if (p.done) return { fraction: 1, eta: 0 };
   // This process's rate: samples from a resumed checkpoint took no time here.
   const rate = p.elapsed > 0 && p.spp > p.sppFrom ? (p.spp - p.sppFrom) / p.elapsed : 0;
   let fraction = p.sppTarget > 0 ? p.spp / p.sppTarget : 0;
@@ -93,8 +96,12 @@ export class ProgressBar {
     this.drawn = true;
   }
 
-  /** Ends the line so later messages start on their own. */
-  finish(): void {
+  /**
+   * Draws the final state (however short the render, the bar shows once)
+   * and ends the line so later messages start on their own.
+   */
+  finish(final?: ProgressState): void {
+    if (final) this.update({ ...final, done: true });
     if (this.drawn) this.stream.write('\n');
     this.drawn = false;
   }

@@ -20,7 +20,7 @@ import { CliError } from './errors.ts';
 import { explainMismatch } from './film-compat.ts';
 import { filmIdentity, makeHeader, readFilmFile, type FilmIdentity } from './film-file.ts';
 import { OutputFile } from './output.ts';
-import { ProgressBar } from './progress.ts';
+import { ProgressBar, type ProgressState } from './progress.ts';
 import { showPath } from './read-bounded.ts';
 import { RenderPool } from './render.ts';
 
@@ -91,6 +91,17 @@ export async function renderCommand(
         rejected: prior.rejected + pool.stats.rejected,
       });
     const bar = process.stderr.isTTY === true ? new ProgressBar(process.stderr) : undefined;
+    const renderStart = processSeconds();
+    const progressState = (p: BatchProgress): ProgressState => ({
+      spp: p.at - start,
+      sppFrom: from - start,
+      sppTarget: end - start,
+      elapsed: p.elapsed,
+      timeLeft: p.timeLeft,
+      noise: p.noise,
+      noiseTarget: b.noise,
+      noiseSpp: Number.isFinite(p.noiseAt) ? p.noiseAt - start : undefined,
+    });
     const pixels = settings.width * settings.height;
     const result = await runBatch(
       pool,
@@ -116,24 +127,20 @@ export async function renderCommand(
               checkpointFile = undefined;
             }
           : undefined,
-        progress: bar
-          ? (p: BatchProgress) =>
-              bar.update({
-                spp: p.at - start,
-                sppFrom: from - start,
-                sppTarget: end - start,
-                elapsed: p.elapsed,
-                timeLeft: p.timeLeft,
-                noise: p.noise,
-                noiseTarget: b.noise,
-                noiseSpp: Number.isFinite(p.noiseAt) ? p.noiseAt! - start : undefined,
-              })
-          : undefined,
+        progress: bar ? (p: BatchProgress) => bar.update(progressState(p)) : undefined,
       },
     );
     // From starting the workers (compilation overlaps their start-up) to the last round's end.
     const seconds = (performance.now() - pool.startedAt) / 1000;
-    bar?.finish();
+    const noise = estimateNoise(pool.film);
+    bar?.finish(
+      progressState({
+        at: result.end,
+        elapsed: processSeconds() - renderStart,
+        noise,
+        noiseAt: result.end,
+      }),
+    );
     const spp = openEnded ? result.end : total;
     // The film rejects every sample that is not finite or out of range, so this finds
     // nothing; it is the guarantee that no Inf or NaN is ever written silently.
@@ -147,7 +154,6 @@ export async function renderCommand(
           `(or beyond ±2^40) and were left out\n`,
       );
     }
-    const noise = estimateNoise(pool.film);
     if (b.noise !== undefined && result.stop !== 'noise') {
       process.stderr.write(
         `pathwise: stopped by ${result.stop === 'time' ? '--time' : 'the sample count'} at ${result.end - start} spp with noise ${noise.toPrecision(3)}, above the --noise target ${b.noise}\n`,

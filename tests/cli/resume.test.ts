@@ -8,7 +8,7 @@
  * a terminal.
  */
 import { spawn, spawnSync } from 'node:child_process';
-import { existsSync, readFileSync } from 'node:fs';
+import { closeSync, existsSync, fstatSync, openSync, readFileSync, readSync } from 'node:fs';
 import { join } from 'node:path';
 import { beforeAll, describe, expect, it } from 'vitest';
 import {
@@ -21,6 +21,7 @@ import {
   writeCornell,
 } from '../helpers/batch-cli.ts';
 import { ROOT } from '../helpers/render.ts';
+import { decodeFilmHeader } from '../../src/core/index.ts';
 
 const dir = tempDir('resume');
 const at = (name: string) => join(dir, name);
@@ -30,18 +31,53 @@ beforeAll(() => {
   scene = writeCornell(dir, { width: 32, height: 24, spp: 48 });
 });
 
-/** Starts a render, kills it with SIGKILL after `ms` (if still running); resolves to its exit code (null if killed). */
-function runFor(args: string[], ms: number): Promise<{ code: number | null; stdout: string }> {
+/** Samples [0, n) held by the checkpoint at `path` now, or -1 if there is none yet. */
+function checkpointEnd(path: string): number {
+  let fd: number;
+  try {
+    fd = openSync(path, 'r');
+  } catch {
+    return -1;
+  }
+  try {
+    // The file is replaced by rename, never rewritten: the open one is whole.
+    const size = fstatSync(fd).size;
+    const prefix = Buffer.alloc(Math.min(size, 1 << 16));
+    readSync(fd, prefix, 0, prefix.length, 0);
+    const { header } = decodeFilmHeader(prefix, size);
+    return header.ranges.length > 0 ? header.ranges[0][1] : 0;
+  } finally {
+    closeSync(fd);
+  }
+}
+
+/**
+ * Starts a render and kills it with SIGKILL `delayMs` after `when` becomes
+ * true (polled every 2 ms), unless it ends first. Resolves to its exit code
+ * (null if it was killed).
+ */
+function runUntil(
+  args: string[],
+  when: () => boolean,
+  delayMs: number,
+): Promise<{ code: number | null; stdout: string }> {
   return new Promise((resolve, reject) => {
     const child = spawn(process.execPath, [BIN, ...args], { cwd: ROOT });
     let stdout = '';
     let stderr = '';
     child.stdout.on('data', (d) => (stdout += d));
     child.stderr.on('data', (d) => (stderr += d));
-    const timer = setTimeout(() => child.kill('SIGKILL'), ms);
+    let killer: NodeJS.Timeout | undefined;
+    const poll = setInterval(() => {
+      if (killer === undefined && when()) {
+        clearInterval(poll);
+        killer = setTimeout(() => child.kill('SIGKILL'), delayMs);
+      }
+    }, 2);
     child.on('error', reject);
     child.on('exit', (code) => {
-      clearTimeout(timer);
+      clearInterval(poll);
+      clearTimeout(killer);
       if (code !== null && code !== 0) reject(new Error(`exit ${code}: ${stderr}`));
       else resolve({ code, stdout });
     });
@@ -50,27 +86,12 @@ function runFor(args: string[], ms: number): Promise<{ code: number | null; stdo
 
 describe('kill and resume', () => {
   it('gives the bytes of an uninterrupted run after SIGKILL at many moments', async () => {
-    const small = writeCornell(dir, { width: 48, height: 32, spp: 64 }, 'kill.json');
-    // Wall times of a whole render and of start-up alone (a 1-spp render),
-    // so that the kills land at chosen moments of the rendering on a fast
-    // machine and on a loaded one alike.
-    const wall = (args: string[]) => {
-      const t = performance.now();
-      pathwiseOk(args);
-      return (performance.now() - t) / 1000;
-    };
-    const full = wall(['render', small, '--threads', '2', '--out', at('straight.film')]);
-    const startup = wall([
-      'render',
-      small,
-      '--threads',
-      '2',
-      '--spp',
-      '1',
-      '--out',
-      at('one.film'),
-    ]);
-    const rendering = Math.max(0.2, full - startup);
+    // 128 passes of 64×48 pixels: the kills below all come with at least 64
+    // passes left, far more than the few milliseconds between the trigger
+    // and the kill, on any machine.
+    const spp = 128;
+    const small = writeCornell(dir, { width: 64, height: 48, spp }, 'kill.json');
+    pathwiseOk(['render', small, '--threads', '2', '--out', at('straight.film')]);
     const ckpt = at('run.film');
     const args = [
       'render',
@@ -87,34 +108,38 @@ describe('kill and resume', () => {
       at('resumed.film'),
       '--json',
     ];
-    // Kill moments, as fractions of the rendering time after start-up: the
-    // first (negative) falls during start-up, before any checkpoint; the
-    // first four together are less than half the work, so they are kills
-    // for certain; later ones still let the render advance. After 16
-    // attempts the render is left to finish.
-    const fractions = [-0.5, 0.1, 0.15, 0.2, 0.3, 0.25, 0.35];
-    let kills = 0;
+    // Each kill: when it is triggered, and how long after. The first two fall
+    // during start-up, before any checkpoint; the others once the checkpoint
+    // holds at least n samples, 0–20 ms later, so they land while a round is
+    // rendering, while a checkpoint is being written, or between the two.
+    const kills: { when: () => boolean; delayMs: number }[] = [
+      { when: () => true, delayMs: 0 },
+      { when: () => true, delayMs: 40 },
+      ...[4, 8, 16, 24, 32, 40, 48, 56, 64].map((n, k) => ({
+        when: () => checkpointEnd(ckpt) >= n,
+        delayMs: [0, 3, 7, 12, 20][k % 5],
+      })),
+    ];
     let lastEnd = 0;
-    for (let attempt = 0; ; attempt++) {
-      const ms =
-        attempt < 16
-          ? 1000 * (startup + rendering * fractions[attempt % fractions.length])
-          : 600_000;
-      const r = await runFor(args, Math.max(10, ms));
-      if (r.code === 0) break;
-      kills++;
+    for (const kill of kills) {
+      const r = await runUntil(args, kill.when, kill.delayMs);
+      expect(r.code, 'the render ended before it was killed').toBeNull();
+      // Whatever the moment of the kill, the checkpoint (if any yet) is whole
+      // and holds one range from 0 that never moves backwards.
       if (existsSync(ckpt)) {
-        // Whatever the moment of the kill, the checkpoint is whole and
-        // holds one range from 0 that never moves backwards.
         const { header } = readFilm(ckpt);
         expect(header.ranges).toHaveLength(1);
         expect(header.ranges[0][0]).toBe(0);
         expect(header.ranges[0][1]).toBeGreaterThanOrEqual(lastEnd);
+        expect(header.ranges[0][1]).toBeLessThan(spp);
         lastEnd = header.ranges[0][1];
       }
     }
-    expect(kills).toBeGreaterThanOrEqual(4);
-    expect(lastEnd).toBeGreaterThan(0);
+    expect(lastEnd).toBeGreaterThanOrEqual(64);
+    // The last run is left to finish.
+    const last = await runUntil(args, () => false, 0);
+    expect(last.code).toBe(0);
+    expect(JSON.parse(last.stdout).resumed_from).toBe(lastEnd);
     expect(readFileSync(at('resumed.film')).equals(readFileSync(at('straight.film')))).toBe(true);
   });
 
@@ -166,7 +191,7 @@ describe('stop criteria', () => {
         '--checkpoint',
         at('n.ckpt.film'),
         '--checkpoint-every',
-        '0.01',
+        '0.001',
         '--out',
         at('n2.film'),
       ]).stdout,
