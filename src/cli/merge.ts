@@ -27,7 +27,7 @@ import { encodeOutput } from './encode-output.ts';
 import { CliError } from './errors.ts';
 import { explainMismatch } from './film-compat.ts';
 import { makeHeader, readFilmFile, readFilmHeader } from './film-file.ts';
-import { OutputFile } from './output.ts';
+import { Interrupts } from './interrupt.ts';
 import { showPath } from './read-bounded.ts';
 
 export async function merge(argv: string[]): Promise<void> {
@@ -80,13 +80,11 @@ export async function merge(argv: string[]): Promise<void> {
   }
   if (held === 0) throw new CliError('the parts hold no samples');
 
-  const output = await OutputFile.prepare(args.out);
-  const abandon = (signal: NodeJS.Signals) => {
-    output.discardSync();
-    process.exit(signal === 'SIGINT' ? 130 : 143);
-  };
-  process.once('SIGINT', abandon);
-  process.once('SIGTERM', abandon);
+  const interrupts = new Interrupts();
+  const output = await interrupts.prepare(args.out).catch((e) => {
+    interrupts.dispose();
+    throw e;
+  });
   try {
     // Pixels, one part at a time.
     const acc = readFilmFile(args.parts[0]);
@@ -103,8 +101,7 @@ export async function merge(argv: string[]): Promise<void> {
     report(args, header, acc.film, missing, held, total);
   } finally {
     await output.discard();
-    process.off('SIGINT', abandon);
-    process.off('SIGTERM', abandon);
+    interrupts.dispose();
   }
 }
 

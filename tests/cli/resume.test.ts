@@ -8,7 +8,16 @@
  * a terminal.
  */
 import { spawn, spawnSync } from 'node:child_process';
-import { closeSync, existsSync, fstatSync, openSync, readFileSync, readSync } from 'node:fs';
+import {
+  closeSync,
+  existsSync,
+  fstatSync,
+  mkdtempSync,
+  openSync,
+  readFileSync,
+  readSync,
+  readdirSync,
+} from 'node:fs';
 import { join } from 'node:path';
 import { beforeAll, describe, expect, it } from 'vitest';
 import {
@@ -141,6 +150,38 @@ describe('kill and resume', () => {
     expect(last.code).toBe(0);
     expect(JSON.parse(last.stdout).resumed_from).toBe(lastEnd);
     expect(readFileSync(at('resumed.film')).equals(readFileSync(at('straight.film')))).toBe(true);
+  });
+
+  it('SIGTERM while checkpointing: exit 143, the last checkpoint whole, no temporary file left', async () => {
+    const sub = mkdtempSync(join(dir, 'term-'));
+    const ckpt = join(sub, 'c.film');
+    const child = spawn(
+      process.execPath,
+      [
+        BIN,
+        'render',
+        scene,
+        '--spp',
+        '100000',
+        '--checkpoint',
+        ckpt,
+        '--checkpoint-every',
+        '0.001',
+        '--out',
+        join(sub, 'x.pfm'),
+      ],
+      { cwd: ROOT },
+    );
+    const closed = new Promise<number | null>((r) => child.on('close', r));
+    try {
+      while (checkpointEnd(ckpt) < 8) await new Promise((r) => setTimeout(r, 5));
+      child.kill('SIGTERM');
+      expect(await closed).toBe(143);
+      expect(readdirSync(sub)).toEqual(['c.film']);
+      expect(readFilm(ckpt).header.ranges[0][1]).toBeGreaterThanOrEqual(8);
+    } finally {
+      child.kill('SIGKILL');
+    }
   });
 
   it('continues any .film output to more samples', () => {
