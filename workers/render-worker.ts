@@ -7,8 +7,9 @@
  * copy of the film and commits the row under the lock only if the
  * generation is unchanged — so a reset drops stale work at row granularity
  * and no stale sample lands. Pass k+1 of a stripe waits until pass k of it
- * is done, so every pixel receives samples 0, 1, 2, … in order and the
- * image is bit-identical to the command line's.
+ * is done, so two commits of a row never overwrite each other's samples;
+ * the film's sums are exact, so the image is bit-identical to the command
+ * line's.
  *
  * Transfer mode (no SharedArrayBuffer): the main thread sends one pass of
  * one stripe with its rows of the film; the worker adds the pass and sends
@@ -182,20 +183,17 @@ function renderOneStripe(job: Job): boolean {
   const row = job.row!;
   const y0 = stripe * stripeRows;
   const y1 = Math.min(height, y0 + stripeRows);
-  const n = width * 4;
   const stamps = rowStampBase(stripes);
   for (let y = y0; y < y1; y++) {
     if (Atomics.load(ctrl, C_GEN) !== gen) return true;
     const rowFilm = new Film(width, 1, row.buffer, y);
-    rowFilm.sums.set(film.sums.subarray(y * n, y * n + n));
-    rowFilm.extra.set(film.extra.subarray(y * n, y * n + n));
+    rowFilm.copyRowsFrom(film);
     const segments = stats.segments;
     const rejected = stats.rejected;
     job.tracer.renderRow(rowFilm, y, pass, pass + 1, stats);
     lock(ctrl);
     if (ctrl[C_GEN] === gen) {
-      film.sums.set(rowFilm.sums, y * n);
-      film.extra.set(rowFilm.extra, y * n);
+      film.copyRowsFrom(rowFilm);
       ctrl[stamps + y] = ++ctrl[C_COMMITS];
     }
     ctrl[C_SEGMENTS] = (ctrl[C_SEGMENTS] + (stats.segments - segments)) | 0;

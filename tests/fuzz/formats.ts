@@ -12,7 +12,17 @@
  * To add a format (OBJ, PLY, HDR, glTF/GLB, .film), append one entry: see README.md here.
  */
 import { expect } from 'vitest';
-import { decodePfm, encodePfm, type PfmImage } from '../../src/core/index.ts';
+import {
+  Film,
+  crc32,
+  decodeFilmFile,
+  decodePfm,
+  encodeFilmFile,
+  encodePfm,
+  type FilmFile,
+  type FilmHeader,
+  type PfmImage,
+} from '../../src/core/index.ts';
 
 export interface FormatEntry {
   /** As the decoder's FormatError names it (error.format), e.g. "PFM". */
@@ -62,6 +72,49 @@ function pfmWithValue(value: number, index: number): Uint8Array {
   const header = 'PF\n3 2\n-1.0\n'.length;
   new DataView(bytes.buffer).setFloat32(header + index * 4, value, true);
   return bytes;
+}
+
+/** A small `.film` (pathwise-film/1): `width`×`height`, samples [2, 5) of a 5-spp render. */
+function filmSample(width: number, height: number, spoil?: (f: Film) => void): Uint8Array {
+  const film = new Film(width, height);
+  for (let s = 2; s < 5; s++)
+    for (let y = 0; y < height; y++)
+      for (let x = 0; x < width; x++) film.addSample(x, y, 0.25 * s + x, y * 1e-3, 1e4 * s);
+  spoil?.(film);
+  return encodeFilmFile(filmHeader(width, height), film);
+}
+
+function filmHeader(width: number, height: number): FilmHeader {
+  return {
+    format: 'pathwise-film/1',
+    renderer: 'pathwise 0.1.0',
+    scene_sha256: '0'.repeat(64),
+    settings: { width, height, maxBounces: 4, seed: 7, sampler: 'sobol', estimator: 'nee-mis' },
+    key: '1'.repeat(64),
+    scale_bits: 40,
+    spp: 5,
+    ranges: [[2, 5]],
+    stats: { paths: width * height * 3, segments: 0, rejected: 0 },
+  };
+}
+
+/**
+ * A valid-looking `.film` with another header (an object, or raw text), the checksum
+ * recomputed so that only the header lies.
+ */
+function filmWithHeader(header: unknown, payloadOf = filmSample(2, 1)): Uint8Array {
+  const view = new DataView(payloadOf.buffer, payloadOf.byteOffset);
+  const oldLength = view.getUint32(16, true);
+  const payload = payloadOf.subarray(Math.ceil((20 + oldLength) / 8) * 8, payloadOf.length - 4);
+  const json = ascii(typeof header === 'string' ? header : JSON.stringify(header));
+  const start = Math.ceil((20 + json.length) / 8) * 8;
+  const out = new Uint8Array(start + payload.length + 4);
+  out.set(ascii('pathwise-film/1\n'));
+  new DataView(out.buffer).setUint32(16, json.length, true);
+  out.set(json, 20);
+  out.set(payload, start);
+  new DataView(out.buffer).setUint32(out.length - 4, crc32(out.subarray(0, out.length - 4)), true);
+  return out;
 }
 
 export const FORMATS: FormatEntry[] = [
@@ -157,6 +210,96 @@ export const FORMATS: FormatEntry[] = [
         name: 'escape codes in the magic',
         bytes: ascii('\u001b[2J 1 1 -1\n'),
         message: /it starts with "\\u001b\[2J"/,
+      },
+    ],
+  },
+  {
+    name: 'pathwise-film/1',
+    decode: (bytes) => decodeFilmFile(bytes),
+    check: (value) => {
+      const { header, film } = value as FilmFile;
+      expect(film.width).toBe(header.settings.width);
+      expect(film.rows).toBe(header.settings.height);
+      expect(film.sums.every(Number.isFinite)).toBe(true);
+      expect(film.hi.every(Number.isInteger)).toBe(true);
+      expect(film.lo.every(Number.isInteger)).toBe(true);
+    },
+    samples: () => [filmSample(2, 1), filmSample(1, 1)],
+    lyingHeaders: () => {
+      const h = filmHeader(2, 1);
+      return [
+        {
+          name: '10^6 x 10^6 pixels',
+          bytes: filmWithHeader({ ...h, settings: { ...h.settings, width: 1e6, height: 1e6 } }),
+          message: /settings.width \* settings.height must be at most 16777216 pixels/,
+        },
+        {
+          name: 'more pixels than the data holds',
+          bytes: filmWithHeader({ ...h, settings: { ...h.settings, width: 4000, height: 4000 } }),
+          message: /truncated: \d+ bytes, but a 4000×4000 film needs 1088000\d+/,
+        },
+        {
+          name: 'a header length of 2^32 - 1',
+          bytes: (() => {
+            const b = filmSample(2, 1);
+            new DataView(b.buffer).setUint32(16, 0xffffffff, true);
+            return b;
+          })(),
+          message: /header length 4294967295 is outside \[1, 1048576\]/,
+        },
+        {
+          name: 'more samples in a pixel than its ranges',
+          bytes: filmWithHeader({ ...h, ranges: [[4, 5]], stats: { ...h.stats, paths: 2 } }),
+          message: /pixel \(0, 0\) has 3 samples, more than the 1 of its ranges/,
+        },
+        {
+          name: 'stats that do not add up',
+          bytes: filmWithHeader({ ...h, stats: { ...h.stats, paths: 7 } }),
+          message: /stats do not add up/,
+        },
+        {
+          name: 'a range past the total',
+          bytes: filmWithHeader({ ...h, ranges: [[2, 9]] }),
+          message: /ranges\[0\]\[1\] must be an integer in \[3, 5\], got 9/,
+        },
+      ];
+    },
+    nonFinite: () => [
+      {
+        name: 'NaN in a high limb',
+        bytes: filmSample(2, 1, (f) => (f.hi[1] = NaN)),
+        message: /pixel \(0, 0\) channel G: invalid exact sum \(NaN/,
+      },
+      {
+        name: '+Inf in a low limb',
+        bytes: filmSample(2, 1, (f) => (f.lo[6] = Infinity)),
+        message: /pixel \(1, 0\) channel B: invalid exact sum/,
+      },
+      {
+        name: 'NaN in the header',
+        bytes: filmWithHeader(JSON.stringify(filmHeader(2, 1)).replace('"seed":7', '"seed":NaN')),
+        message: /header is not valid JSON/,
+      },
+    ],
+    others: () => [
+      {
+        name: 'a flipped payload bit',
+        bytes: (() => {
+          const b = filmSample(2, 1);
+          b[b.length - 20] ^= 1;
+          return b;
+        })(),
+        message: /checksum mismatch .* the file is corrupt/,
+      },
+      {
+        name: 'a PFM named .film',
+        bytes: pfmSample(2, 1),
+        message: /not a .film file: it does not start with "pathwise-film\/1"/,
+      },
+      {
+        name: 'a fractional limb',
+        bytes: filmSample(1, 1, (f) => (f.lo[0] = 0.5)),
+        message: /pixel \(0, 0\) channel R: invalid exact sum/,
       },
     ],
   },
