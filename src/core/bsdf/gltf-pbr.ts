@@ -110,34 +110,21 @@ function selectLobes(sp: ShadingParams, cosO: number): boolean {
 /**
  * f and the mixture pdf of the non-delta lobes for wo, wi on the same side,
  * in the frame where both have z > 0 (`inside` says whether that frame is
- * mirrored, i.e. the path is inside a transmissive solid). Needs
- * selectLobes(sp, oz) first.
+ * mirrored, i.e. the path is inside a transmissive solid), with h their
+ * half vector. Needs selectLobes(sp, oz) first.
  */
 function evalReflection(
   sp: ShadingParams,
   wox: number,
   woy: number,
   oz: number,
-  wix: number,
-  wiy: number,
   iz: number,
+  hx: number,
+  hy: number,
+  hz: number,
   inside: boolean,
   out: BsdfValue,
 ): void {
-  let hx = wox + wix;
-  let hy = woy + wiy;
-  let hz = oz + iz;
-  const hl = Math.sqrt(hx * hx + hy * hy + hz * hz);
-  if (hl === 0) {
-    out.r = 0;
-    out.g = 0;
-    out.b = 0;
-    out.pdf = 0;
-    return;
-  }
-  hx /= hl;
-  hy /= hl;
-  hz /= hl;
   const c = Math.max(0, wox * hx + woy * hy + oz * hz);
   const metallic = sp.metallic;
   const t = sp.transmission;
@@ -191,7 +178,13 @@ export function gltfEval(sp: ShadingParams, q: BsdfQuery, out: BsdfValue): void 
     out.pdf = 0;
     return;
   }
-  evalReflection(sp, q.wox, q.woy, oz, q.wix, q.wiy, iz, inside, out);
+  const wox = q.wox,
+    woy = q.woy;
+  const hx = wox + q.wix;
+  const hy = woy + q.wiy;
+  const hz = oz + iz;
+  const inv = 1 / Math.sqrt(hx * hx + hy * hy + hz * hz);
+  evalReflection(sp, wox, woy, oz, iz, hx * inv, hy * inv, hz * inv, inside, out);
 }
 
 const PDF_VALUE = { r: 0, g: 0, b: 0, pdf: 0 };
@@ -222,11 +215,22 @@ export function gltfSample(sp: ShadingParams, q: BsdfQuery, out: BsdfSample): bo
   const eta = inside ? 1 / sp.ior : sp.ior;
   out.etaScale = 1;
   let wix: number, wiy: number, iz: number;
+  // The half vector: computed for a diffuse sample, the sampled microfacet
+  // normal for a reflection (the same in exact arithmetic, and then the pdf
+  // is exactly the density the sampler drew m with).
+  let hx: number, hy: number, hz: number;
   if (u < lobe.diffuse || (lobe.reflect === 0 && lobe.glass === 0)) {
     squareToCosineHemisphere(q.u0, q.u1, W);
     wix = W.x;
     wiy = W.y;
     iz = W.z;
+    hx = wox + wix;
+    hy = woy + wiy;
+    hz = oz + iz;
+    const inv = 1 / Math.sqrt(hx * hx + hy * hy + hz * hz);
+    hx *= inv;
+    hy *= inv;
+    hz *= inv;
   } else if (alpha === 0) {
     // Smooth: metal, specular layer and glass reflection share the mirror direction.
     const fd = lobe.glass > 0 ? fresnelDielectric(oz, eta) : 0;
@@ -265,10 +269,13 @@ export function gltfSample(sp: ShadingParams, q: BsdfQuery, out: BsdfSample): bo
     wix = 2 * c * M.x - wox;
     wiy = 2 * c * M.y - woy;
     iz = 2 * c * M.z - oz;
+    hx = M.x;
+    hy = M.y;
+    hz = M.z;
   }
   if (!(iz > 0)) return false;
   const fv = PDF_VALUE;
-  evalReflection(sp, wox, woy, oz, wix, wiy, iz, inside, fv);
+  evalReflection(sp, wox, woy, oz, iz, hx, hy, hz, inside, fv);
   if (!(fv.pdf > 0)) return false;
   const k = iz / fv.pdf;
   out.weightR = fv.r * k;
