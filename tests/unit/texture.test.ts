@@ -205,14 +205,14 @@ describe('decoding PNG and JPEG in Node', () => {
 
   it('names the image and the problem for broken data', async () => {
     const png = encodePng({ width: 2, height: 2, data: new Uint8Array(16), channels: 4, depth: 8 }); // prettier-ignore
-    await expect(decodeImageJs(png.subarray(0, 20), 'images[1]')).rejects.toThrow(
-      /images\[1\]: PNG without an IHDR header/,
+    await expect(decodeImageJs(png.subarray(0, 20))).rejects.toThrow(
+      /^PNG without an IHDR header/,
     );
-    await expect(decodeImageJs(png.subarray(0, png.length - 20), 'images[1]')).rejects.toThrow(
-      /images\[1\]: cannot decode image\/png/,
+    await expect(decodeImageJs(png.subarray(0, png.length - 20))).rejects.toThrow(
+      /^cannot decode image\/png/,
     );
-    await expect(decodeImageJs(Uint8Array.of(1, 2, 3, 4), 'images[2]')).rejects.toThrow(
-      /images\[2\]: not a PNG or JPEG image/,
+    await expect(decodeImageJs(Uint8Array.of(1, 2, 3, 4))).rejects.toThrow(
+      /^not a PNG or JPEG image/,
     );
     // A tiny PNG claiming a huge size: its header is read before any decoding.
     const huge = png.slice();

@@ -71,13 +71,13 @@ export function decodeJpegBytes(bytes: Uint8Array): DecodedImage {
 
 /**
  * The ImageDecoder of Node: the format is taken from the bytes (glTF's
- * mimeType is only a hint). Errors name `what`.
+ * mimeType is only a hint). The caller prefixes errors with the image's name.
  */
-export async function decodeImageJs(bytes: Uint8Array, what = 'image'): Promise<DecodedImage> {
-  const { mimeType } = readImageInfo(bytes, what);
+export async function decodeImageJs(bytes: Uint8Array, _mimeType = ''): Promise<DecodedImage> {
+  const { mimeType } = readImageInfo(bytes);
   try {
     return mimeType === 'image/png' ? decodePngBytes(bytes) : decodeJpegBytes(bytes);
   } catch (e) {
-    throw new Error(`${what}: cannot decode ${mimeType}: ${(e as Error).message}`);
+    throw new Error(`cannot decode ${mimeType}: ${(e as Error).message}`);
   }
 }

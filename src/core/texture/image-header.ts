@@ -22,13 +22,19 @@ export function sniffImageType(bytes: Uint8Array): 'image/png' | 'image/jpeg' | 
   return null;
 }
 
-/** Size and format of a PNG or JPEG; throws a clear error when the header is broken. */
-export function readImageInfo(bytes: Uint8Array, what: string): ImageInfo {
+/**
+ * Size and format of a PNG or JPEG; throws a clear error, prefixed by `what`
+ * when given, when the header is broken.
+ */
+export function readImageInfo(bytes: Uint8Array, what = ''): ImageInfo {
+  const fail = (message: string): never => {
+    throw new Error(what === '' ? message : `${what}: ${message}`);
+  };
   const type = sniffImageType(bytes);
   if (type === 'image/png') {
     // Signature, then the IHDR chunk: length (4), "IHDR", width, height.
     if (bytes.length < 24 || String.fromCharCode(...bytes.subarray(12, 16)) !== 'IHDR') {
-      throw new Error(`${what}: PNG without an IHDR header (truncated?)`);
+      fail(`PNG without an IHDR header (truncated?)`);
     }
     const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
     return { mimeType: type, width: view.getUint32(16), height: view.getUint32(20) };
@@ -36,7 +42,7 @@ export function readImageInfo(bytes: Uint8Array, what: string): ImageInfo {
   if (type === 'image/jpeg') {
     let p = 2;
     while (p + 4 <= bytes.length) {
-      if (bytes[p] !== 0xff) throw new Error(`${what}: corrupt JPEG marker at byte ${p}`);
+      if (bytes[p] !== 0xff) fail(`corrupt JPEG marker at byte ${p}`);
       const marker = bytes[p + 1];
       if (marker === 0xff) {
         p++; // fill byte
@@ -56,10 +62,10 @@ export function readImageInfo(bytes: Uint8Array, what: string): ImageInfo {
         const width = (bytes[p + 7] << 8) | bytes[p + 8];
         return { mimeType: type, width, height };
       }
-      if (length < 2) throw new Error(`${what}: corrupt JPEG segment length at byte ${p}`);
+      if (length < 2) fail(`corrupt JPEG segment length at byte ${p}`);
       p += 2 + length;
     }
-    throw new Error(`${what}: JPEG without a frame header (truncated?)`);
+    fail(`JPEG without a frame header (truncated?)`);
   }
-  throw new Error(`${what}: not a PNG or JPEG image (unrecognised signature)`);
+  return fail(`not a PNG or JPEG image (unrecognised signature)`);
 }
