@@ -78,7 +78,8 @@ export function det3(m: Mat4): number {
 /**
  * The normal matrix: the inverse transpose of the upper 3×3, as 9 numbers,
  * column-major (pbr-book 4e §3.10.1). Its scale is irrelevant (normals are
- * renormalised), so the adjugate is used and no division can fail.
+ * renormalised), so the cofactor matrix (det · inverse transpose) is used,
+ * times the sign of det, and no division can fail.
  */
 export function normalMatrix(m: Mat4): Float64Array {
   const a = m[0],
@@ -90,8 +91,9 @@ export function normalMatrix(m: Mat4): Float64Array {
   const g = m[2],
     h = m[6],
     i = m[10];
+  const s = det3(m) < 0 ? -1 : 1;
   // Cofactor matrix of the 3×3 (= det · inverse transpose), column-major.
-  return Float64Array.of(
+  const out = Float64Array.of(
     e * i - f * h,
     -(d * i - f * g),
     d * h - e * g,
@@ -102,4 +104,6 @@ export function normalMatrix(m: Mat4): Float64Array {
     -(a * f - c * d),
     a * e - b * d,
   );
+  for (let k = 0; k < 9; k++) out[k] *= s;
+  return out;
 }
