@@ -7,22 +7,27 @@ import { readFile, stat } from 'node:fs/promises';
 import { createRequire } from 'node:module';
 import path from 'node:path';
 import type { GltfLoadOptions } from '../core/gltf/load.ts';
+import { createMikkTSpace } from '../core/gltf/mikktspace-wasm.ts';
 import type { TangentGenerator } from '../core/gltf/tangents.ts';
 import { decodeImageJs } from '../core/texture/decode-js.ts';
 
-let mikktspace: TangentGenerator | null = null;
+let mikktspace: Promise<TangentGenerator> | null = null;
 
-/** MikkTSpace (the reference C implementation compiled to WebAssembly, by glTF-Transform's author). */
-export function nodeTangentGenerator(): TangentGenerator {
+/**
+ * MikkTSpace: the `mikktspace` package's WebAssembly (the reference C
+ * implementation) through the core's own loader, as in the browser.
+ */
+export function nodeTangentGenerator(): Promise<TangentGenerator> {
   if (mikktspace === null) {
     const require = createRequire(import.meta.url);
-    mikktspace = (require('mikktspace') as { generateTangents: TangentGenerator }).generateTangents;
+    const file = require.resolve('mikktspace/dist/module/mikktspace_module_bg.wasm');
+    mikktspace = readFile(file).then((b) => createMikkTSpace(new Uint8Array(b)));
   }
   return mikktspace;
 }
 
 /** Loader options for a model whose relative paths resolve against `baseDir`. */
-export function nodeGltfOptions(baseDir: string): GltfLoadOptions {
+export async function nodeGltfOptions(baseDir: string): Promise<GltfLoadOptions> {
   return {
     reader: {
       async read(file: string, maxBytes: number): Promise<Uint8Array> {
@@ -34,6 +39,6 @@ export function nodeGltfOptions(baseDir: string): GltfLoadOptions {
       },
     },
     decodeImage: decodeImageJs,
-    generateTangents: nodeTangentGenerator(),
+    generateTangents: await nodeTangentGenerator(),
   };
 }

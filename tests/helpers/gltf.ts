@@ -31,7 +31,9 @@ export async function toGltfFiles(
   return files;
 }
 
-export function memoryOptions(files: Map<string, Uint8Array> = new Map()): GltfLoadOptions {
+export async function memoryOptions(
+  files: Map<string, Uint8Array> = new Map(),
+): Promise<GltfLoadOptions> {
   return {
     reader: {
       async read(path: string, maxBytes: number): Promise<Uint8Array> {
@@ -42,7 +44,7 @@ export function memoryOptions(files: Map<string, Uint8Array> = new Map()): GltfL
       },
     },
     decodeImage: decodeImageJs,
-    generateTangents: nodeTangentGenerator(),
+    generateTangents: await nodeTangentGenerator(),
   };
 }
 
@@ -50,7 +52,7 @@ export async function loadGlb(
   doc: Document,
   options?: Partial<GltfLoadOptions>,
 ): Promise<GltfModel> {
-  return loadGltf(await toGlb(doc), 'model.glb', { ...memoryOptions(), ...options });
+  return loadGltf(await toGlb(doc), 'model.glb', { ...(await memoryOptions()), ...options });
 }
 
 /** A w×h RGBA PNG whose texel (x, y) is f(x, y). */

@@ -180,7 +180,7 @@ describe('glTF files with external resources', () => {
     doc.getRoot().listMeshes()[0].listPrimitives()[0].setMaterial(mat);
     const files = await toGltfFiles(doc, 'quad', 'models/');
     expect([...files.keys()].sort()).toEqual(['models/data files/quad.bin', 'models/quad.gltf', 'models/tex/red.png']); // prettier-ignore
-    const m = await loadGltf(files.get('models/quad.gltf')!, 'models/quad.gltf', memoryOptions(files)); // prettier-ignore
+    const m = await loadGltf(files.get('models/quad.gltf')!, 'models/quad.gltf', await memoryOptions(files)); // prettier-ignore
     expect(m.indices.length).toBe(6);
     expect(m.textures.info.length).toBe(3);
     expect(m.textures.texels[0]).toBe(65535);
@@ -192,7 +192,7 @@ describe('glTF files with external resources', () => {
     const json = JSON.parse(new TextDecoder().decode(files.get('quad.gltf')!));
     const bin = files.get(json.buffers[0].uri)!;
     json.buffers[0].uri = 'data:application/octet-stream;base64,' + Buffer.from(bin).toString('base64'); // prettier-ignore
-    const m = await loadGltf(new TextEncoder().encode(JSON.stringify(json)), 'quad.gltf', memoryOptions()); // prettier-ignore
+    const m = await loadGltf(new TextEncoder().encode(JSON.stringify(json)), 'quad.gltf', await memoryOptions()); // prettier-ignore
     close(m.positions, [0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0]);
   });
 });

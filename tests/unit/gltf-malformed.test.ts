@@ -61,7 +61,7 @@ async function expectError(
   // prettier-ignore
   let error: unknown = null;
   try {
-    await loadGltf(bytes, 'bad.glb', memoryOptions(files));
+    await loadGltf(bytes, 'bad.glb', await memoryOptions(files));
   } catch (e) {
     error = e;
   }
@@ -85,7 +85,7 @@ async function mutated(
 describe('malformed GLB containers', () => {
   it('the valid base file loads', async () => {
     const { json, bin } = await parts();
-    const m = await loadGltf(makeGlb(json, bin), 'ok.glb', memoryOptions());
+    const m = await loadGltf(makeGlb(json, bin), 'ok.glb', await memoryOptions());
     expect(m.indices.length).toBe(6);
   });
 

@@ -186,8 +186,10 @@ export function flattenGltf(
     if (hasTexture(table, material, TEX_NORMAL) && prim.getAttribute('TANGENT') === null) {
       const set = table[material * GM_STRIDE + GM_TEXTURES + TEX_NORMAL * BINDING_STRIDE + B_TEXCOORD]; // prettier-ignore
       const uv = prim.getAttribute(`TEXCOORD_${set}`);
-      if (uv === null) warn(`${where}: its material has a normal map but the primitive has no TEXCOORD_${set}; the normal map is ignored here`); // prettier-ignore
-      else if (generateTangents === null) warn(`${where}: no tangent generator was given; the normal map is ignored here`); // prettier-ignore
+      if (uv === null)
+        warn(`${where}: its material has a normal map but the primitive has no TEXCOORD_${set}; the normal map is ignored here`); // prettier-ignore
+      else if (generateTangents === null)
+        warn(`${where}: no tangent generator was given; the normal map is ignored here`); // prettier-ignore
       else {
         // MikkTSpace needs unwelded triangles: one output vertex per corner.
         plan.source = triangles;

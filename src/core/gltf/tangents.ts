@@ -77,7 +77,7 @@ export function generatePrimitiveTangents(
   try {
     out = generate(p, q, t);
   } catch (e) {
-    throw new GltfError(`${where}: tangent generation failed: ${(e as Error).message}`);
+    throw new GltfError(`${where}: tangent generation failed: ${e instanceof Error ? e.message : String(e)}`); // prettier-ignore
   }
   if (out.length !== 4 * n) {
     throw new GltfError(`${where}: tangent generator returned ${out.length} values for ${n} corners`); // prettier-ignore

@@ -58,7 +58,14 @@ function list(json: Json, key: string, path = key): Json[] {
   return v as Json[];
 }
 
-function integer(o: Json, key: string, path: string, min: number, max = Number.MAX_SAFE_INTEGER): number | undefined { // prettier-ignore
+function integer(
+  o: Json,
+  key: string,
+  path: string,
+  min: number,
+  max = Number.MAX_SAFE_INTEGER,
+): number | undefined {
+  // prettier-ignore
   const v = o[key];
   if (v === undefined) return undefined;
   if (typeof v !== 'number' || !Number.isInteger(v) || v < min || v > max) {
@@ -85,7 +92,12 @@ function index(o: Json, key: string, path: string, n: number, what: string): num
 function finiteArray(o: Json, key: string, path: string, length: number): void {
   const v = o[key];
   if (v === undefined) return;
-  if (!Array.isArray(v) || v.length !== length || !v.every((x) => typeof x === 'number' && Number.isFinite(x))) { // prettier-ignore
+  if (
+    !Array.isArray(v) ||
+    v.length !== length ||
+    !v.every((x) => typeof x === 'number' && Number.isFinite(x))
+  ) {
+    // prettier-ignore
     fail(`${path}.${key}`, `must be ${length} finite numbers`);
   }
 }
@@ -161,7 +173,8 @@ export function validateGltfJson(json: unknown): GltfSummary {
   images.forEach((im, i) => {
     const p = `images[${i}]`;
     const view = index(im, 'bufferView', p, views.length, 'bufferViews');
-    if (view === undefined && typeof im.uri !== 'string') fail(p, 'has neither a uri nor a bufferView');
+    if (view === undefined && typeof im.uri !== 'string')
+      fail(p, 'has neither a uri nor a bufferView');
   });
   samplers.forEach((s, i) => {
     for (const k of ['wrapS', 'wrapT']) {
@@ -271,7 +284,14 @@ export function primitiveTriangles(pr: Json, accessors: Json[]): number {
   return 0;
 }
 
-function countTriangles(json: Json, scene: Json, nodes: Json[], meshes: Json[], accessors: Json[]): number { // prettier-ignore
+function countTriangles(
+  json: Json,
+  scene: Json,
+  nodes: Json[],
+  meshes: Json[],
+  accessors: Json[],
+): number {
+  // prettier-ignore
   const perMesh = meshes.map((m) =>
     (m.primitives as Json[]).reduce((s, pr) => s + primitiveTriangles(pr, accessors), 0),
   );
@@ -311,7 +331,16 @@ export function validateGltfBuffers(json: Json, bufferBytes: number[]): void {
       fail(`bufferViews[${i}]`, `ends at byte ${end}, past the end of buffers[${b}] (${buffers[b].byteLength as number} bytes)`); // prettier-ignore
     }
   });
-  const range = (p: string, viewIndex: number, offset: number, count: number, element: number, stride: number, align: number): void => { // prettier-ignore
+  const range = (
+    p: string,
+    viewIndex: number,
+    offset: number,
+    count: number,
+    element: number,
+    stride: number,
+    align: number,
+  ): void => {
+    // prettier-ignore
     const v = views[viewIndex];
     const end = offset + stride * (count - 1) + element;
     if (end > (v.byteLength as number)) {
