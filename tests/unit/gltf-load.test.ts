@@ -329,9 +329,15 @@ describe('glTF materials and textures', () => {
       .setMimeType('image/webp');
     const mat = doc.createMaterial().setExtension('KHR_materials_clearcoat', cc).setBaseColorTexture(tex); // prettier-ignore
     doc.getRoot().listMeshes()[0].listPrimitives()[0].setMaterial(mat);
+    // A skin and a morph target: rendered in the rest pose.
+    const prim = doc.getRoot().listMeshes()[0].listPrimitives()[0];
+    doc.createSkin().addJoint(doc.getRoot().listNodes()[0]);
+    prim.addTarget(doc.createPrimitiveTarget().setAttribute('POSITION', prim.getAttribute('POSITION'))); // prettier-ignore
     const m = await loadGlb(doc);
     expect(m.warnings).toEqual([
       'extension "KHR_materials_clearcoat" is not supported; its content is ignored',
+      '1 skin(s) ignored: the model is rendered in its rest pose',
+      'morph targets ignored: the model is rendered in its rest pose',
       'images[0] (materials[0].baseColorTexture): image/webp is not PNG or JPEG; the texture is ignored',
     ]);
     expect(m.textures.info.length).toBe(0);

@@ -121,6 +121,19 @@ export async function loadGltf(
     }
   }
 
+  const count = (key: string): number => ((json[key] as unknown[] | undefined) ?? []).length;
+  if (count('animations') > 0) warn(`${count('animations')} animation(s) ignored: the model is rendered in its rest pose`); // prettier-ignore
+  if (count('skins') > 0) warn(`${count('skins')} skin(s) ignored: the model is rendered in its rest pose`); // prettier-ignore
+  const meshes = (json.meshes as Record<string, unknown>[] | undefined) ?? [];
+  if (
+    meshes.some((m) =>
+      (m.primitives as Record<string, unknown>[]).some((p) => p.targets !== undefined),
+    )
+  ) {
+    // prettier-ignore
+    warn('morph targets ignored: the model is rendered in its rest pose');
+  }
+
   // Resources: the GLB chunk, data URIs, files beside the model.
   const resources: Record<string, Uint8Array> = {};
   const buffers = (json.buffers as Record<string, unknown>[] | undefined) ?? [];
