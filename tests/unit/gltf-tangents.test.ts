@@ -6,7 +6,7 @@
 import { createRequire } from 'node:module';
 import { describe, expect, it } from 'vitest';
 import { nodeTangentGenerator } from '../../src/cli/gltf-node.ts';
-import type { TangentGenerator } from '../../src/core/gltf/tangents.ts';
+import { type TangentGenerator, weldCorners } from '../../src/core/gltf/tangents.ts';
 import { hashToUnit, sampleKey } from '../../src/core/rng/pcg.ts';
 
 describe('MikkTSpace loader', () => {
@@ -33,5 +33,20 @@ describe('MikkTSpace loader', () => {
     const empty = new Float32Array(0);
     expect(() => theirs(empty, empty, empty)).toThrow('Failed to generate tangents.');
     expect(() => ours(empty, empty, empty)).toThrow('Failed to generate tangents.');
+  });
+});
+
+describe('welding MikkTSpace corners', () => {
+  it('shares a vertex among corners with identical tangents and splits it at seams', () => {
+    const corners = Uint32Array.of(0, 1, 2, 0, 2, 3);
+    const a = [1, 0, 0, 1];
+    const b = [0, 1, 0, -1];
+    // Corner 3 (vertex 0 again) has another tangent: a seam.
+    const tangents = Float32Array.from([a, a, a, b, a, a].flat());
+    const w = weldCorners(corners, tangents, 4);
+    expect(Array.from(w.source)).toEqual([0, 1, 2, 0, 3]);
+    expect(Array.from(w.triangles)).toEqual([0, 1, 2, 3, 2, 4]);
+    expect(Array.from(w.tangents.subarray(12, 16))).toEqual(b);
+    expect(w.tangents.length).toBe(20);
   });
 });

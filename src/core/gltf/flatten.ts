@@ -21,7 +21,7 @@ import type { Document, Mesh, Primitive } from '@gltf-transform/core';
 import { readFloats, readIndices } from './accessors.ts';
 import { GltfError } from './errors.ts';
 import { GM_STRIDE, GM_TEXTURES, BINDING_STRIDE, B_TEXCOORD, TEX_NORMAL, hasTexture } from './material-table.ts'; // prettier-ignore
-import { generatePrimitiveTangents, type TangentGenerator } from './tangents.ts';
+import { generatePrimitiveTangents, type TangentGenerator, weldCorners } from './tangents.ts';
 import { det3, identity, type Mat4, multiply, nodeMatrix, normalMatrix } from './transforms.ts';
 import { MODE_TRIANGLE_FAN, MODE_TRIANGLE_STRIP, MODE_TRIANGLES } from './validate.ts';
 
@@ -191,11 +191,13 @@ export function flattenGltf(
       else if (generateTangents === null)
         warn(`${where}: no tangent generator was given; the normal map is ignored here`); // prettier-ignore
       else {
-        // MikkTSpace needs unwelded triangles: one output vertex per corner.
-        plan.source = triangles;
-        plan.triangles = new Uint32Array(triangles.length).map((_, k) => k);
-        plan.vertexCount = triangles.length;
-        plan.generatedTangents = generatePrimitiveTangents(prim, triangles, readFloats(uv), generateTangents, where); // prettier-ignore
+        // MikkTSpace works on unwelded corners; weld the result back.
+        const corner = generatePrimitiveTangents(prim, triangles, readFloats(uv), generateTangents, where); // prettier-ignore
+        const welded = weldCorners(triangles, corner, pos.getCount());
+        plan.source = welded.source;
+        plan.triangles = welded.triangles;
+        plan.vertexCount = welded.source.length;
+        plan.generatedTangents = welded.tangents;
       }
     }
     return plan;

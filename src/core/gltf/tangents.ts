@@ -87,3 +87,59 @@ export function generatePrimitiveTangents(
   for (let k = 3; k < out.length; k += 4) out[k] = -out[k];
   return out;
 }
+
+export interface WeldedCorners {
+  /** Output vertex → vertex of the primitive. */
+  source: Uint32Array;
+  /** Corner → output vertex. */
+  triangles: Uint32Array;
+  /** 4 per output vertex. */
+  tangents: Float32Array;
+}
+
+/**
+ * Welds the corners MikkTSpace saw unwelded back into vertices: corners of
+ * the same primitive vertex with bit-identical tangents share one output
+ * vertex (MikkTSpace gives shared vertices identical tangents except across
+ * UV seams and mirrored halves, which stay split). Keeps the vertex count
+ * near the file's instead of three per triangle.
+ */
+export function weldCorners(
+  corners: Uint32Array,
+  cornerTangents: Float32Array,
+  vertexCount: number,
+): WeldedCorners {
+  const n = corners.length;
+  const head = new Int32Array(vertexCount).fill(-1);
+  const next = new Int32Array(n);
+  const source = new Uint32Array(n);
+  const tangents = new Float32Array(4 * n);
+  const triangles = new Uint32Array(n);
+  let count = 0;
+  for (let k = 0; k < n; k++) {
+    const v = corners[k];
+    const o = 4 * k;
+    let w = head[v];
+    while (w >= 0) {
+      const p = 4 * w;
+      if (
+        tangents[p] === cornerTangents[o] &&
+        tangents[p + 1] === cornerTangents[o + 1] &&
+        tangents[p + 2] === cornerTangents[o + 2] &&
+        tangents[p + 3] === cornerTangents[o + 3]
+      ) {
+        break;
+      }
+      w = next[w];
+    }
+    if (w < 0) {
+      w = count++;
+      source[w] = v;
+      tangents.set(cornerTangents.subarray(o, o + 4), 4 * w);
+      next[w] = head[v];
+      head[v] = w;
+    }
+    triangles[k] = w;
+  }
+  return { source: source.slice(0, count), triangles, tangents: tangents.slice(0, 4 * count) };
+}
