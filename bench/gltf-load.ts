@@ -55,21 +55,42 @@ function grid(): Document {
   if (textured) {
     const size = 2048;
     const data = new Uint8Array(size * size * 4);
-    for (let p = 0; p < size * size; p++) data.set([(p * 7) & 255, (p >> 11) & 255, 128, 255], 4 * p); // prettier-ignore
+    for (let p = 0; p < size * size; p++)
+      data.set([(p * 7) & 255, (p >> 11) & 255, 128, 255], 4 * p);
     const image = encodePng({ width: size, height: size, data, channels: 4, depth: 8 });
-    const normal = encodePng({ width: 4, height: 4, data: new Uint8Array(64).fill(200), channels: 4, depth: 8 }); // prettier-ignore
+    const normal = encodePng({
+      width: 4,
+      height: 4,
+      data: new Uint8Array(64).fill(200),
+      channels: 4,
+      depth: 8,
+    });
     const mat = doc
       .createMaterial()
       .setBaseColorTexture(doc.createTexture().setImage(image).setMimeType('image/png'))
       .setNormalTexture(doc.createTexture().setImage(normal).setMimeType('image/png'));
     prim.setMaterial(mat);
   }
-  doc.getRoot().setDefaultScene(doc.createScene().addChild(doc.createNode().setMesh(doc.createMesh().addPrimitive(prim)))); // prettier-ignore
+  doc
+    .getRoot()
+    .setDefaultScene(
+      doc.createScene().addChild(doc.createNode().setMesh(doc.createMesh().addPrimitive(prim))),
+    );
   return doc;
 }
 
 function bytesOf(m: GltfModel): number {
-  const arrays = [m.positions, m.indices, m.normals, m.uv0, m.uv1, m.colors, m.tangents, m.triangleMaterial, m.textures.texels]; // prettier-ignore
+  const arrays = [
+    m.positions,
+    m.indices,
+    m.normals,
+    m.uv0,
+    m.uv1,
+    m.colors,
+    m.tangents,
+    m.triangleMaterial,
+    m.textures.texels,
+  ];
   return arrays.reduce((s, a) => s + (a === null ? 0 : a.byteLength), 0);
 }
 

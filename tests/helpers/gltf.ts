@@ -27,7 +27,8 @@ export async function toGltfFiles(
   const { json, resources } = (await io().writeJSON(doc, { basename: name })) as JSONDocument;
   const files = new Map<string, Uint8Array>();
   files.set(dir + name + '.gltf', new TextEncoder().encode(JSON.stringify(json)));
-  for (const [uri, bytes] of Object.entries(resources)) files.set(dir + decodeURIComponent(uri), bytes); // prettier-ignore
+  for (const [uri, bytes] of Object.entries(resources))
+    files.set(dir + decodeURIComponent(uri), bytes);
   return files;
 }
 
@@ -70,23 +71,38 @@ export function quadPrimitive(
   doc: Document,
   opts: { normals?: boolean; uv?: boolean; indexed?: boolean } = {},
 ) {
-  // prettier-ignore
   const buffer = doc.getRoot().listBuffers()[0] ?? doc.createBuffer();
   const corners = [0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0];
   const order = [0, 1, 2, 0, 2, 3];
   const indexed = opts.indexed ?? true;
   const pos = indexed ? corners : order.flatMap((i) => corners.slice(3 * i, 3 * i + 3));
   const prim = doc.createPrimitive();
-  prim.setAttribute('POSITION', doc.createAccessor().setType('VEC3').setArray(new Float32Array(pos)).setBuffer(buffer)); // prettier-ignore
+  prim.setAttribute(
+    'POSITION',
+    doc.createAccessor().setType('VEC3').setArray(new Float32Array(pos)).setBuffer(buffer),
+  );
   const n = pos.length / 3;
   if (opts.normals ?? true) {
-    prim.setAttribute('NORMAL', doc.createAccessor().setType('VEC3').setArray(new Float32Array(Array.from({ length: n }, () => [0, 0, 1]).flat())).setBuffer(buffer)); // prettier-ignore
+    prim.setAttribute(
+      'NORMAL',
+      doc
+        .createAccessor()
+        .setType('VEC3')
+        .setArray(new Float32Array(Array.from({ length: n }, () => [0, 0, 1]).flat()))
+        .setBuffer(buffer),
+    );
   }
   if (opts.uv ?? true) {
     const uv: number[] = [];
     for (let i = 0; i < n; i++) uv.push(pos[3 * i], 1 - pos[3 * i + 1]);
-    prim.setAttribute('TEXCOORD_0', doc.createAccessor().setType('VEC2').setArray(new Float32Array(uv)).setBuffer(buffer)); // prettier-ignore
+    prim.setAttribute(
+      'TEXCOORD_0',
+      doc.createAccessor().setType('VEC2').setArray(new Float32Array(uv)).setBuffer(buffer),
+    );
   }
-  if (indexed) prim.setIndices(doc.createAccessor().setType('SCALAR').setArray(new Uint16Array(order)).setBuffer(buffer)); // prettier-ignore
+  if (indexed)
+    prim.setIndices(
+      doc.createAccessor().setType('SCALAR').setArray(new Uint16Array(order)).setBuffer(buffer),
+    );
   return prim;
 }

@@ -84,7 +84,16 @@ describe('glTF BSDF: eval', () => {
       for (const transmission of [0, 0.5, 1]) {
         for (const roughness of ROUGHNESSES) {
           for (const specular of [1, 0.3]) {
-            setGltf({ baseR: 0.8, baseG: 0.5, baseB: 0.1, metallic, transmission, roughness, specular, ior: 1.4 }); // prettier-ignore
+            setGltf({
+              baseR: 0.8,
+              baseG: 0.5,
+              baseB: 0.1,
+              metallic,
+              transmission,
+              roughness,
+              specular,
+              ior: 1.4,
+            });
             for (let i = 0; i < 400; i++) {
               const [ax, ay, az] = randomDir(10 + n, i);
               // wi on the same side as wo (reflection), or anywhere.
@@ -177,7 +186,15 @@ describe('glTF BSDF: reductions', () => {
   ROUGHNESSES.forEach((roughness, k) => {
     it(`metallic 1 is the conductor with F0 = baseColor (roughness ${roughness})`, () => {
       // Whatever the dielectric parameters: metallic 1 leaves none of them.
-      setGltf({ baseR: COLOR[0], baseG: COLOR[1], baseB: COLOR[2], metallic: 1, roughness, ior: 1.7, specular: 0.5 }); // prettier-ignore
+      setGltf({
+        baseR: COLOR[0],
+        baseG: COLOR[1],
+        baseB: COLOR[2],
+        metallic: 1,
+        roughness,
+        ior: 1.7,
+        specular: 0.5,
+      });
       expect(compareEval(k, 100 + k)).toBeLessThan(1e-12);
       expect(compareSamples(k, 200 + k)).toBeLessThan(1e-12);
     });
@@ -193,7 +210,14 @@ describe('glTF BSDF: reductions', () => {
   );
 
   it('transmission 1 with roughness 0 is the smooth dielectric (outside and inside)', () => {
-    setGltf({ baseR: COLOR[0], baseG: COLOR[1], baseB: COLOR[2], transmission: 1, roughness: 0, ior: 1.5 }); // prettier-ignore
+    setGltf({
+      baseR: COLOR[0],
+      baseG: COLOR[1],
+      baseB: COLOR[2],
+      transmission: 1,
+      roughness: 0,
+      ior: 1.5,
+    });
     expect(compareSamples(GLASS, 500)).toBeLessThan(1e-12);
     expect(compareSamples(GLASS, 600, true)).toBeLessThan(1e-12);
     setGltf({ transmission: 1, roughness: 0, ior: 1.33 });

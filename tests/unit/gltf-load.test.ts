@@ -110,11 +110,24 @@ describe('glTF geometry', () => {
     const buffer = doc.createBuffer();
     const mesh = doc.createMesh();
     mesh.addPrimitive(quadPrimitive(doc, { indexed: false }));
-    const pos = (a: number[]) => doc.createAccessor().setType('VEC3').setArray(new Float32Array(a)).setBuffer(buffer); // prettier-ignore
-    const strip = doc.createPrimitive().setMode(5).setAttribute('POSITION', pos([0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1])); // prettier-ignore
-    const fan = doc.createPrimitive().setMode(6).setAttribute('POSITION', pos([0, 0, 2, 1, 0, 2, 1, 1, 2, 0, 1, 2])); // prettier-ignore
-    const points = doc.createPrimitive().setMode(0).setAttribute('POSITION', pos([0, 0, 3])); // prettier-ignore
-    const lines = doc.createPrimitive().setMode(1).setAttribute('POSITION', pos([0, 0, 3, 1, 0, 3])); // prettier-ignore
+    const pos = (a: number[]) =>
+      doc.createAccessor().setType('VEC3').setArray(new Float32Array(a)).setBuffer(buffer);
+    const strip = doc
+      .createPrimitive()
+      .setMode(5)
+      .setAttribute('POSITION', pos([0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1]));
+    const fan = doc
+      .createPrimitive()
+      .setMode(6)
+      .setAttribute('POSITION', pos([0, 0, 2, 1, 0, 2, 1, 1, 2, 0, 1, 2]));
+    const points = doc
+      .createPrimitive()
+      .setMode(0)
+      .setAttribute('POSITION', pos([0, 0, 3]));
+    const lines = doc
+      .createPrimitive()
+      .setMode(1)
+      .setAttribute('POSITION', pos([0, 0, 3, 1, 0, 3]));
     mesh.addPrimitive(strip).addPrimitive(fan).addPrimitive(points).addPrimitive(lines);
     sceneWith(doc, doc.createNode().setMesh(mesh));
     const m = await loadGlb(doc);
@@ -138,7 +151,14 @@ describe('glTF geometry', () => {
   it('skips and counts zero-area triangles', async () => {
     const doc = new Document();
     const buffer = doc.createBuffer();
-    const prim = doc.createPrimitive().setAttribute('POSITION', doc.createAccessor().setType('VEC3').setArray(new Float32Array([0, 0, 0, 1, 0, 0, 2, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0])).setBuffer(buffer)); // prettier-ignore
+    const prim = doc.createPrimitive().setAttribute(
+      'POSITION',
+      doc
+        .createAccessor()
+        .setType('VEC3')
+        .setArray(new Float32Array([0, 0, 0, 1, 0, 0, 2, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0]))
+        .setBuffer(buffer),
+    );
     sceneWith(doc, doc.createNode().setMesh(doc.createMesh().addPrimitive(prim)));
     const m = await loadGlb(doc);
     expect(m.indices.length).toBe(3);
@@ -149,8 +169,24 @@ describe('glTF geometry', () => {
     const doc = quadDoc({ uv: false });
     const prim = doc.getRoot().listMeshes()[0].listPrimitives()[0];
     const buffer = doc.getRoot().listBuffers()[0];
-    prim.setAttribute('TEXCOORD_0', doc.createAccessor().setType('VEC2').setNormalized(true).setArray(new Uint16Array([0, 65535, 65535, 65535, 65535, 0, 0, 0])).setBuffer(buffer)); // prettier-ignore
-    prim.setAttribute('COLOR_0', doc.createAccessor().setType('VEC3').setNormalized(true).setArray(new Uint8Array([255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255])).setBuffer(buffer)); // prettier-ignore
+    prim.setAttribute(
+      'TEXCOORD_0',
+      doc
+        .createAccessor()
+        .setType('VEC2')
+        .setNormalized(true)
+        .setArray(new Uint16Array([0, 65535, 65535, 65535, 65535, 0, 0, 0]))
+        .setBuffer(buffer),
+    );
+    prim.setAttribute(
+      'COLOR_0',
+      doc
+        .createAccessor()
+        .setType('VEC3')
+        .setNormalized(true)
+        .setArray(new Uint8Array([255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255]))
+        .setBuffer(buffer),
+    );
     const m = await loadGlb(doc);
     close(m.uv0!, [0, 1, 1, 1, 1, 0, 0, 0]);
     close(m.colors!, [1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 1, 1, 1, 1, 1]);
@@ -158,10 +194,20 @@ describe('glTF geometry', () => {
 
   it('returns the first perspective camera in world space', async () => {
     const doc = quadDoc();
-    const cam = doc.createCamera().setType('perspective').setYFov(Math.PI / 3).setZNear(0.1).setAspectRatio(1); // prettier-ignore
+    const cam = doc
+      .createCamera()
+      .setType('perspective')
+      .setYFov(Math.PI / 3)
+      .setZNear(0.1)
+      .setAspectRatio(1);
     const s = Math.SQRT1_2;
     // Rotated 90° about +y: looks along −x.
-    doc.getRoot().listScenes()[0].addChild(doc.createNode().setCamera(cam).setTranslation([5, 1, 0]).setRotation([0, s, 0, s])); // prettier-ignore
+    doc
+      .getRoot()
+      .listScenes()[0]
+      .addChild(
+        doc.createNode().setCamera(cam).setTranslation([5, 1, 0]).setRotation([0, s, 0, s]),
+      );
     const m = await loadGlb(doc);
     expect(m.cameras.length).toBe(1);
     close(m.cameras[0].position, [5, 1, 0]);
@@ -175,12 +221,24 @@ describe('glTF files with external resources', () => {
   it('reads a .gltf with its .bin and .png beside it (URI-encoded names, a sub-folder)', async () => {
     const doc = quadDoc();
     doc.getRoot().listBuffers()[0].setURI('data files/quad.bin');
-    const tex = doc.createTexture().setImage(png(2, 2, () => [255, 0, 0, 255])).setMimeType('image/png').setURI('tex/red.png'); // prettier-ignore
+    const tex = doc
+      .createTexture()
+      .setImage(png(2, 2, () => [255, 0, 0, 255]))
+      .setMimeType('image/png')
+      .setURI('tex/red.png');
     const mat = doc.createMaterial().setBaseColorTexture(tex);
     doc.getRoot().listMeshes()[0].listPrimitives()[0].setMaterial(mat);
     const files = await toGltfFiles(doc, 'quad', 'models/');
-    expect([...files.keys()].sort()).toEqual(['models/data files/quad.bin', 'models/quad.gltf', 'models/tex/red.png']); // prettier-ignore
-    const m = await loadGltf(files.get('models/quad.gltf')!, 'models/quad.gltf', await memoryOptions(files)); // prettier-ignore
+    expect([...files.keys()].sort()).toEqual([
+      'models/data files/quad.bin',
+      'models/quad.gltf',
+      'models/tex/red.png',
+    ]);
+    const m = await loadGltf(
+      files.get('models/quad.gltf')!,
+      'models/quad.gltf',
+      await memoryOptions(files),
+    );
     expect(m.indices.length).toBe(6);
     expect(m.textures.info.length).toBe(3);
     expect(m.textures.texels[0]).toBe(65535);
@@ -191,8 +249,13 @@ describe('glTF files with external resources', () => {
     const files = await toGltfFiles(doc, 'quad');
     const json = JSON.parse(new TextDecoder().decode(files.get('quad.gltf')!));
     const bin = files.get(json.buffers[0].uri)!;
-    json.buffers[0].uri = 'data:application/octet-stream;base64,' + Buffer.from(bin).toString('base64'); // prettier-ignore
-    const m = await loadGltf(new TextEncoder().encode(JSON.stringify(json)), 'quad.gltf', await memoryOptions()); // prettier-ignore
+    json.buffers[0].uri =
+      'data:application/octet-stream;base64,' + Buffer.from(bin).toString('base64');
+    const m = await loadGltf(
+      new TextEncoder().encode(JSON.stringify(json)),
+      'quad.gltf',
+      await memoryOptions(),
+    );
     close(m.positions, [0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0]);
   });
 });
@@ -204,20 +267,43 @@ describe('glTF materials and textures', () => {
   it('honours the factors of every supported extension', async () => {
     const doc = quadDoc();
     const ior = doc.createExtension(KHRMaterialsIOR).createIOR().setIOR(1.8);
-    const tr = doc.createExtension(KHRMaterialsTransmission).createTransmission().setTransmissionFactor(0.7); // prettier-ignore
-    const es = doc.createExtension(KHRMaterialsEmissiveStrength).createEmissiveStrength().setEmissiveStrength(5); // prettier-ignore
-    const spec = doc.createExtension(KHRMaterialsSpecular).createSpecular().setSpecularFactor(0.5).setSpecularColorFactor([1, 0.5, 0.25]); // prettier-ignore
-    const mat = doc.createMaterial().setBaseColorFactor([0.5, 0.25, 1, 1]).setMetallicFactor(0.3).setRoughnessFactor(0.6).setEmissiveFactor([1, 0.5, 0]); // prettier-ignore
+    const tr = doc
+      .createExtension(KHRMaterialsTransmission)
+      .createTransmission()
+      .setTransmissionFactor(0.7);
+    const es = doc
+      .createExtension(KHRMaterialsEmissiveStrength)
+      .createEmissiveStrength()
+      .setEmissiveStrength(5);
+    const spec = doc
+      .createExtension(KHRMaterialsSpecular)
+      .createSpecular()
+      .setSpecularFactor(0.5)
+      .setSpecularColorFactor([1, 0.5, 0.25]);
+    const mat = doc
+      .createMaterial()
+      .setBaseColorFactor([0.5, 0.25, 1, 1])
+      .setMetallicFactor(0.3)
+      .setRoughnessFactor(0.6)
+      .setEmissiveFactor([1, 0.5, 0]);
     mat.setExtension('KHR_materials_ior', ior).setExtension('KHR_materials_transmission', tr);
-    mat.setExtension('KHR_materials_emissive_strength', es).setExtension('KHR_materials_specular', spec); // prettier-ignore
+    mat
+      .setExtension('KHR_materials_emissive_strength', es)
+      .setExtension('KHR_materials_specular', spec);
     doc.getRoot().listMeshes()[0].listPrimitives()[0].setMaterial(mat);
     const m = await loadGlb(doc);
     const t = m.materials;
     expect([t[GM_IOR], t[GM_TRANSMISSION], t[GM_SPECULAR]]).toEqual([1.8, 0.7, 0.5]);
     close(t.subarray(GM_EMISSIVE, GM_EMISSIVE + 3), [5, 2.5, 0]);
     fillGltfShading(t, m.textures, 0, hit, sp);
-    close([sp.baseR, sp.baseG, sp.baseB, sp.metallic, sp.alpha, sp.transmission, sp.ior], [0.5, 0.25, 1, 0.3, 0.36, 0.7, 1.8]); // prettier-ignore
-    close([sp.specular, sp.specR, sp.specG, sp.specB, sp.emR, sp.emG, sp.emB], [0.5, 1, 0.5, 0.25, 5, 2.5, 0]); // prettier-ignore
+    close(
+      [sp.baseR, sp.baseG, sp.baseB, sp.metallic, sp.alpha, sp.transmission, sp.ior],
+      [0.5, 0.25, 1, 0.3, 0.36, 0.7, 1.8],
+    );
+    close(
+      [sp.specular, sp.specR, sp.specG, sp.specB, sp.emR, sp.emG, sp.emB],
+      [0.5, 1, 0.5, 0.25, 5, 2.5, 0],
+    );
     expect(sp.opacity).toBe(1);
     expect(m.warnings).toEqual([]);
   });
@@ -225,13 +311,27 @@ describe('glTF materials and textures', () => {
   it('looks up base colour (sRGB → linear), metallic-roughness, emissive and transmission textures', async () => {
     const doc = quadDoc();
     // 2×1 textures: left texel and right texel; sampled at their centres.
-    const mk = (a: number[], b: number[]) => doc.createTexture().setImage(png(2, 1, (x) => (x === 0 ? a : b))).setMimeType('image/png'); // prettier-ignore
+    const mk = (a: number[], b: number[]) =>
+      doc
+        .createTexture()
+        .setImage(png(2, 1, (x) => (x === 0 ? a : b)))
+        .setMimeType('image/png');
     const base = mk([255, 128, 0, 255], [0, 0, 255, 64]);
     const mr = mk([0, 51, 204, 0], [0, 255, 0, 0]);
     const em = mk([128, 128, 128, 255], [0, 0, 0, 255]);
     const trt = mk([128, 0, 0, 255], [255, 0, 0, 255]);
-    const tr = doc.createExtension(KHRMaterialsTransmission).createTransmission().setTransmissionFactor(1).setTransmissionTexture(trt); // prettier-ignore
-    const mat = doc.createMaterial().setBaseColorTexture(base).setMetallicRoughnessTexture(mr).setEmissiveTexture(em).setEmissiveFactor([1, 1, 1]).setAlphaMode('BLEND'); // prettier-ignore
+    const tr = doc
+      .createExtension(KHRMaterialsTransmission)
+      .createTransmission()
+      .setTransmissionFactor(1)
+      .setTransmissionTexture(trt);
+    const mat = doc
+      .createMaterial()
+      .setBaseColorTexture(base)
+      .setMetallicRoughnessTexture(mr)
+      .setEmissiveTexture(em)
+      .setEmissiveFactor([1, 1, 1])
+      .setAlphaMode('BLEND');
     mat.setExtension('KHR_materials_transmission', tr);
     doc.getRoot().listMeshes()[0].listPrimitives()[0].setMaterial(mat);
     const m = await loadGlb(doc);
@@ -241,7 +341,11 @@ describe('glTF materials and textures', () => {
     close([sp.baseR, sp.baseG, sp.baseB], [1, srgbToLinear(128 / 255), 0], 1e-4);
     expect(sp.opacity).toBeCloseTo(1, 9);
     close([sp.alpha, sp.metallic], [(51 / 255) ** 2, 204 / 255], 1e-4);
-    close([sp.emR, sp.emG, sp.emB], [srgbToLinear(128 / 255), srgbToLinear(128 / 255), srgbToLinear(128 / 255)], 1e-4); // prettier-ignore
+    close(
+      [sp.emR, sp.emG, sp.emB],
+      [srgbToLinear(128 / 255), srgbToLinear(128 / 255), srgbToLinear(128 / 255)],
+      1e-4,
+    );
     expect(sp.transmission).toBeCloseTo(128 / 255, 4);
     hit.u0 = 0.75;
     fillGltfShading(m.materials, m.textures, 0, hit, sp);
@@ -251,8 +355,15 @@ describe('glTF materials and textures', () => {
 
   it('alpha MASK is 0 or 1 about the cutoff; OPAQUE ignores alpha', async () => {
     const doc = quadDoc();
-    const base = doc.createTexture().setImage(png(2, 1, (x) => [255, 255, 255, x === 0 ? 100 : 200])).setMimeType('image/png'); // prettier-ignore
-    const mask = doc.createMaterial().setBaseColorTexture(base).setAlphaMode('MASK').setAlphaCutoff(0.5); // prettier-ignore
+    const base = doc
+      .createTexture()
+      .setImage(png(2, 1, (x) => [255, 255, 255, x === 0 ? 100 : 200]))
+      .setMimeType('image/png');
+    const mask = doc
+      .createMaterial()
+      .setBaseColorTexture(base)
+      .setAlphaMode('MASK')
+      .setAlphaCutoff(0.5);
     const opaque = doc.createMaterial().setBaseColorTexture(base);
     doc.getRoot().listMeshes()[0].listPrimitives()[0].setMaterial(mask);
     doc.getRoot().listMeshes()[0].addPrimitive(quadPrimitive(doc).setMaterial(opaque));
@@ -274,11 +385,19 @@ describe('glTF materials and textures', () => {
     const prim = doc.getRoot().listMeshes()[0].listPrimitives()[0];
     prim.setAttribute('TEXCOORD_1', prim.getAttribute('TEXCOORD_0'));
     // 4×4 texture whose red channel encodes the column, green the row.
-    const tex = doc.createTexture().setImage(png(4, 4, (x, y) => [x * 80, y * 80, 0, 255])).setMimeType('image/png'); // prettier-ignore
+    const tex = doc
+      .createTexture()
+      .setImage(png(4, 4, (x, y) => [x * 80, y * 80, 0, 255]))
+      .setMimeType('image/png');
     const ext = doc.createExtension(KHRTextureTransform);
     const mat = doc.createMaterial().setMetallicRoughnessTexture(tex);
     // Rotation π/2: uv' = (v, −u)·scale + offset, on set 1.
-    const t = ext.createTransform().setOffset([0.25, 1]).setRotation(Math.PI / 2).setScale([0.5, 0.5]).setTexCoord(1); // prettier-ignore
+    const t = ext
+      .createTransform()
+      .setOffset([0.25, 1])
+      .setRotation(Math.PI / 2)
+      .setScale([0.5, 0.5])
+      .setTexCoord(1);
     mat.getMetallicRoughnessTextureInfo()!.setExtension('KHR_texture_transform', t);
     prim.setMaterial(mat);
     const m = await loadGlb(doc);
@@ -296,7 +415,10 @@ describe('glTF materials and textures', () => {
     const doc = quadDoc();
     // Tilted toward +u: (0.5, 0, 0.866) encoded.
     const enc = (v: number) => Math.round((v * 0.5 + 0.5) * 255);
-    const nt = doc.createTexture().setImage(png(1, 1, () => [enc(0.5), enc(0), enc(0.866), 255])).setMimeType('image/png'); // prettier-ignore
+    const nt = doc
+      .createTexture()
+      .setImage(png(1, 1, () => [enc(0.5), enc(0), enc(0.866), 255]))
+      .setMimeType('image/png');
     const mat = doc.createMaterial().setNormalTexture(nt).setNormalScale(1);
     doc.getRoot().listMeshes()[0].listPrimitives()[0].setMaterial(mat);
     const m = await loadGlb(doc);
@@ -310,8 +432,18 @@ describe('glTF materials and textures', () => {
     // With the file's own tangents, those are used (and kept welded).
     const doc2 = quadDoc();
     const p2 = doc2.getRoot().listMeshes()[0].listPrimitives()[0];
-    p2.setAttribute('TANGENT', doc2.createAccessor().setType('VEC4').setArray(new Float32Array(Array.from({ length: 4 }, () => [0, 1, 0, -1]).flat())).setBuffer(doc2.getRoot().listBuffers()[0])); // prettier-ignore
-    const nt2 = doc2.createTexture().setImage(png(1, 1, () => [128, 128, 255, 255])).setMimeType('image/png'); // prettier-ignore
+    p2.setAttribute(
+      'TANGENT',
+      doc2
+        .createAccessor()
+        .setType('VEC4')
+        .setArray(new Float32Array(Array.from({ length: 4 }, () => [0, 1, 0, -1]).flat()))
+        .setBuffer(doc2.getRoot().listBuffers()[0]),
+    );
+    const nt2 = doc2
+      .createTexture()
+      .setImage(png(1, 1, () => [128, 128, 255, 255]))
+      .setMimeType('image/png');
     p2.setMaterial(doc2.createMaterial().setNormalTexture(nt2));
     doc2.getRoot().listNodes()[0].setScale([1, -1, 1]);
     const m2 = await loadGlb(doc2);
@@ -327,12 +459,17 @@ describe('glTF materials and textures', () => {
       .createTexture()
       .setImage(Uint8Array.of(1, 2, 3, 4))
       .setMimeType('image/webp');
-    const mat = doc.createMaterial().setExtension('KHR_materials_clearcoat', cc).setBaseColorTexture(tex); // prettier-ignore
+    const mat = doc
+      .createMaterial()
+      .setExtension('KHR_materials_clearcoat', cc)
+      .setBaseColorTexture(tex);
     doc.getRoot().listMeshes()[0].listPrimitives()[0].setMaterial(mat);
     // A skin and a morph target: rendered in the rest pose.
     const prim = doc.getRoot().listMeshes()[0].listPrimitives()[0];
     doc.createSkin().addJoint(doc.getRoot().listNodes()[0]);
-    prim.addTarget(doc.createPrimitiveTarget().setAttribute('POSITION', prim.getAttribute('POSITION'))); // prettier-ignore
+    prim.addTarget(
+      doc.createPrimitiveTarget().setAttribute('POSITION', prim.getAttribute('POSITION')),
+    );
     const m = await loadGlb(doc);
     expect(m.warnings).toEqual([
       'extension "KHR_materials_clearcoat" is not supported; its content is ignored',

@@ -15,8 +15,13 @@ type Json = Record<string, any>; // eslint-disable-line @typescript-eslint/no-ex
 function quadDoc(): Document {
   const doc = new Document();
   doc.createBuffer();
-  const tex = doc.createTexture().setImage(png(2, 2, () => [200, 100, 50, 255])).setMimeType('image/png'); // prettier-ignore
-  const mesh = doc.createMesh().addPrimitive(quadPrimitive(doc).setMaterial(doc.createMaterial().setBaseColorTexture(tex))); // prettier-ignore
+  const tex = doc
+    .createTexture()
+    .setImage(png(2, 2, () => [200, 100, 50, 255]))
+    .setMimeType('image/png');
+  const mesh = doc
+    .createMesh()
+    .addPrimitive(quadPrimitive(doc).setMaterial(doc.createMaterial().setBaseColorTexture(tex)));
   const scene = doc.createScene().addChild(doc.createNode().setMesh(mesh));
   doc.getRoot().setDefaultScene(scene);
   return doc;
@@ -58,7 +63,6 @@ async function expectError(
   pattern: RegExp,
   files?: Map<string, Uint8Array>,
 ): Promise<void> {
-  // prettier-ignore
   let error: unknown = null;
   try {
     await loadGltf(bytes, 'bad.glb', await memoryOptions(files));
@@ -76,7 +80,6 @@ async function mutated(
   mutate: (json: Json, bin: Uint8Array) => Uint8Array | void,
   pattern: RegExp,
 ): Promise<void> {
-  // prettier-ignore
   const { json, bin } = await parts();
   const b = mutate(json, bin) ?? bin;
   await expectError(makeGlb(json, b), pattern);
@@ -95,7 +98,10 @@ describe('malformed GLB containers', () => {
       glb.subarray(0, 8),
       /^GLB header: file is 8 bytes, the header alone needs 12$/,
     );
-    await expectError(glb.subarray(0, glb.length - 10), /^GLB header: says \d+ bytes, but the file has \d+ \(truncated\?\)$/); // prettier-ignore
+    await expectError(
+      glb.subarray(0, glb.length - 10),
+      /^GLB header: says \d+ bytes, but the file has \d+ \(truncated\?\)$/,
+    );
   });
 
   it('wrong version, JSON chunk past the end, BIN chunk past the end', async () => {
@@ -115,9 +121,18 @@ describe('malformed GLB containers', () => {
   it('JSON that is not JSON, or not UTF-8', async () => {
     const text = new TextEncoder().encode('{"asset": {"version": "2.0"},,}');
     await expectError(makeGlbRaw(text), /^JSON: line 1, column \d+: /);
-    await expectError(makeGlbRaw(Uint8Array.of(0x7b, 0xff, 0x7d, 0x20)), /^JSON: not valid UTF-8 at byte 1/); // prettier-ignore
-    await expectError(new TextEncoder().encode('[1, 2]'), /^document: the glTF JSON must be an object$/); // prettier-ignore
-    await expectError(new TextEncoder().encode('{"asset": {"version": "1.0"}}'), /^asset\.version: glTF "1\.0" is not supported/); // prettier-ignore
+    await expectError(
+      makeGlbRaw(Uint8Array.of(0x7b, 0xff, 0x7d, 0x20)),
+      /^JSON: not valid UTF-8 at byte 1/,
+    );
+    await expectError(
+      new TextEncoder().encode('[1, 2]'),
+      /^document: the glTF JSON must be an object$/,
+    );
+    await expectError(
+      new TextEncoder().encode('{"asset": {"version": "1.0"}}'),
+      /^asset\.version: glTF "1\.0" is not supported/,
+    );
   });
 });
 
@@ -163,25 +178,33 @@ describe('malformed buffers and accessors', () => {
     }, /^accessors\[0\]: starts at byte \d+ of its buffer, not a multiple of its component size 4$/);
     await mutated((j) => {
       j.meshes[0].primitives[0].attributes.POSITION = 99;
-    }, /^meshes\[0\]\.primitives\[0\]\.attributes\.POSITION: refers to accessors\[99\], but the file has \d+$/); // prettier-ignore
+    }, /^meshes\[0\]\.primitives\[0\]\.attributes\.POSITION: refers to accessors\[99\], but the file has \d+$/);
     await mutated((j) => {
       j.meshes[0].primitives[0].indices = j.meshes[0].primitives[0].attributes.POSITION;
-    }, /^meshes\[0\]\.primitives\[0\]\.indices: accessors\[\d+\] must be SCALAR of an unsigned integer type$/); // prettier-ignore
+    }, /^meshes\[0\]\.primitives\[0\]\.indices: accessors\[\d+\] must be SCALAR of an unsigned integer type$/);
   });
 
   it('an index out of range', () =>
     mutated((j, bin) => {
       const acc = j.accessors[j.meshes[0].primitives[0].indices];
       const view = j.bufferViews[acc.bufferView];
-      new DataView(bin.buffer).setUint16((view.byteOffset ?? 0) + (acc.byteOffset ?? 0) + 4, 999, true); // prettier-ignore
-    }, /^meshes\[0\]\.primitives\[0\]\.indices: index 999 at position 2 is out of range \(POSITION has 4 vertices\)$/)); // prettier-ignore
+      new DataView(bin.buffer).setUint16(
+        (view.byteOffset ?? 0) + (acc.byteOffset ?? 0) + 4,
+        999,
+        true,
+      );
+    }, /^meshes\[0\]\.primitives\[0\]\.indices: index 999 at position 2 is out of range \(POSITION has 4 vertices\)$/));
 
   it('NaN and infinite positions', () =>
     mutated((j, bin) => {
       const acc = j.accessors[j.meshes[0].primitives[0].attributes.POSITION];
       const view = j.bufferViews[acc.bufferView];
       const stride = view.byteStride ?? 12;
-      new DataView(bin.buffer).setFloat32((view.byteOffset ?? 0) + (acc.byteOffset ?? 0) + 2 * stride + 4, NaN, true); // prettier-ignore
+      new DataView(bin.buffer).setFloat32(
+        (view.byteOffset ?? 0) + (acc.byteOffset ?? 0) + 2 * stride + 4,
+        NaN,
+        true,
+      );
     }, /^meshes\[0\]\.primitives\[0\]\.attributes\.POSITION: vertex 2 has a non-finite value$/));
 
   it('an index bomb: a mesh instanced past the triangle limit is refused before allocating', () =>
@@ -231,14 +254,14 @@ describe('malformed structure', () => {
     }, /^nodes\[0\]\.mesh: refers to meshes\[5\], but the file has 1$/);
     await mutated((j) => {
       j.materials[0].pbrMetallicRoughness.baseColorTexture.index = 3;
-    }, /^materials\[0\]\.pbrMetallicRoughness\.baseColorTexture\.index: refers to textures\[3\], but the file has 1$/); // prettier-ignore
+    }, /^materials\[0\]\.pbrMetallicRoughness\.baseColorTexture\.index: refers to textures\[3\], but the file has 1$/);
   });
 
   it('a required extension pathwise lacks', () =>
     mutated((j) => {
       j.extensionsUsed = ['KHR_draco_mesh_compression'];
       j.extensionsRequired = ['KHR_draco_mesh_compression'];
-    }, /^extensionsRequired: the file requires "KHR_draco_mesh_compression", which pathwise does not support$/)); // prettier-ignore
+    }, /^extensionsRequired: the file requires "KHR_draco_mesh_compression", which pathwise does not support$/));
 
   it('a corrupt texture, and one whose header claims more than the memory limit', async () => {
     await mutated((j, bin) => {
@@ -249,7 +272,7 @@ describe('malformed structure', () => {
       const view = j.bufferViews[j.images[0].bufferView];
       new DataView(bin.buffer).setUint32(view.byteOffset + 16, 16000);
       new DataView(bin.buffer).setUint32(view.byteOffset + 20, 16000);
-    }, /^images\[0\] \(materials\[0\]\.baseColorTexture\): decoded textures would need 1\.91 GiB, over the texture memory limit of 1\.00 GiB$/); // prettier-ignore
+    }, /^images\[0\] \(materials\[0\]\.baseColorTexture\): decoded textures would need 1\.91 GiB, over the texture memory limit of 1\.00 GiB$/);
   });
 });
 
@@ -263,9 +286,17 @@ describe('malformed external resources', () => {
     await expectError(gltf, /^buffers\[0\]\.uri: cannot read "quad\.bin": no such file$/, files);
     for (const uri of ['https://example.com/quad.bin', '/etc/quad.bin', 'file:///quad.bin']) {
       json.buffers[0].uri = uri;
-      await expectError(new TextEncoder().encode(JSON.stringify(json)), /^buffers\[0\]\.uri: ".*" is not a relative path; only files beside the model can be read$/, files); // prettier-ignore
+      await expectError(
+        new TextEncoder().encode(JSON.stringify(json)),
+        /^buffers\[0\]\.uri: ".*" is not a relative path; only files beside the model can be read$/,
+        files,
+      );
     }
     json.buffers[0].uri = 'data:application/octet-stream;base64,@@@@';
-    await expectError(new TextEncoder().encode(JSON.stringify(json)), /^buffers\[0\]\.uri: data URI has a character that is not base64 at 0$/, files); // prettier-ignore
+    await expectError(
+      new TextEncoder().encode(JSON.stringify(json)),
+      /^buffers\[0\]\.uri: data URI has a character that is not base64 at 0$/,
+      files,
+    );
   });
 });

@@ -12,13 +12,17 @@ import { hashToUnit, sampleKey } from '../../src/core/rng/pcg.ts';
 describe('MikkTSpace loader', () => {
   it('matches the package build bit for bit', async () => {
     const ours = await nodeTangentGenerator();
-    const theirs = (createRequire(import.meta.url)('mikktspace') as { generateTangents: TangentGenerator }).generateTangents; // prettier-ignore
+    const theirs = (
+      createRequire(import.meta.url)('mikktspace') as { generateTangents: TangentGenerator }
+    ).generateTangents;
     const corners = 3 * 200;
     const r = (i: number, d: number): number => hashToUnit(sampleKey(5, i, 0), d);
     const p = Float32Array.from({ length: 3 * corners }, (_, i) => r(i, 0) * 2 - 1);
     const n = new Float32Array(3 * corners);
     for (let k = 0; k < corners; k++) {
-      const x = r(k, 1) - 0.5, y = r(k, 2) - 0.5, z = r(k, 3); // prettier-ignore
+      const x = r(k, 1) - 0.5,
+        y = r(k, 2) - 0.5,
+        z = r(k, 3);
       const l = Math.hypot(x, y, z);
       n.set([x / l, y / l, z / l], 3 * k);
     }

@@ -49,11 +49,12 @@ describe('decoded images into the store', () => {
       { width: 1, height: 1, data: Uint8Array.of(128, 64), channels: 2, depth: 8 },
       { width: 1, height: 1, data: Uint8Array.of(255, 128, 0), channels: 3, depth: 8 },
       { width: 1, height: 1, data: Uint8Array.of(255, 128, 0, 128), channels: 4, depth: 8 },
-      { width: 1, height: 1, data: Uint16Array.of(65535, 32768, 0, 32768), channels: 4, depth: 16 }, // prettier-ignore
+      { width: 1, height: 1, data: Uint16Array.of(65535, 32768, 0, 32768), channels: 4, depth: 16 },
     ];
     const lin = storeOf(images, false);
     const srgb = storeOf(images, true);
-    const t = (s: TextureStore, i: number): number[] => Array.from(s.texels.subarray(4 * i, 4 * i + 4)); // prettier-ignore
+    const t = (s: TextureStore, i: number): number[] =>
+      Array.from(s.texels.subarray(4 * i, 4 * i + 4));
     expect(t(lin, 0)).toEqual([128 * 257, 128 * 257, 128 * 257, 65535]);
     expect(t(lin, 1)).toEqual([128 * 257, 128 * 257, 128 * 257, 64 * 257]);
     expect(t(lin, 2)).toEqual([65535, 128 * 257, 0, 65535]);
@@ -147,7 +148,10 @@ describe('bilinear lookup', () => {
     expect(red(1.375, 0.25, WRAP_MIRROR)).toBeCloseTo(red(0.625, 0.25, WRAP_MIRROR), 9);
     expect(red(-0.375, 0.25, WRAP_MIRROR)).toBeCloseTo(red(0.375, 0.25, WRAP_MIRROR), 9);
     expect(red(5, 0.25, WRAP_CLAMP)).toBeCloseTo(30, 9);
-    expect(red(0.375, -7, WRAP_REPEAT, WRAP_CLAMP)).toBeCloseTo(red(0.375, 0, WRAP_REPEAT, WRAP_CLAMP), 9); // prettier-ignore
+    expect(red(0.375, -7, WRAP_REPEAT, WRAP_CLAMP)).toBeCloseTo(
+      red(0.375, 0, WRAP_REPEAT, WRAP_CLAMP),
+      9,
+    );
   });
 
   it('reads non-finite coordinates as 0 instead of producing NaN', () => {
@@ -161,16 +165,22 @@ describe('bilinear lookup', () => {
 describe('decoding PNG and JPEG in Node', () => {
   it('round-trips 8- and 16-bit PNGs, grey, palette and low bit depths', async () => {
     const rgba = Uint8Array.from({ length: 3 * 2 * 4 }, (_, i) => (i * 37) % 256);
-    const a = await decodeImageJs(encodePng({ width: 3, height: 2, data: rgba, channels: 4, depth: 8 })); // prettier-ignore
+    const a = await decodeImageJs(
+      encodePng({ width: 3, height: 2, data: rgba, channels: 4, depth: 8 }),
+    );
     expect([a.width, a.height, a.channels, a.depth]).toEqual([3, 2, 4, 8]);
     expect(Array.from(a.data)).toEqual(Array.from(rgba));
     const wide = Uint16Array.from({ length: 2 * 2 * 3 }, (_, i) => i * 5000);
-    const b = await decodeImageJs(encodePng({ width: 2, height: 2, data: wide, channels: 3, depth: 16 })); // prettier-ignore
+    const b = await decodeImageJs(
+      encodePng({ width: 2, height: 2, data: wide, channels: 3, depth: 16 }),
+    );
     expect([b.channels, b.depth]).toEqual([3, 16]);
     expect(Array.from(b.data)).toEqual(Array.from(wide));
     // 1-bit grey, 3 wide (rows padded to a byte): 1 0 1 / 0 1 0.
     const bits = Uint8Array.of(0b10100000, 0b01000000);
-    const c = await decodeImageJs(encodePng({ width: 3, height: 2, data: bits, channels: 1, depth: 1 })); // prettier-ignore
+    const c = await decodeImageJs(
+      encodePng({ width: 3, height: 2, data: bits, channels: 1, depth: 1 }),
+    );
     expect(Array.from(c.data)).toEqual([255, 0, 255, 0, 255, 0]);
     const d = await decodeImageJs(
       encodePng({
@@ -204,10 +214,8 @@ describe('decoding PNG and JPEG in Node', () => {
   });
 
   it('names the image and the problem for broken data', async () => {
-    const png = encodePng({ width: 2, height: 2, data: new Uint8Array(16), channels: 4, depth: 8 }); // prettier-ignore
-    await expect(decodeImageJs(png.subarray(0, 20))).rejects.toThrow(
-      /^PNG without an IHDR header/,
-    );
+    const png = encodePng({ width: 2, height: 2, data: new Uint8Array(16), channels: 4, depth: 8 });
+    await expect(decodeImageJs(png.subarray(0, 20))).rejects.toThrow(/^PNG without an IHDR header/);
     await expect(decodeImageJs(png.subarray(0, png.length - 20))).rejects.toThrow(
       /^cannot decode image\/png/,
     );

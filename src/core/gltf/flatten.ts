@@ -18,20 +18,23 @@
  * Zero-area triangles are skipped and counted, as for every mesh.
  */
 import type { Document, Mesh, Primitive } from '@gltf-transform/core';
-import { readFloats, readIndices } from './accessors.ts';
+import { readFloats } from './accessors.ts';
+import { type GltfCamera, readCamera } from './cameras.ts';
+import { triangleList } from './triangles.ts';
 import { GltfError } from './errors.ts';
-import { GM_STRIDE, GM_TEXTURES, BINDING_STRIDE, B_TEXCOORD, TEX_NORMAL, hasTexture } from './material-table.ts'; // prettier-ignore
+import {
+  GM_STRIDE,
+  GM_TEXTURES,
+  BINDING_STRIDE,
+  B_TEXCOORD,
+  TEX_NORMAL,
+  hasTexture,
+} from './material-table.ts';
 import { generatePrimitiveTangents, type TangentGenerator, weldCorners } from './tangents.ts';
 import { det3, identity, type Mat4, multiply, nodeMatrix, normalMatrix } from './transforms.ts';
 import { MODE_TRIANGLE_FAN, MODE_TRIANGLE_STRIP, MODE_TRIANGLES } from './validate.ts';
 
-export interface GltfCamera {
-  position: [number, number, number];
-  target: [number, number, number];
-  up: [number, number, number];
-  /** Full vertical field of view in degrees. */
-  fovY: number;
-}
+export type { GltfCamera };
 
 export interface GltfGeometry {
   /** World-space x, y, z per vertex. */
@@ -76,42 +79,6 @@ interface Plan {
   generatedTangents: Float32Array | null;
 }
 
-/** Triangle corners of a primitive from its indices and mode; checks every index. */
-function triangleList(prim: Primitive, vertexCount: number, where: string): Uint32Array {
-  const mode = prim.getMode();
-  const acc = prim.getIndices();
-  const idx = acc === null ? null : readIndices(acc);
-  const n = idx === null ? vertexCount : idx.length;
-  const at = (k: number): number => (idx === null ? k : idx[k]);
-  if (idx !== null) {
-    for (let k = 0; k < n; k++) {
-      if (idx[k] >= vertexCount) {
-        throw new GltfError(`${where}.indices: index ${idx[k]} at position ${k} is out of range (POSITION has ${vertexCount} vertices)`); // prettier-ignore
-      }
-    }
-  }
-  if (mode === MODE_TRIANGLES) {
-    const t = new Uint32Array(Math.floor(n / 3) * 3);
-    for (let k = 0; k < t.length; k++) t[k] = at(k);
-    return t;
-  }
-  const count = Math.max(0, n - 2);
-  const t = new Uint32Array(count * 3);
-  for (let k = 0; k < count; k++) {
-    if (mode === MODE_TRIANGLE_FAN) {
-      t[3 * k] = at(0);
-      t[3 * k + 1] = at(k + 1);
-      t[3 * k + 2] = at(k + 2);
-    } else {
-      // Strips alternate their winding; swap on odd triangles to keep it.
-      t[3 * k] = at(k + (k & 1));
-      t[3 * k + 1] = at(k + 1 - (k & 1));
-      t[3 * k + 2] = at(k + 2);
-    }
-  }
-  return t;
-}
-
 function checkFinite(a: Float32Array, size: number, where: string): void {
   for (let i = 0; i < a.length; i++) {
     if (!Number.isFinite(a[i])) {
@@ -154,7 +121,8 @@ export function flattenGltf(
         else cameras.push(cam);
       }
       const children = (n.children as number[] | undefined) ?? [];
-      for (let c = children.length - 1; c >= 0; c--) stack.push({ node: children[c], parent: world }); // prettier-ignore
+      for (let c = children.length - 1; c >= 0; c--)
+        stack.push({ node: children[c], parent: world });
     }
   }
 
@@ -164,7 +132,9 @@ export function flattenGltf(
     const mesh = meshes[meshIdx];
     let p = plans.get(mesh);
     if (p !== undefined) return p;
-    p = mesh.listPrimitives().map((prim, j) => makePlan(prim, `meshes[${meshIdx}].primitives[${j}]`)); // prettier-ignore
+    p = mesh
+      .listPrimitives()
+      .map((prim, j) => makePlan(prim, `meshes[${meshIdx}].primitives[${j}]`));
     plans.set(mesh, p);
     return p;
   };
@@ -182,17 +152,34 @@ export function flattenGltf(
     const mat = prim.getMaterial();
     const material = mat === null ? defaultMaterial : materialIndex.get(mat)!;
     const triangles = triangleList(prim, pos.getCount(), where);
-    const plan: Plan = { where, prim, material, triangles, source: null, vertexCount: pos.getCount(), generatedTangents: null }; // prettier-ignore
+    const plan: Plan = {
+      where,
+      prim,
+      material,
+      triangles,
+      source: null,
+      vertexCount: pos.getCount(),
+      generatedTangents: null,
+    };
     if (hasTexture(table, material, TEX_NORMAL) && prim.getAttribute('TANGENT') === null) {
-      const set = table[material * GM_STRIDE + GM_TEXTURES + TEX_NORMAL * BINDING_STRIDE + B_TEXCOORD]; // prettier-ignore
+      const set =
+        table[material * GM_STRIDE + GM_TEXTURES + TEX_NORMAL * BINDING_STRIDE + B_TEXCOORD];
       const uv = prim.getAttribute(`TEXCOORD_${set}`);
       if (uv === null)
-        warn(`${where}: its material has a normal map but the primitive has no TEXCOORD_${set}; the normal map is ignored here`); // prettier-ignore
+        warn(
+          `${where}: its material has a normal map but the primitive has no TEXCOORD_${set}; the normal map is ignored here`,
+        );
       else if (generateTangents === null)
-        warn(`${where}: no tangent generator was given; the normal map is ignored here`); // prettier-ignore
+        warn(`${where}: no tangent generator was given; the normal map is ignored here`);
       else {
         // MikkTSpace works on unwelded corners; weld the result back.
-        const corner = generatePrimitiveTangents(prim, triangles, readFloats(uv), generateTangents, where); // prettier-ignore
+        const corner = generatePrimitiveTangents(
+          prim,
+          triangles,
+          readFloats(uv),
+          generateTangents,
+          where,
+        );
         const welded = weldCorners(triangles, corner, pos.getCount());
         plan.source = welded.source;
         plan.triangles = welded.triangles;
@@ -274,7 +261,9 @@ export function flattenGltf(
         const wz = nm[2] * x + nm[5] * y + nm[8] * z;
         const l = Math.sqrt(wx * wx + wy * wy + wz * wz);
         if (!(l > 0) || !Number.isFinite(l)) {
-          throw new GltfError(`${where}.attributes.NORMAL: vertex ${src(k)} has a zero-length normal`); // prettier-ignore
+          throw new GltfError(
+            `${where}.attributes.NORMAL: vertex ${src(k)} has a zero-length normal`,
+          );
         }
         const o = 3 * (v0 + k);
         normals[o] = wx / l;
@@ -363,30 +352,10 @@ export function flattenGltf(
     uv1,
     colors,
     tangents,
-    triangleMaterial: t === triangleMaterial.length ? triangleMaterial : triangleMaterial.slice(0, t), // prettier-ignore
+    triangleMaterial:
+      t === triangleMaterial.length ? triangleMaterial : triangleMaterial.slice(0, t),
     skipped,
     bounds,
     cameras,
-  };
-}
-
-function readCamera(cam: Json, m: Mat4): GltfCamera | null {
-  const p = cam.perspective as Json | undefined;
-  if (cam.type !== 'perspective' || p === undefined || typeof p.yfov !== 'number') return null;
-  const yfov = (p.yfov * 180) / Math.PI;
-  if (!(yfov > 0 && yfov < 180)) return null;
-  const position: [number, number, number] = [m[12], m[13], m[14]];
-  // Cameras look down their local −z with +y up (glTF 2.0 §3.10).
-  const fx = -m[8],
-    fy = -m[9],
-    fz = -m[10];
-  const l = Math.hypot(fx, fy, fz);
-  const ul = Math.hypot(m[4], m[5], m[6]);
-  if (!(l > 0 && ul > 0)) return null;
-  return {
-    position,
-    target: [position[0] + fx / l, position[1] + fy / l, position[2] + fz / l],
-    up: [m[4] / ul, m[5] / ul, m[6] / ul],
-    fovY: yfov,
   };
 }

@@ -38,15 +38,20 @@ export function parseGlb(bytes: Uint8Array): GlbChunks {
   }
   const length = view.getUint32(8, true);
   if (length > bytes.length) {
-    throw new GltfError(`GLB header: says ${length} bytes, but the file has ${bytes.length} (truncated?)`); // prettier-ignore
+    throw new GltfError(
+      `GLB header: says ${length} bytes, but the file has ${bytes.length} (truncated?)`,
+    );
   }
-  if (length < 20) throw new GltfError(`GLB header: length ${length} leaves no room for the JSON chunk`); // prettier-ignore
+  if (length < 20)
+    throw new GltfError(`GLB header: length ${length} leaves no room for the JSON chunk`);
   const jsonLength = view.getUint32(12, true);
   if (view.getUint32(16, true) !== CHUNK_JSON) {
     throw new GltfError('GLB chunk 0: the first chunk must be JSON');
   }
   if (20 + jsonLength > length) {
-    throw new GltfError(`GLB chunk 0: JSON chunk of ${jsonLength} bytes runs past the end of the file (${length} bytes)`); // prettier-ignore
+    throw new GltfError(
+      `GLB chunk 0: JSON chunk of ${jsonLength} bytes runs past the end of the file (${length} bytes)`,
+    );
   }
   const json = bytes.subarray(20, 20 + jsonLength);
   let p = 20 + jsonLength;
@@ -57,7 +62,9 @@ export function parseGlb(bytes: Uint8Array): GlbChunks {
     const binLength = view.getUint32(p, true);
     const type = view.getUint32(p + 4, true);
     if (p + 8 + binLength > length) {
-      throw new GltfError(`GLB chunk 1: chunk of ${binLength} bytes runs past the end of the file (${length} bytes)`); // prettier-ignore
+      throw new GltfError(
+        `GLB chunk 1: chunk of ${binLength} bytes runs past the end of the file (${length} bytes)`,
+      );
     }
     if (type === CHUNK_BIN) bin = bytes.subarray(p + 8, p + 8 + binLength);
   }

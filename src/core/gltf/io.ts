@@ -53,7 +53,9 @@ export function joinPath(base: string, rel: string): string {
  */
 export function resolveUri(filePath: string, uri: string, where: string): string {
   if (/^[a-zA-Z][a-zA-Z0-9+.-]*:/.test(uri) || uri.startsWith('/')) {
-    throw new GltfError(`${where}: ${quote(uri)} is not a relative path; only files beside the model can be read`); // prettier-ignore
+    throw new GltfError(
+      `${where}: ${quote(uri)} is not a relative path; only files beside the model can be read`,
+    );
   }
   let decoded: string;
   try {
@@ -97,7 +99,7 @@ export function decodeDataUri(uri: string, where: string): Uint8Array {
   for (let i = 0; i < end; i++) {
     const c = body.charCodeAt(i);
     const v = c < 128 ? lookup[c] : -1;
-    if (v < 0) throw new GltfError(`${where}: data URI has a character that is not base64 at ${i}`); // prettier-ignore
+    if (v < 0) throw new GltfError(`${where}: data URI has a character that is not base64 at ${i}`);
     acc = (acc << 6) | v;
     bits += 6;
     if (bits >= 8) {

@@ -35,7 +35,8 @@ import { compileGltfMaterials } from './materials.ts';
 import type { TangentGenerator } from './tangents.ts';
 import { decodeGltfTextures } from './textures.ts';
 import { fromRowMajor } from './transforms.ts';
-import { validateGltfBuffers, validateGltfJson } from './validate.ts';
+import { validateGltfBuffers } from './validate-buffers.ts';
+import { validateGltfJson } from './validate.ts';
 
 /** Extensions whose content is used (everything else is reported as ignored). */
 export const HONOURED_EXTENSIONS = new Set([
@@ -122,15 +123,16 @@ export async function loadGltf(
   }
 
   const count = (key: string): number => ((json[key] as unknown[] | undefined) ?? []).length;
-  if (count('animations') > 0) warn(`${count('animations')} animation(s) ignored: the model is rendered in its rest pose`); // prettier-ignore
-  if (count('skins') > 0) warn(`${count('skins')} skin(s) ignored: the model is rendered in its rest pose`); // prettier-ignore
+  if (count('animations') > 0)
+    warn(`${count('animations')} animation(s) ignored: the model is rendered in its rest pose`);
+  if (count('skins') > 0)
+    warn(`${count('skins')} skin(s) ignored: the model is rendered in its rest pose`);
   const meshes = (json.meshes as Record<string, unknown>[] | undefined) ?? [];
   if (
     meshes.some((m) =>
       (m.primitives as Record<string, unknown>[]).some((p) => p.targets !== undefined),
     )
   ) {
-    // prettier-ignore
     warn('morph targets ignored: the model is rendered in its rest pose');
   }
 
@@ -143,11 +145,18 @@ export async function loadGltf(
     const where = `buffers[${i}]`;
     let data: Uint8Array;
     if (b.uri === undefined) {
-      if (i !== 0 || bin === null) throw new GltfError(`${where}: has no uri and the file has no GLB binary chunk`); // prettier-ignore
+      if (i !== 0 || bin === null)
+        throw new GltfError(`${where}: has no uri and the file has no GLB binary chunk`);
       data = bin;
       resources['@glb.bin'] = bin;
     } else {
-      data = await readResource(b.uri as string, path, where, (b.byteLength as number) + 4096, options); // prettier-ignore
+      data = await readResource(
+        b.uri as string,
+        path,
+        where,
+        (b.byteLength as number) + 4096,
+        options,
+      );
       resources[b.uri as string] = data;
     }
     lengths.push(data.length);
@@ -211,7 +220,9 @@ async function readResource(
   if (uri.startsWith('data:')) return decodeDataUri(uri, `${where}.uri`);
   const file = resolveUri(path, uri, `${where}.uri`);
   if (options.reader === null) {
-    throw new GltfError(`${where}.uri: names the file ${quote(file)}, but no way to read files beside the model was given`); // prettier-ignore
+    throw new GltfError(
+      `${where}.uri: names the file ${quote(file)}, but no way to read files beside the model was given`,
+    );
   }
   try {
     return await options.reader.read(file, Math.min(maxBytes, GLTF_FILE_BYTES));

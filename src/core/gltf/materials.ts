@@ -96,7 +96,13 @@ export function compileGltfMaterials(
     const key = `${imageIndex}:${srgb}`;
     let r = requests.get(key);
     if (r === undefined) {
-      r = { texture, imageIndex, srgb, bindings: [], firstUse: `materials[${m}].${SLOT_NAMES[slot]}` }; // prettier-ignore
+      r = {
+        texture,
+        imageIndex,
+        srgb,
+        bindings: [],
+        firstUse: `materials[${m}].${SLOT_NAMES[slot]}`,
+      };
       requests.set(key, r);
     }
     r.bindings.push(b);
@@ -149,11 +155,17 @@ export function compileGltfMaterials(
       bind(m, TEX_SPECULAR_COLOR, sp.getSpecularColorTexture(), sp.getSpecularColorTextureInfo());
     }
     const mode = mat.getAlphaMode();
-    table[o + GM_ALPHA_MODE] = mode === 'MASK' ? ALPHA_MASK : mode === 'BLEND' ? ALPHA_BLEND : ALPHA_OPAQUE; // prettier-ignore
+    table[o + GM_ALPHA_MODE] =
+      mode === 'MASK' ? ALPHA_MASK : mode === 'BLEND' ? ALPHA_BLEND : ALPHA_OPAQUE;
     table[o + GM_ALPHA_CUTOFF] = mat.getAlphaCutoff();
     table[o + GM_NORMAL_SCALE] = mat.getNormalScale();
     bind(m, TEX_BASE_COLOR, mat.getBaseColorTexture(), mat.getBaseColorTextureInfo());
-    bind(m, TEX_METALLIC_ROUGHNESS, mat.getMetallicRoughnessTexture(), mat.getMetallicRoughnessTextureInfo()); // prettier-ignore
+    bind(
+      m,
+      TEX_METALLIC_ROUGHNESS,
+      mat.getMetallicRoughnessTexture(),
+      mat.getMetallicRoughnessTextureInfo(),
+    );
     bind(m, TEX_NORMAL, mat.getNormalTexture(), mat.getNormalTextureInfo());
     bind(m, TEX_EMISSIVE, mat.getEmissiveTexture(), mat.getEmissiveTextureInfo());
   });

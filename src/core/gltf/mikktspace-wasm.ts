@@ -13,7 +13,15 @@ import type { TangentGenerator } from './tangents.ts';
 // in the ES2022 lib that src/core compiles against: declare the little used.
 interface WasmExports {
   memory: { buffer: ArrayBuffer };
-  generateTangents(ret: number, p: number, pl: number, n: number, nl: number, t: number, tl: number): void; // prettier-ignore
+  generateTangents(
+    ret: number,
+    p: number,
+    pl: number,
+    n: number,
+    nl: number,
+    t: number,
+    tl: number,
+  ): void;
   __wbindgen_add_to_stack_pointer(delta: number): number;
   __wbindgen_malloc(size: number): number;
   __wbindgen_free(ptr: number, size: number): void;

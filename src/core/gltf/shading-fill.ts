@@ -77,8 +77,10 @@ function lookup(
   const set = table[b + B_TEXCOORD];
   const u = set === 0 ? hit.u0 : hit.u1;
   const v = set === 0 ? hit.v0 : hit.v1;
-  const tu = table[b + B_TRANSFORM] * u + table[b + B_TRANSFORM + 1] * v + table[b + B_TRANSFORM + 2]; // prettier-ignore
-  const tv = table[b + B_TRANSFORM + 3] * u + table[b + B_TRANSFORM + 4] * v + table[b + B_TRANSFORM + 5]; // prettier-ignore
+  const tu =
+    table[b + B_TRANSFORM] * u + table[b + B_TRANSFORM + 1] * v + table[b + B_TRANSFORM + 2];
+  const tv =
+    table[b + B_TRANSFORM + 3] * u + table[b + B_TRANSFORM + 4] * v + table[b + B_TRANSFORM + 5];
   textureBilinear(textures, image, tu, tv, table[b + B_WRAP_S], table[b + B_WRAP_T], T);
   return true;
 }
@@ -109,7 +111,14 @@ export function fillGltfShading(
   sp.baseG = clamp01(g);
   sp.baseB = clamp01(b);
   const mode = table[o + GM_ALPHA_MODE];
-  sp.opacity = mode === ALPHA_BLEND ? clamp01(a) : mode === ALPHA_MASK ? (a >= table[o + GM_ALPHA_CUTOFF] ? 1 : 0) : 1; // prettier-ignore
+  sp.opacity =
+    mode === ALPHA_BLEND
+      ? clamp01(a)
+      : mode === ALPHA_MASK
+        ? a >= table[o + GM_ALPHA_CUTOFF]
+          ? 1
+          : 0
+        : 1;
 
   let metallic = table[o + GM_METALLIC];
   let roughness = table[o + GM_ROUGHNESS];

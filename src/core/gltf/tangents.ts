@@ -77,10 +77,14 @@ export function generatePrimitiveTangents(
   try {
     out = generate(p, q, t);
   } catch (e) {
-    throw new GltfError(`${where}: tangent generation failed: ${e instanceof Error ? e.message : String(e)}`); // prettier-ignore
+    throw new GltfError(
+      `${where}: tangent generation failed: ${e instanceof Error ? e.message : String(e)}`,
+    );
   }
   if (out.length !== 4 * n) {
-    throw new GltfError(`${where}: tangent generator returned ${out.length} values for ${n} corners`); // prettier-ignore
+    throw new GltfError(
+      `${where}: tangent generator returned ${out.length} values for ${n} corners`,
+    );
   }
   // MikkTSpace's bitangent sign follows a v-up texture convention; glTF's v
   // points down the image, so the handedness flips (as glTF-Transform does).

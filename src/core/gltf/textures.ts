@@ -35,7 +35,9 @@ export async function decodeGltfTextures(
     }
     const mime = sniffImageType(bytes);
     if (mime === null) {
-      warn(`${what}: ${r.texture.getMimeType() || 'unknown format'} is not PNG or JPEG; the texture is ignored`); // prettier-ignore
+      warn(
+        `${what}: ${r.texture.getMimeType() || 'unknown format'} is not PNG or JPEG; the texture is ignored`,
+      );
       continue;
     }
     let info;

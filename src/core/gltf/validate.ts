@@ -32,8 +32,23 @@ export const GLTF_LIMITS = {
   objects: 1_000_000,
 } as const;
 
-const COMPONENT_SIZE: Record<number, number> = { 5120: 1, 5121: 1, 5122: 2, 5123: 2, 5125: 4, 5126: 4 }; // prettier-ignore
-const TYPE_SIZE: Record<string, number> = { SCALAR: 1, VEC2: 2, VEC3: 3, VEC4: 4, MAT2: 4, MAT3: 9, MAT4: 16 }; // prettier-ignore
+export const COMPONENT_SIZE: Record<number, number> = {
+  5120: 1,
+  5121: 1,
+  5122: 2,
+  5123: 2,
+  5125: 4,
+  5126: 4,
+};
+export const TYPE_SIZE: Record<string, number> = {
+  SCALAR: 1,
+  VEC2: 2,
+  VEC3: 3,
+  VEC4: 4,
+  MAT2: 4,
+  MAT3: 9,
+  MAT4: 16,
+};
 export const MODE_TRIANGLES = 4;
 export const MODE_TRIANGLE_STRIP = 5;
 export const MODE_TRIANGLE_FAN = 6;
@@ -42,16 +57,17 @@ function isObject(v: unknown): v is Json {
   return typeof v === 'object' && v !== null && !Array.isArray(v);
 }
 
-function fail(path: string, what: string): never {
+export function fail(path: string, what: string): never {
   throw new GltfError(`${path}: ${what}`);
 }
 
 /** The array at json[key] (absent: empty), each element an object. */
-function list(json: Json, key: string, path = key): Json[] {
+export function list(json: Json, key: string, path = key): Json[] {
   const v = json[key];
   if (v === undefined) return [];
   if (!Array.isArray(v)) fail(path, 'must be an array');
-  if (v.length > GLTF_LIMITS.objects) fail(path, `${v.length} entries, over the limit of ${GLTF_LIMITS.objects}`); // prettier-ignore
+  if (v.length > GLTF_LIMITS.objects)
+    fail(path, `${v.length} entries, over the limit of ${GLTF_LIMITS.objects}`);
   v.forEach((e, i) => {
     if (!isObject(e)) fail(`${path}[${i}]`, 'must be an object');
   });
@@ -65,11 +81,13 @@ function integer(
   min: number,
   max = Number.MAX_SAFE_INTEGER,
 ): number | undefined {
-  // prettier-ignore
   const v = o[key];
   if (v === undefined) return undefined;
   if (typeof v !== 'number' || !Number.isInteger(v) || v < min || v > max) {
-    fail(`${path}.${key}`, `must be an integer in [${min}, ${max}], got ${typeof v === 'string' ? quote(v) : String(v)}`); // prettier-ignore
+    fail(
+      `${path}.${key}`,
+      `must be an integer in [${min}, ${max}], got ${typeof v === 'string' ? quote(v) : String(v)}`,
+    );
   }
   return v;
 }
@@ -97,7 +115,6 @@ function finiteArray(o: Json, key: string, path: string, length: number): void {
     v.length !== length ||
     !v.every((x) => typeof x === 'number' && Number.isFinite(x))
   ) {
-    // prettier-ignore
     fail(`${path}.${key}`, `must be ${length} finite numbers`);
   }
 }
@@ -117,12 +134,16 @@ export function validateGltfJson(json: unknown): GltfSummary {
   if (!isObject(json)) fail('document', 'the glTF JSON must be an object');
   const asset = json.asset;
   if (!isObject(asset) || typeof asset.version !== 'string') fail('asset.version', 'is required');
-  if (!/^2\./.test(asset.version)) fail('asset.version', `glTF ${quote(asset.version)} is not supported, only 2.x`); // prettier-ignore
+  if (!/^2\./.test(asset.version))
+    fail('asset.version', `glTF ${quote(asset.version)} is not supported, only 2.x`);
   const req = json.extensionsRequired ?? [];
   if (!Array.isArray(req)) fail('extensionsRequired', 'must be an array');
   for (const name of req) {
     if (typeof name !== 'string' || !SUPPORTED_REQUIRED.has(name)) {
-      fail('extensionsRequired', `the file requires ${typeof name === 'string' ? quote(name) : 'a non-string'}, which pathwise does not support`); // prettier-ignore
+      fail(
+        'extensionsRequired',
+        `the file requires ${typeof name === 'string' ? quote(name) : 'a non-string'}, which pathwise does not support`,
+      );
     }
   }
   const buffers = list(json, 'buffers');
@@ -139,15 +160,18 @@ export function validateGltfJson(json: unknown): GltfSummary {
 
   buffers.forEach((b, i) => {
     required(b, 'byteLength', `buffers[${i}]`, 1);
-    if (b.uri !== undefined && typeof b.uri !== 'string') fail(`buffers[${i}].uri`, 'must be a string'); // prettier-ignore
+    if (b.uri !== undefined && typeof b.uri !== 'string')
+      fail(`buffers[${i}].uri`, 'must be a string');
   });
   views.forEach((v, i) => {
     const p = `bufferViews[${i}]`;
-    if (index(v, 'buffer', p, buffers.length, 'buffers') === undefined) fail(`${p}.buffer`, 'is required'); // prettier-ignore
+    if (index(v, 'buffer', p, buffers.length, 'buffers') === undefined)
+      fail(`${p}.buffer`, 'is required');
     integer(v, 'byteOffset', p, 0);
     required(v, 'byteLength', p, 1);
     const stride = integer(v, 'byteStride', p, 4, 252);
-    if (stride !== undefined && stride % 4 !== 0) fail(`${p}.byteStride`, `must be a multiple of 4, got ${stride}`); // prettier-ignore
+    if (stride !== undefined && stride % 4 !== 0)
+      fail(`${p}.byteStride`, `must be a multiple of 4, got ${stride}`);
   });
   accessors.forEach((a, i) => {
     const p = `accessors[${i}]`;
@@ -156,18 +180,25 @@ export function validateGltfJson(json: unknown): GltfSummary {
     const ct = required(a, 'componentType', p, 0);
     if (!(ct in COMPONENT_SIZE)) fail(`${p}.componentType`, `${ct} is not a glTF component type`);
     required(a, 'count', p, 1, GLTF_LIMITS.accessorCount);
-    if (typeof a.type !== 'string' || !(a.type in TYPE_SIZE)) fail(`${p}.type`, `${typeof a.type === 'string' ? quote(a.type) : 'missing'} is not a glTF accessor type`); // prettier-ignore
+    if (typeof a.type !== 'string' || !(a.type in TYPE_SIZE))
+      fail(
+        `${p}.type`,
+        `${typeof a.type === 'string' ? quote(a.type) : 'missing'} is not a glTF accessor type`,
+      );
     const sparse = a.sparse;
     if (sparse !== undefined) {
-      if (!isObject(sparse) || !isObject(sparse.indices) || !isObject(sparse.values)) fail(`${p}.sparse`, 'must have indices and values'); // prettier-ignore
+      if (!isObject(sparse) || !isObject(sparse.indices) || !isObject(sparse.values))
+        fail(`${p}.sparse`, 'must have indices and values');
       required(sparse, 'count', `${p}.sparse`, 1, a.count as number);
       for (const k of ['indices', 'values'] as const) {
         const s = sparse[k] as Json;
-        if (index(s, 'bufferView', `${p}.sparse.${k}`, views.length, 'bufferViews') === undefined) fail(`${p}.sparse.${k}.bufferView`, 'is required'); // prettier-ignore
+        if (index(s, 'bufferView', `${p}.sparse.${k}`, views.length, 'bufferViews') === undefined)
+          fail(`${p}.sparse.${k}.bufferView`, 'is required');
         integer(s, 'byteOffset', `${p}.sparse.${k}`, 0);
       }
       const ict = required(sparse.indices as Json, 'componentType', `${p}.sparse.indices`, 0);
-      if (ict !== 5121 && ict !== 5123 && ict !== 5125) fail(`${p}.sparse.indices.componentType`, `must be an unsigned integer type, got ${ict}`); // prettier-ignore
+      if (ict !== 5121 && ict !== 5123 && ict !== 5125)
+        fail(`${p}.sparse.indices.componentType`, `must be an unsigned integer type, got ${ict}`);
     }
   });
   images.forEach((im, i) => {
@@ -179,7 +210,8 @@ export function validateGltfJson(json: unknown): GltfSummary {
   samplers.forEach((s, i) => {
     for (const k of ['wrapS', 'wrapT']) {
       const w = s[k];
-      if (w !== undefined && w !== 33071 && w !== 33648 && w !== 10497) fail(`samplers[${i}].${k}`, `${String(w)} is not a glTF wrap mode`); // prettier-ignore
+      if (w !== undefined && w !== 33071 && w !== 33648 && w !== 10497)
+        fail(`samplers[${i}].${k}`, `${String(w)} is not a glTF wrap mode`);
     }
   });
   textures.forEach((t, i) => {
@@ -189,7 +221,8 @@ export function validateGltfJson(json: unknown): GltfSummary {
   const textureInfo = (o: unknown, p: string): void => {
     if (o === undefined) return;
     if (!isObject(o)) fail(p, 'must be an object');
-    if (index(o, 'index', p, textures.length, 'textures') === undefined) fail(`${p}.index`, 'is required'); // prettier-ignore
+    if (index(o, 'index', p, textures.length, 'textures') === undefined)
+      fail(`${p}.index`, 'is required');
     integer(o, 'texCoord', p, 0, 1 << 16);
   };
   materials.forEach((m, i) => {
@@ -197,16 +230,27 @@ export function validateGltfJson(json: unknown): GltfSummary {
     const pbr = m.pbrMetallicRoughness;
     if (isObject(pbr)) {
       textureInfo(pbr.baseColorTexture, `${p}.pbrMetallicRoughness.baseColorTexture`);
-      textureInfo(pbr.metallicRoughnessTexture, `${p}.pbrMetallicRoughness.metallicRoughnessTexture`); // prettier-ignore
+      textureInfo(
+        pbr.metallicRoughnessTexture,
+        `${p}.pbrMetallicRoughness.metallicRoughnessTexture`,
+      );
     }
-    for (const k of ['normalTexture', 'emissiveTexture', 'occlusionTexture']) textureInfo(m[k], `${p}.${k}`); // prettier-ignore
+    for (const k of ['normalTexture', 'emissiveTexture', 'occlusionTexture'])
+      textureInfo(m[k], `${p}.${k}`);
     const ext = isObject(m.extensions) ? m.extensions : {};
     const tr = ext.KHR_materials_transmission;
-    if (isObject(tr)) textureInfo(tr.transmissionTexture, `${p}.extensions.KHR_materials_transmission.transmissionTexture`); // prettier-ignore
+    if (isObject(tr))
+      textureInfo(
+        tr.transmissionTexture,
+        `${p}.extensions.KHR_materials_transmission.transmissionTexture`,
+      );
     const sp = ext.KHR_materials_specular;
     if (isObject(sp)) {
       textureInfo(sp.specularTexture, `${p}.extensions.KHR_materials_specular.specularTexture`);
-      textureInfo(sp.specularColorTexture, `${p}.extensions.KHR_materials_specular.specularColorTexture`); // prettier-ignore
+      textureInfo(
+        sp.specularColorTexture,
+        `${p}.extensions.KHR_materials_specular.specularColorTexture`,
+      );
     }
   });
   meshes.forEach((mesh, i) => {
@@ -217,7 +261,10 @@ export function validateGltfJson(json: unknown): GltfSummary {
       if (!isObject(pr.attributes)) fail(`${p}.attributes`, 'is required');
       for (const [name, a] of Object.entries(pr.attributes)) {
         if (typeof a !== 'number' || !Number.isInteger(a) || a < 0 || a >= accessors.length) {
-          fail(`${p}.attributes.${name}`, `refers to accessors[${String(a)}], but the file has ${accessors.length}`); // prettier-ignore
+          fail(
+            `${p}.attributes.${name}`,
+            `refers to accessors[${String(a)}], but the file has ${accessors.length}`,
+          );
         }
       }
       const ind = index(pr, 'indices', p, accessors.length, 'accessors');
@@ -243,9 +290,14 @@ export function validateGltfJson(json: unknown): GltfSummary {
     const children = n.children ?? [];
     if (!Array.isArray(children)) fail(`${p}.children`, 'must be an array');
     for (const c of children) {
-      if (typeof c !== 'number' || !Number.isInteger(c) || c < 0 || c >= nodes.length) fail(`${p}.children`, `refers to nodes[${String(c)}], but the file has ${nodes.length}`); // prettier-ignore
+      if (typeof c !== 'number' || !Number.isInteger(c) || c < 0 || c >= nodes.length)
+        fail(`${p}.children`, `refers to nodes[${String(c)}], but the file has ${nodes.length}`);
       if (c === i) fail(`${p}.children`, 'contains the node itself');
-      if (parent[c] !== -1) fail(`nodes[${c}]`, `is a child of both nodes[${parent[c]}] and nodes[${i}]; glTF nodes form trees`); // prettier-ignore
+      if (parent[c] !== -1)
+        fail(
+          `nodes[${c}]`,
+          `is a child of both nodes[${parent[c]}] and nodes[${i}]; glTF nodes form trees`,
+        );
       parent[c] = i;
     }
   });
@@ -257,19 +309,32 @@ export function validateGltfJson(json: unknown): GltfSummary {
       state[k] = 1;
       k = parent[k];
     }
-    if (k !== -1 && state[k] === 1) fail(`nodes[${k}]`, 'is its own ancestor (the node hierarchy has a cycle)'); // prettier-ignore
+    if (k !== -1 && state[k] === 1)
+      fail(`nodes[${k}]`, 'is its own ancestor (the node hierarchy has a cycle)');
     for (k = i; k !== -1 && state[k] === 1; k = parent[k]) state[k] = 2;
   }
   scenes.forEach((s, i) => {
     const roots = s.nodes ?? [];
     if (!Array.isArray(roots)) fail(`scenes[${i}].nodes`, 'must be an array');
     for (const r of roots) {
-      if (typeof r !== 'number' || !Number.isInteger(r) || r < 0 || r >= nodes.length) fail(`scenes[${i}].nodes`, `refers to nodes[${String(r)}], but the file has ${nodes.length}`); // prettier-ignore
-      if (parent[r] !== -1) fail(`scenes[${i}].nodes`, `nodes[${r}] is a root of the scene but also a child of nodes[${parent[r]}]`); // prettier-ignore
+      if (typeof r !== 'number' || !Number.isInteger(r) || r < 0 || r >= nodes.length)
+        fail(
+          `scenes[${i}].nodes`,
+          `refers to nodes[${String(r)}], but the file has ${nodes.length}`,
+        );
+      if (parent[r] !== -1)
+        fail(
+          `scenes[${i}].nodes`,
+          `nodes[${r}] is a root of the scene but also a child of nodes[${parent[r]}]`,
+        );
     }
   });
-  const scene = scenes.length === 0 ? -1 : (index(json, 'scene', 'document', scenes.length, 'scenes') ?? 0); // prettier-ignore
-  return { scene, triangles: scene < 0 ? 0 : countTriangles(json, scenes[scene], nodes, meshes, accessors) }; // prettier-ignore
+  const scene =
+    scenes.length === 0 ? -1 : (index(json, 'scene', 'document', scenes.length, 'scenes') ?? 0);
+  return {
+    scene,
+    triangles: scene < 0 ? 0 : countTriangles(json, scenes[scene], nodes, meshes, accessors),
+  };
 }
 
 /** Triangles of one primitive from its accessor counts (0 for points and lines). */
@@ -278,7 +343,10 @@ export function primitiveTriangles(pr: Json, accessors: Json[]): number {
   const attributes = pr.attributes as Json;
   const pos = attributes.POSITION;
   if (typeof pos !== 'number') return 0;
-  const n = pr.indices !== undefined ? (accessors[pr.indices as number].count as number) : (accessors[pos].count as number); // prettier-ignore
+  const n =
+    pr.indices !== undefined
+      ? (accessors[pr.indices as number].count as number)
+      : (accessors[pos].count as number);
   if (mode === MODE_TRIANGLES) return Math.floor(n / 3);
   if (mode === MODE_TRIANGLE_STRIP || mode === MODE_TRIANGLE_FAN) return Math.max(0, n - 2);
   return 0;
@@ -291,7 +359,6 @@ function countTriangles(
   meshes: Json[],
   accessors: Json[],
 ): number {
-  // prettier-ignore
   const perMesh = meshes.map((m) =>
     (m.primitives as Json[]).reduce((s, pr) => s + primitiveTriangles(pr, accessors), 0),
   );
@@ -302,72 +369,14 @@ function countTriangles(
     if (typeof n.mesh === 'number') {
       total += perMesh[n.mesh];
       if (total > GLTF_LIMITS.triangles) {
-        fail('scene', `instances more than ${GLTF_LIMITS.triangles.toLocaleString('en-US')} triangles, the limit`); // prettier-ignore
+        fail(
+          'scene',
+          `instances more than ${GLTF_LIMITS.triangles.toLocaleString('en-US')} triangles, the limit`,
+        );
       }
     }
     for (const c of (n.children as number[] | undefined) ?? []) stack.push(c);
   }
   void json;
   return total;
-}
-
-/**
- * Checks the byte ranges once the buffers are known: `bufferBytes[i]` is
- * the length of the bytes actually read for buffers[i]. Throws GltfError.
- */
-export function validateGltfBuffers(json: Json, bufferBytes: number[]): void {
-  const buffers = list(json, 'buffers');
-  const views = list(json, 'bufferViews');
-  const accessors = list(json, 'accessors');
-  buffers.forEach((b, i) => {
-    if (bufferBytes[i] < (b.byteLength as number)) {
-      fail(`buffers[${i}]`, `declares ${b.byteLength as number} bytes, but only ${bufferBytes[i]} could be read`); // prettier-ignore
-    }
-  });
-  views.forEach((v, i) => {
-    const end = ((v.byteOffset as number | undefined) ?? 0) + (v.byteLength as number);
-    const b = v.buffer as number;
-    if (end > (buffers[b].byteLength as number)) {
-      fail(`bufferViews[${i}]`, `ends at byte ${end}, past the end of buffers[${b}] (${buffers[b].byteLength as number} bytes)`); // prettier-ignore
-    }
-  });
-  const range = (
-    p: string,
-    viewIndex: number,
-    offset: number,
-    count: number,
-    element: number,
-    stride: number,
-    align: number,
-  ): void => {
-    // prettier-ignore
-    const v = views[viewIndex];
-    const end = offset + stride * (count - 1) + element;
-    if (end > (v.byteLength as number)) {
-      fail(p, `needs ${end} bytes of bufferViews[${viewIndex}], which has ${v.byteLength as number} (count ${count})`); // prettier-ignore
-    }
-    const start = ((v.byteOffset as number | undefined) ?? 0) + offset;
-    if (start % align !== 0) fail(p, `starts at byte ${start} of its buffer, not a multiple of its component size ${align}`); // prettier-ignore
-  };
-  accessors.forEach((a, i) => {
-    const p = `accessors[${i}]`;
-    const size = COMPONENT_SIZE[a.componentType as number];
-    const element = size * TYPE_SIZE[a.type as string];
-    const count = a.count as number;
-    if (a.bufferView !== undefined) {
-      const v = views[a.bufferView as number];
-      const stride = (v.byteStride as number | undefined) ?? element;
-      if (stride < element) fail(p, `elements of ${element} bytes do not fit bufferViews[${a.bufferView as number}].byteStride ${stride}`); // prettier-ignore
-      range(p, a.bufferView as number, (a.byteOffset as number | undefined) ?? 0, count, element, stride, size); // prettier-ignore
-    }
-    const sparse = a.sparse as Json | undefined;
-    if (sparse !== undefined) {
-      const n = sparse.count as number;
-      const ind = sparse.indices as Json;
-      const isz = COMPONENT_SIZE[ind.componentType as number];
-      range(`${p}.sparse.indices`, ind.bufferView as number, (ind.byteOffset as number | undefined) ?? 0, n, isz, isz, isz); // prettier-ignore
-      const val = sparse.values as Json;
-      range(`${p}.sparse.values`, val.bufferView as number, (val.byteOffset as number | undefined) ?? 0, n, element, element, size); // prettier-ignore
-    }
-  });
 }
