@@ -15,7 +15,8 @@ export function attachSceneFiles(
 ): void {
   const open = async (file: File): Promise<void> => {
     try {
-      await getController().setScene(await file.text());
+      // The File itself: the loader applies the byte bound and strict UTF-8 to it.
+      await getController().setScene(file);
       onLoaded();
     } catch (e) {
       onError(`${file.name}: ${e instanceof Error ? e.message : String(e)}`);

@@ -18,7 +18,8 @@ export {
 } from './integrator/path-tracer.ts';
 export { Film } from './film/film.ts';
 export { Camera } from './camera/camera.ts';
-export { encodePfm, decodePfm, type PfmImage } from './io/pfm.ts';
+export { encodePfm, decodePfm, type PfmImage, type PfmDecodeOptions } from './io/pfm.ts';
+export { FormatError } from './io/format-error.ts';
 export { encodePng, zlibStored } from './io/png.ts';
 export { acesFilmic, srgbEncode, toDisplayByte, tonemapSums } from './io/tonemap.ts';
 export { pcgHash } from './rng/pcg.ts';

@@ -19,7 +19,9 @@
  */
 import {
   DEFAULT_SAMPLER,
+  LIMITS,
   PathTracer,
+  SceneError,
   compileScene,
   encodePfm,
   estimateNoise,
@@ -30,6 +32,7 @@ import {
   type CompiledScene,
   type Scene,
 } from '../core/index.ts';
+import { sceneSizeProblem } from '../core/scene/load.ts';
 import type { JobConfig } from '../../workers/render-protocol.ts';
 import type { Display, DisplayPixels } from './display.ts';
 import type { FilmJob } from './film-job.ts';
@@ -38,6 +41,7 @@ import { attachCameraControls } from './interaction.ts';
 import { chooseCompute, createDisplay } from './mode.ts';
 import { dollyCamera, orbitCamera } from './orbit.ts';
 import { releasePool, sharedPool, type PoolClient, type WorkerPool } from './pool.ts';
+import { ByteLimitError, readBlobBounded, readResponseBounded } from './read-bounded.ts';
 import { RateMeter } from './rate-meter.ts';
 import { SharedFilmJob } from './shared-job.ts';
 import type {
@@ -178,8 +182,14 @@ export class Controller extends EventTarget implements PathTracerController {
     this.sceneRequested = true;
     let scene: Scene;
     try {
-      scene = typeof value === 'string' ? parseScene(value) : validateScene(value);
+      // Bytes and files get the loader's byte bound and strict UTF-8, as on the command line.
+      if (value instanceof Blob) value = await readBlobBounded(value, LIMITS.fileBytes);
+      scene =
+        typeof value === 'string' || value instanceof Uint8Array
+          ? parseScene(value)
+          : validateScene(value);
     } catch (e) {
+      if (e instanceof ByteLimitError) e = new SceneError([sceneSizeProblem(e.size, e.exact)]);
       const message = e instanceof Error ? e.message : String(e);
       this.emit('error', { message });
       throw new Error(message);
@@ -200,17 +210,22 @@ export class Controller extends EventTarget implements PathTracerController {
 
   async load(url: string): Promise<void> {
     this.sceneRequested = true;
-    let text: string;
+    let bytes: Uint8Array;
     try {
       const response = await fetch(url);
       if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
-      text = await response.text();
+      bytes = await readResponseBounded(response, LIMITS.fileBytes);
     } catch (e) {
-      const message = e instanceof Error ? e.message : String(e);
+      const message =
+        e instanceof ByteLimitError
+          ? `${url}: ${sceneSizeProblem(e.size, e.exact)}`
+          : e instanceof Error
+            ? e.message
+            : String(e);
       this.emit('error', { message });
       throw new Error(message);
     }
-    await this.setScene(text);
+    await this.setScene(bytes);
   }
 
   // ---- restart machinery -------------------------------------------------

@@ -77,7 +77,11 @@ export interface PathTracerController extends EventTarget {
   readonly canvas: HTMLCanvasElement;
   readonly mode: FallbackInfo;
   readonly scene: Scene | null;
-  /** Validates and loads a scene object; rejects with the loader's message, keeping the current scene. */
+  /**
+   * Validates and loads a scene: an object, its JSON text, or the bytes of a file (a
+   * Uint8Array or a File/Blob, held to the 16 MiB bound and strict UTF-8 like the command
+   * line). Rejects with the loader's message, keeping the current scene.
+   */
   setScene(scene: unknown): Promise<void>;
   load(url: string): Promise<void>;
   reset(): void;
