@@ -96,11 +96,11 @@ describe('malformed GLB containers', () => {
     const glb = await toGlb(quadDoc());
     await expectError(
       glb.subarray(0, 8),
-      /^GLB header: file is 8 bytes, the header alone needs 12$/,
+      /^glTF: GLB header: file is 8 bytes, the header alone needs 12$/,
     );
     await expectError(
       glb.subarray(0, glb.length - 10),
-      /^GLB header: says \d+ bytes, but the file has \d+ \(truncated\?\)$/,
+      /^glTF: GLB header: says \d+ bytes, but the file has \d+ \(truncated\?\)$/,
     );
   });
 
@@ -108,30 +108,30 @@ describe('malformed GLB containers', () => {
     const glb = await toGlb(quadDoc());
     const v1 = glb.slice();
     new DataView(v1.buffer).setUint32(4, 1, true);
-    await expectError(v1, /^GLB header: version 1, only glTF 2\.0/);
+    await expectError(v1, /^glTF: GLB header: version 1, only glTF 2\.0/);
     const j = glb.slice();
     new DataView(j.buffer).setUint32(12, glb.length, true);
-    await expectError(j, /^GLB chunk 0: JSON chunk of \d+ bytes runs past the end/);
+    await expectError(j, /^glTF: GLB chunk 0: JSON chunk of \d+ bytes runs past the end/);
     const b = glb.slice();
     const jl = new DataView(b.buffer).getUint32(12, true);
     new DataView(b.buffer).setUint32(20 + jl, glb.length, true);
-    await expectError(b, /^GLB chunk 1: chunk of \d+ bytes runs past the end/);
+    await expectError(b, /^glTF: GLB chunk 1: chunk of \d+ bytes runs past the end/);
   });
 
   it('JSON that is not JSON, or not UTF-8', async () => {
     const text = new TextEncoder().encode('{"asset": {"version": "2.0"},,}');
-    await expectError(makeGlbRaw(text), /^JSON: line 1, column \d+: /);
+    await expectError(makeGlbRaw(text), /^glTF: JSON: line 1, column \d+: /);
     await expectError(
       makeGlbRaw(Uint8Array.of(0x7b, 0xff, 0x7d, 0x20)),
-      /^JSON: not valid UTF-8 at byte 1/,
+      /^glTF: JSON: not valid UTF-8 at byte 1/,
     );
     await expectError(
       new TextEncoder().encode('[1, 2]'),
-      /^document: the glTF JSON must be an object$/,
+      /^glTF: document: the glTF JSON must be an object$/,
     );
     await expectError(
       new TextEncoder().encode('{"asset": {"version": "1.0"}}'),
-      /^asset\.version: glTF "1\.0" is not supported/,
+      /^glTF: asset\.version: glTF "1\.0" is not supported/,
     );
   });
 });
@@ -153,35 +153,35 @@ describe('malformed buffers and accessors', () => {
   it('a buffer view past the end of its buffer', () =>
     mutated((j) => {
       j.bufferViews[0].byteLength += 1000;
-    }, /^bufferViews\[0\]: ends at byte \d+, past the end of buffers\[0\]/));
+    }, /^glTF: bufferViews\[0\]: ends at byte \d+, past the end of buffers\[0\]/));
 
   it('a buffer declaring more bytes than the file has', () =>
     mutated((j) => {
       j.buffers[0].byteLength += 64;
       j.bufferViews[0].byteLength += 64;
-    }, /^buffers\[0\]: declares \d+ bytes, but only \d+ could be read$/));
+    }, /^glTF: buffers\[0\]: declares \d+ bytes, but only \d+ could be read$/));
 
   it('an accessor with a lying count (reads past its view)', () =>
     mutated((j) => {
       j.accessors[0].count = 1_000_000;
-    }, /^accessors\[0\]: needs \d+ bytes of bufferViews\[\d+\], which has \d+ \(count 1000000\)$/));
+    }, /^glTF: accessors\[0\]: needs \d+ bytes of bufferViews\[\d+\], which has \d+ \(count 1000000\)$/));
 
   it('bad accessor: component type, type, misalignment', async () => {
     await mutated((j) => {
       j.accessors[1].componentType = 1234;
-    }, /^accessors\[1\]\.componentType: 1234 is not a glTF component type$/);
+    }, /^glTF: accessors\[1\]\.componentType: 1234 is not a glTF component type$/);
     await mutated((j) => {
       j.accessors[1].type = 'VEC5';
-    }, /^accessors\[1\]\.type: "VEC5" is not a glTF accessor type$/);
+    }, /^glTF: accessors\[1\]\.type: "VEC5" is not a glTF accessor type$/);
     await mutated((j) => {
       j.accessors[0].byteOffset = 2;
-    }, /^accessors\[0\]: starts at byte \d+ of its buffer, not a multiple of its component size 4$/);
+    }, /^glTF: accessors\[0\]: starts at byte \d+ of its buffer, not a multiple of its component size 4$/);
     await mutated((j) => {
       j.meshes[0].primitives[0].attributes.POSITION = 99;
-    }, /^meshes\[0\]\.primitives\[0\]\.attributes\.POSITION: refers to accessors\[99\], but the file has \d+$/);
+    }, /^glTF: meshes\[0\]\.primitives\[0\]\.attributes\.POSITION: refers to accessors\[99\], but the file has \d+$/);
     await mutated((j) => {
       j.meshes[0].primitives[0].indices = j.meshes[0].primitives[0].attributes.POSITION;
-    }, /^meshes\[0\]\.primitives\[0\]\.indices: accessors\[\d+\] must be SCALAR of an unsigned integer type$/);
+    }, /^glTF: meshes\[0\]\.primitives\[0\]\.indices: accessors\[\d+\] must be SCALAR of an unsigned integer type$/);
   });
 
   it('an index out of range', () =>
@@ -193,7 +193,7 @@ describe('malformed buffers and accessors', () => {
         999,
         true,
       );
-    }, /^meshes\[0\]\.primitives\[0\]\.indices: index 999 at position 2 is out of range \(POSITION has 4 vertices\)$/));
+    }, /^glTF: meshes\[0\]\.primitives\[0\]\.indices: index 999 at position 2 is out of range \(POSITION has 4 vertices\)$/));
 
   it('NaN and infinite positions', () =>
     mutated((j, bin) => {
@@ -205,7 +205,7 @@ describe('malformed buffers and accessors', () => {
         NaN,
         true,
       );
-    }, /^meshes\[0\]\.primitives\[0\]\.attributes\.POSITION: vertex 2 has a non-finite value$/));
+    }, /^glTF: meshes\[0\]\.primitives\[0\]\.attributes\.POSITION: vertex 2 has a non-finite value$/));
 
   it('an index bomb: a mesh instanced past the triangle limit is refused before allocating', () =>
     mutated((j) => {
@@ -216,18 +216,18 @@ describe('malformed buffers and accessors', () => {
       j.nodes = [{ children }];
       for (let i = 0; i < children.length; i++) j.nodes.push({ mesh: 0 });
       j.scenes = [{ nodes: [0] }];
-    }, /^scene: instances more than 10,000,000 triangles, the limit$/));
+    }, /^glTF: scene: instances more than 10,000,000 triangles, the limit$/));
 
   it('too many objects of one kind', () =>
     mutated((j) => {
       j.nodes = Array.from({ length: 1_000_001 }, () => ({}));
-    }, /^nodes: 1000001 entries, over the limit of 1000000$/));
+    }, /^glTF: nodes: 1000001 entries, over the limit of 1000000$/));
 
   it('a huge index count is refused by the triangle limit before anything is read', () =>
     mutated((j) => {
       const acc = j.accessors[j.meshes[0].primitives[0].indices];
       acc.count = 60_000_000;
-    }, /^scene: instances more than 10,000,000 triangles, the limit$/));
+    }, /^glTF: scene: instances more than 10,000,000 triangles, the limit$/));
 });
 
 describe('malformed structure', () => {
@@ -235,44 +235,61 @@ describe('malformed structure', () => {
     await mutated((j) => {
       j.nodes = [{ children: [1] }, { children: [2] }, { children: [1], mesh: 0 }];
       j.scenes = [{ nodes: [0] }];
-    }, /^nodes\[1\]: is a child of both nodes\[0\] and nodes\[2\]; glTF nodes form trees$/);
+    }, /^glTF: nodes\[1\]: is a child of both nodes\[0\] and nodes\[2\]; glTF nodes form trees$/);
     await mutated((j) => {
       j.nodes = [{ mesh: 0 }, { children: [2] }, { children: [1] }];
       j.scenes = [{ nodes: [0] }];
-    }, /^nodes\[\d\]: is its own ancestor \(the node hierarchy has a cycle\)$/);
+    }, /^glTF: nodes\[\d\]: is its own ancestor \(the node hierarchy has a cycle\)$/);
     await mutated((j) => {
       j.nodes = [{ children: [0] }];
-    }, /^nodes\[0\]\.children: contains the node itself$/);
+    }, /^glTF: nodes\[0\]\.children: contains the node itself$/);
   });
 
   it('non-finite transforms and dangling references', async () => {
     await mutated((j) => {
       j.nodes[0].translation = [0, 1e400, 0];
-    }, /^nodes\[0\]\.translation: must be 3 finite numbers$/);
+    }, /^glTF: nodes\[0\]\.translation: must be 3 finite numbers$/);
     await mutated((j) => {
       j.nodes[0].mesh = 5;
-    }, /^nodes\[0\]\.mesh: refers to meshes\[5\], but the file has 1$/);
+    }, /^glTF: nodes\[0\]\.mesh: refers to meshes\[5\], but the file has 1$/);
     await mutated((j) => {
       j.materials[0].pbrMetallicRoughness.baseColorTexture.index = 3;
-    }, /^materials\[0\]\.pbrMetallicRoughness\.baseColorTexture\.index: refers to textures\[3\], but the file has 1$/);
+    }, /^glTF: materials\[0\]\.pbrMetallicRoughness\.baseColorTexture\.index: refers to textures\[3\], but the file has 1$/);
+  });
+
+  it('material numbers outside their glTF ranges', async () => {
+    await mutated((j) => {
+      j.materials[0].pbrMetallicRoughness.metallicFactor = 2;
+    }, /^glTF: materials\[0\]\.pbrMetallicRoughness\.metallicFactor: must be a number in \[0, 1\], got 2$/);
+    await mutated((j) => {
+      j.materials[0].extensions = { KHR_materials_ior: { ior: 0.5 } };
+    }, /^glTF: materials\[0\]\.extensions\.KHR_materials_ior\.ior: must be 0 or at least 1, got 0\.5$/);
+    await mutated((j) => {
+      j.materials[0].extensions = { KHR_materials_emissive_strength: { emissiveStrength: 1e300 } };
+    }, /^glTF: materials\[0\]\.extensions\.KHR_materials_emissive_strength\.emissiveStrength: must be a number in \[0, 1000000000000\]/);
+    await mutated((j) => {
+      j.materials[0].pbrMetallicRoughness.baseColorTexture.extensions = {
+        KHR_texture_transform: { offset: [0, 'x'] },
+      };
+    }, /^glTF: materials\[0\]\.pbrMetallicRoughness\.baseColorTexture\.extensions\.KHR_texture_transform\.offset: must be 2 numbers/);
   });
 
   it('a required extension pathwise lacks', () =>
     mutated((j) => {
       j.extensionsUsed = ['KHR_draco_mesh_compression'];
       j.extensionsRequired = ['KHR_draco_mesh_compression'];
-    }, /^extensionsRequired: the file requires "KHR_draco_mesh_compression", which pathwise does not support$/));
+    }, /^glTF: extensionsRequired: the file requires "KHR_draco_mesh_compression", which pathwise does not support$/));
 
   it('a corrupt texture, and one whose header claims more than the memory limit', async () => {
     await mutated((j, bin) => {
       const view = j.bufferViews[j.images[0].bufferView];
       bin.fill(0, view.byteOffset + 40, view.byteOffset + view.byteLength);
-    }, /^images\[0\] \(materials\[0\]\.baseColorTexture\): cannot decode image\/png: /);
+    }, /^glTF: images\[0\] \(materials\[0\]\.baseColorTexture\): cannot decode image\/png: /);
     await mutated((j, bin) => {
       const view = j.bufferViews[j.images[0].bufferView];
       new DataView(bin.buffer).setUint32(view.byteOffset + 16, 16000);
       new DataView(bin.buffer).setUint32(view.byteOffset + 20, 16000);
-    }, /^images\[0\] \(materials\[0\]\.baseColorTexture\): decoded textures would need 1\.91 GiB, over the texture memory limit of 1\.00 GiB$/);
+    }, /^glTF: images\[0\] \(materials\[0\]\.baseColorTexture\): decoded textures would need 1\.91 GiB, over the texture memory limit of 1\.00 GiB$/);
   });
 });
 
@@ -283,19 +300,23 @@ describe('malformed external resources', () => {
     const json = JSON.parse(new TextDecoder().decode(gltf));
     const bin = json.buffers[0].uri;
     files.delete(bin);
-    await expectError(gltf, /^buffers\[0\]\.uri: cannot read "quad\.bin": no such file$/, files);
+    await expectError(
+      gltf,
+      /^glTF: buffers\[0\]\.uri: cannot read "quad\.bin": no such file$/,
+      files,
+    );
     for (const uri of ['https://example.com/quad.bin', '/etc/quad.bin', 'file:///quad.bin']) {
       json.buffers[0].uri = uri;
       await expectError(
         new TextEncoder().encode(JSON.stringify(json)),
-        /^buffers\[0\]\.uri: ".*" is not a relative path; only files beside the model can be read$/,
+        /^glTF: buffers\[0\]\.uri: ".*" is not a relative path; only files beside the model can be read$/,
         files,
       );
     }
     json.buffers[0].uri = 'data:application/octet-stream;base64,@@@@';
     await expectError(
       new TextEncoder().encode(JSON.stringify(json)),
-      /^buffers\[0\]\.uri: data URI has a character that is not base64 at 0$/,
+      /^glTF: buffers\[0\]\.uri: data URI has a character that is not base64 at 0$/,
       files,
     );
   });

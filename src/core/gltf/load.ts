@@ -27,7 +27,7 @@ import { parseJson } from '../scene/json.ts';
 import { quote } from '../scene/message.ts';
 import type { ImageDecoder } from '../texture/decoded-image.ts';
 import { DEFAULT_TEXTURE_LIMIT_BYTES, type TextureStore } from '../texture/texture-store.ts';
-import { GltfError } from './errors.ts';
+import { GltfError, messageOf } from './errors.ts';
 import { flattenGltf, type GltfCamera, type GltfGeometry } from './flatten.ts';
 import { decodeDataUri, type GltfFileReader, PreloadedIO, resolveUri } from './io.ts';
 import { isGlb, parseGlb } from './glb.ts';
@@ -113,7 +113,7 @@ export async function loadGltf(
   try {
     json = parseJson(decodeUtf8(jsonBytes)) as Record<string, unknown>;
   } catch (e) {
-    throw new GltfError(`JSON: ${(e as Error).message}`);
+    throw new GltfError(`JSON: ${messageOf(e)}`);
   }
   const summary = validateGltfJson(json);
   for (const name of (json.extensionsUsed as unknown[] | undefined) ?? []) {
@@ -175,10 +175,30 @@ export async function loadGltf(
     const io = new PreloadedIO().setLogger(QUIET_LOGGER).registerExtensions(EXTENSIONS);
     doc = await io.readJSON({ json, resources } as unknown as JSONDocument);
   } catch (e) {
-    throw new GltfError(e instanceof GltfError ? e.message : `document: ${(e as Error).message}`);
+    if (e instanceof GltfError) throw e;
+    throw new GltfError(`document: ${messageOf(e)}`);
   }
   progress('parse', 1, 1);
 
+  try {
+    return await build(doc, json, summary.scene, options, warnings, warn, progress);
+  } catch (e) {
+    // The last guard of the decoder contract: whatever the checks above
+    // missed surfaces as one glTF error, never as a TypeError.
+    if (e instanceof GltfError) throw e;
+    throw new GltfError(`document: ${messageOf(e)}`);
+  }
+}
+
+async function build(
+  doc: Document,
+  json: Record<string, unknown>,
+  scene: number,
+  options: GltfLoadOptions,
+  warnings: string[],
+  warn: (m: string) => void,
+  progress: (stage: GltfStage, done: number, total: number) => void,
+): Promise<GltfModel> {
   const root = doc.getRoot();
   const { table, defaultMaterial, requests } = compileGltfMaterials(
     root.listMaterials(),
@@ -195,11 +215,11 @@ export async function loadGltf(
   );
 
   progress('geometry', 0, 1);
-  if (summary.scene < 0) warn('the file has no scene; nothing to render');
+  if (scene < 0) warn('the file has no scene; nothing to render');
   const geometry = flattenGltf(
     doc,
     json,
-    summary.scene,
+    scene,
     table,
     defaultMaterial,
     options.transform ? fromRowMajor(options.transform) : null,
@@ -227,6 +247,6 @@ async function readResource(
   try {
     return await options.reader.read(file, Math.min(maxBytes, GLTF_FILE_BYTES));
   } catch (e) {
-    throw new GltfError(`${where}.uri: cannot read ${quote(file)}: ${(e as Error).message}`);
+    throw new GltfError(`${where}.uri: cannot read ${quote(file)}: ${messageOf(e)}`);
   }
 }

@@ -9,7 +9,7 @@
  */
 import type { Primitive } from '@gltf-transform/core';
 import { readFloats } from './accessors.ts';
-import { GltfError } from './errors.ts';
+import { GltfError, messageOf } from './errors.ts';
 
 /**
  * MikkTSpace over unindexed triangles: positions and normals (3 per corner),
@@ -77,9 +77,7 @@ export function generatePrimitiveTangents(
   try {
     out = generate(p, q, t);
   } catch (e) {
-    throw new GltfError(
-      `${where}: tangent generation failed: ${e instanceof Error ? e.message : String(e)}`,
-    );
+    throw new GltfError(`${where}: tangent generation failed: ${messageOf(e)}`);
   }
   if (out.length !== 4 * n) {
     throw new GltfError(

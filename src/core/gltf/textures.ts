@@ -13,7 +13,7 @@ import type { ImageDecoder } from '../texture/decoded-image.ts';
 import { writeDecodedImage } from '../texture/decoded-image.ts';
 import { readImageInfo, sniffImageType } from '../texture/image-header.ts';
 import { EMPTY_TEXTURES, TextureLayout, type TextureStore } from '../texture/texture-store.ts';
-import { GltfError } from './errors.ts';
+import { GltfError, messageOf } from './errors.ts';
 
 export async function decodeGltfTextures(
   requests: TextureRequest[],
@@ -44,12 +44,12 @@ export async function decodeGltfTextures(
     try {
       info = readImageInfo(bytes, what);
     } catch (e) {
-      throw new GltfError((e as Error).message);
+      throw new GltfError(messageOf(e));
     }
     try {
       layout.add(info.width, info.height, what);
     } catch (e) {
-      throw new GltfError((e as Error).message);
+      throw new GltfError(messageOf(e));
     }
     usable.push({ request: r, bytes, mime });
   }
@@ -63,12 +63,12 @@ export async function decodeGltfTextures(
     try {
       img = await decode(bytes, mime);
     } catch (e) {
-      throw new GltfError(`${what}: ${(e as Error).message}`);
+      throw new GltfError(`${what}: ${messageOf(e)}`);
     }
     try {
       writeDecodedImage(store, i, img, request.srgb, what);
     } catch (e) {
-      throw new GltfError((e as Error).message);
+      throw new GltfError(messageOf(e));
     }
     for (const b of request.bindings) table[b + B_IMAGE] = i;
   }

@@ -119,6 +119,84 @@ function finiteArray(o: Json, key: string, path: string, length: number): void {
   }
 }
 
+/** A number at o[key], if present, finite and within [min, max]. */
+function bounded(o: unknown, key: string, path: string, min: number, max: number): void {
+  if (!isObject(o) || o[key] === undefined) return;
+  const v = o[key];
+  if (typeof v !== 'number' || !(v >= min && v <= max)) {
+    fail(
+      `${path}.${key}`,
+      `must be a number in [${min}, ${max}], got ${typeof v === 'number' ? String(v) : typeof v}`,
+    );
+  }
+}
+
+/** An array of `length` numbers at o[key], if present, each within [min, max]. */
+function boundedArray(
+  o: unknown,
+  key: string,
+  path: string,
+  length: number,
+  min: number,
+  max: number,
+): void {
+  if (!isObject(o) || o[key] === undefined) return;
+  const v = o[key];
+  if (
+    !Array.isArray(v) ||
+    v.length !== length ||
+    !v.every((x) => typeof x === 'number' && x >= min && x <= max)
+  ) {
+    fail(`${path}.${key}`, `must be ${length} numbers in [${min}, ${max}]`);
+  }
+}
+
+/** The numbers of a material and of the extensions pathwise reads, as the glTF schemas bound them. */
+function checkMaterialNumbers(m: Json, p: string): void {
+  const pbr = m.pbrMetallicRoughness;
+  const pp = `${p}.pbrMetallicRoughness`;
+  boundedArray(pbr, 'baseColorFactor', pp, 4, 0, 1);
+  bounded(pbr, 'metallicFactor', pp, 0, 1);
+  bounded(pbr, 'roughnessFactor', pp, 0, 1);
+  boundedArray(m, 'emissiveFactor', p, 3, 0, 1);
+  bounded(m, 'alphaCutoff', p, 0, Number.MAX_VALUE);
+  bounded(m.normalTexture, 'scale', `${p}.normalTexture`, -Number.MAX_VALUE, Number.MAX_VALUE);
+  const ext = isObject(m.extensions) ? m.extensions : {};
+  const e = (name: string): [unknown, string] => [ext[name], `${p}.extensions.${name}`];
+  // Emission is radiance: bounded like every radiance of the scene format.
+  const [es, esPath] = e('KHR_materials_emissive_strength');
+  bounded(es, 'emissiveStrength', esPath, 0, 1e12);
+  const [ior, iorPath] = e('KHR_materials_ior');
+  bounded(ior, 'ior', iorPath, 0, 1e6);
+  if (isObject(ior) && typeof ior.ior === 'number' && ior.ior > 0 && ior.ior < 1) {
+    fail(`${iorPath}.ior`, `must be 0 or at least 1, got ${ior.ior}`);
+  }
+  const [tr, trPath] = e('KHR_materials_transmission');
+  bounded(tr, 'transmissionFactor', trPath, 0, 1);
+  const [spec, specPath] = e('KHR_materials_specular');
+  bounded(spec, 'specularFactor', specPath, 0, 1);
+  boundedArray(spec, 'specularColorFactor', specPath, 3, 0, 1e6);
+  const infos: [unknown, string][] = [
+    [isObject(pbr) ? pbr.baseColorTexture : undefined, `${pp}.baseColorTexture`],
+    [isObject(pbr) ? pbr.metallicRoughnessTexture : undefined, `${pp}.metallicRoughnessTexture`],
+    [m.normalTexture, `${p}.normalTexture`],
+    [m.emissiveTexture, `${p}.emissiveTexture`],
+  ];
+  for (const [info, ip] of infos) {
+    const tt =
+      isObject(info) && isObject(info.extensions)
+        ? info.extensions.KHR_texture_transform
+        : undefined;
+    if (tt === undefined) continue;
+    const tp = `${ip}.extensions.KHR_texture_transform`;
+    if (!isObject(tt)) fail(tp, 'must be an object');
+    boundedArray(tt, 'offset', tp, 2, -1e9, 1e9);
+    boundedArray(tt, 'scale', tp, 2, -1e9, 1e9);
+    bounded(tt, 'rotation', tp, -1e9, 1e9);
+    integer(tt, 'texCoord', tp, 0, 1 << 16);
+  }
+}
+
 /** What the loader needs from the checked document. */
 export interface GltfSummary {
   /** Index of the scene to instance, or −1 when the file has none. */
@@ -227,6 +305,7 @@ export function validateGltfJson(json: unknown): GltfSummary {
   };
   materials.forEach((m, i) => {
     const p = `materials[${i}]`;
+    checkMaterialNumbers(m, p);
     const pbr = m.pbrMetallicRoughness;
     if (isObject(pbr)) {
       textureInfo(pbr.baseColorTexture, `${p}.pbrMetallicRoughness.baseColorTexture`);
