@@ -23,7 +23,8 @@ import { gltfEval, gltfPdf, gltfSample } from '../../src/core/bsdf/gltf-pbr.ts';
 import { BsdfQuery, BsdfSample, BsdfValue } from '../../src/core/bsdf/records.ts';
 import type { ShadingParams } from '../../src/core/bsdf/shading.ts';
 import { hashToUnit, sampleKey } from '../../src/core/rng/pcg.ts';
-import { chi2Test, HemisphereGrid } from '../helpers/chi2.ts';
+import { chi2Test } from '../helpers/chi2.ts';
+import { HemisphereGrid } from '../helpers/hemisphere-grid.ts';
 
 interface Params {
   base: [number, number, number];
