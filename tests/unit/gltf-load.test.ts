@@ -16,6 +16,7 @@ import {
 } from '@gltf-transform/extensions';
 import { describe, expect, it } from 'vitest';
 import { ShadingParams } from '../../src/core/bsdf/shading.ts';
+import { groupByMaterial } from '../../src/core/gltf/groups.ts';
 import { loadGltf } from '../../src/core/gltf/load.ts';
 import {
   GM_EMISSIVE,
@@ -478,5 +479,42 @@ describe('glTF materials and textures', () => {
       'images[0] (materials[0].baseColorTexture): image/webp is not PNG or JPEG; the texture is ignored',
     ]);
     expect(m.textures.info.length).toBe(0);
+  });
+});
+
+describe('glTF triangles grouped by material', () => {
+  it('one group per material with compact vertices, shared boundary vertices duplicated', async () => {
+    const doc = quadDoc();
+    const mesh = doc.getRoot().listMeshes()[0];
+    const a = doc.createMaterial().setBaseColorFactor([1, 0, 0, 1]);
+    const b = doc.createMaterial().setBaseColorFactor([0, 1, 0, 1]);
+    mesh.listPrimitives()[0].setMaterial(a);
+    // A second quad beside the first, and a third with material a again.
+    mesh.addPrimitive(quadPrimitive(doc).setMaterial(b));
+    doc
+      .getRoot()
+      .listScenes()[0]
+      .addChild(
+        doc
+          .createNode()
+          .setMesh(doc.createMesh().addPrimitive(quadPrimitive(doc).setMaterial(a)))
+          .setTranslation([5, 0, 0]),
+      );
+    const m = await loadGlb(doc);
+    const groups = groupByMaterial(m);
+    expect(groups.map((g) => g.material)).toEqual([0, 1]);
+    expect(groups.map((g) => g.indices.length / 3)).toEqual([4, 2]);
+    expect(groups.map((g) => g.positions.length / 3)).toEqual([8, 4]);
+    // Every group triangle is a model triangle of that material, in file order.
+    const g0 = groups[0];
+    const tri = (pos: Float64Array, idx: Uint32Array, t: number) =>
+      [0, 1, 2].flatMap((c) =>
+        Array.from(pos.subarray(3 * idx[3 * t + c], 3 * idx[3 * t + c] + 3)),
+      );
+    const modelTris = [0, 1, 4, 5].map((t) => tri(m.positions, m.indices, t));
+    expect([0, 1, 2, 3].map((t) => tri(g0.positions, g0.indices, t))).toEqual(modelTris);
+    expect(g0.uv0!.length).toBe(16);
+    expect(g0.normals!.length).toBe(24);
+    expect(g0.tangents).toBeNull();
   });
 });
