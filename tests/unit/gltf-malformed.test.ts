@@ -218,6 +218,11 @@ describe('malformed buffers and accessors', () => {
       j.scenes = [{ nodes: [0] }];
     }, /^glTF: scene: instances more than 10,000,000 triangles, the limit$/));
 
+  it('buffers adding up to more than 1 GiB are refused before any is read', () =>
+    mutated((j) => {
+      j.buffers.push({ uri: 'a.bin', byteLength: 2 ** 29 }, { uri: 'b.bin', byteLength: 2 ** 29 });
+    }, /^glTF: buffers\[2\]: the buffers add up to more than 1073741824 bytes, the limit$/));
+
   it('too many objects of one kind', () =>
     mutated((j) => {
       j.nodes = Array.from({ length: 1_000_001 }, () => ({}));

@@ -30,6 +30,8 @@ export const GLTF_LIMITS = {
   accessorCount: 1 << 28,
   /** Nodes, meshes, accessors… of one kind. */
   objects: 1_000_000,
+  /** All buffers of one file together (the scene format's limit for one mesh file). */
+  bufferBytes: 1024 * 1024 * 1024,
 } as const;
 
 export const COMPONENT_SIZE: Record<number, number> = {
@@ -236,8 +238,15 @@ export function validateGltfJson(json: unknown): GltfSummary {
   const scenes = list(json, 'scenes');
   const cameras = list(json, 'cameras');
 
+  let bufferBytes = 0;
   buffers.forEach((b, i) => {
-    required(b, 'byteLength', `buffers[${i}]`, 1);
+    bufferBytes += required(b, 'byteLength', `buffers[${i}]`, 1);
+    if (bufferBytes > GLTF_LIMITS.bufferBytes) {
+      fail(
+        `buffers[${i}]`,
+        `the buffers add up to more than ${GLTF_LIMITS.bufferBytes} bytes, the limit`,
+      );
+    }
     if (b.uri !== undefined && typeof b.uri !== 'string')
       fail(`buffers[${i}].uri`, 'must be a string');
   });
