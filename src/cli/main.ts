@@ -106,6 +106,11 @@ async function render(argv: string[]): Promise<void> {
           mpaths_per_s: stats.paths / seconds / 1e6,
           msegments_per_s: stats.segments / seconds / 1e6,
           rejected_samples: stats.rejected,
+          compile_seconds: result.compileSeconds,
+          first_ready_seconds: result.firstReadySeconds,
+          last_ready_seconds: result.lastReadySeconds,
+          scene_bytes: result.sceneBytes,
+          worker_heap_mb_median: median(result.workerHeapBytes) / 2 ** 20,
         }) + '\n',
       );
     }
@@ -114,6 +119,11 @@ async function render(argv: string[]): Promise<void> {
     process.off('SIGINT', abandon);
     process.off('SIGTERM', abandon);
   }
+}
+
+function median(values: number[]): number {
+  const v = [...values].sort((a, b) => a - b);
+  return v.length === 0 ? NaN : v[v.length >> 1];
 }
 
 async function main(argv: string[]): Promise<number> {

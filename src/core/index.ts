@@ -9,7 +9,9 @@ export {
   CompiledScene,
   BVH_THRESHOLD,
   type CompileOptions,
+  type SceneData,
 } from './scene/compile.ts';
+export { packScene, unpackScene, canShareMemory, type PackedScene } from './scene/pack.ts';
 export {
   PathTracer,
   RenderStats,

@@ -29,7 +29,9 @@ import {
   tonemapSums,
   validateScene,
   type CameraDesc,
+  packScene,
   type CompiledScene,
+  type PackedScene,
   type Scene,
 } from '../core/index.ts';
 import { sceneSizeProblem } from '../core/scene/load.ts';
@@ -66,6 +68,8 @@ export class Controller extends EventTarget implements PathTracerController {
   private readonly display: Display;
   private currentScene: Scene | null = null;
   private compiled: CompiledScene | null = null;
+  /** The compiled scene packed for the workers (shared memory when the page is isolated). */
+  private packed: PackedScene | null = null;
   private sceneId = 0;
   private camera: CameraDesc | null = null;
   private bounces = 6;
@@ -197,6 +201,9 @@ export class Controller extends EventTarget implements PathTracerController {
     const first = this.currentScene === null;
     this.currentScene = scene;
     this.compiled = compileScene(scene);
+    // Compiled once here (the picker uses it too) and shipped packed: the
+    // workers neither parse nor compile nor build a BVH.
+    this.packed = packScene(this.compiled, this.mode.compute === 'shared');
     this.picker = null;
     this.sceneId++;
     this.camera = { ...scene.camera };
@@ -246,7 +253,7 @@ export class Controller extends EventTarget implements PathTracerController {
       mode: this.mode.compute,
       version: this.version,
       sceneId: this.sceneId,
-      scene: this.currentScene,
+      scene: this.packed!,
       width: active.width,
       height: active.height,
       maxBounces: this.bounces,
