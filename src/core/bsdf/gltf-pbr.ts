@@ -46,11 +46,13 @@
 import { squareToCosineHemisphere } from '../sampling/warps.ts';
 import { fresnelDielectric, schlickWeight } from './fresnel.ts';
 import { ggxD, ggxG1, ggxSampleVisibleNormal } from './ggx.ts';
-import type { BsdfQuery, BsdfSample, BsdfValue } from './records.ts';
+import { BsdfQuery, type BsdfSample, type BsdfValue } from './records.ts';
 import type { ShadingParams } from './shading.ts';
 
 const INV_PI = 1 / Math.PI;
 const M = { x: 0, y: 0, z: 1 };
+const VQ = new BsdfQuery();
+const VALPHA = new Float64Array(1);
 const W = { x: 0, y: 0, z: 1 };
 
 /**
@@ -257,7 +259,15 @@ export function gltfSample(sp: ShadingParams, q: BsdfQuery, out: BsdfSample): bo
     }
     return refract(sp, q, oz, eta, lobe.glass * (1 - fd), out);
   } else {
-    ggxSampleVisibleNormal(wox, woy, oz, alpha, q.u0, q.u1, M);
+    // The sampler reads a query record and α from an array (no boxed doubles);
+    // the reflection frame may be mirrored, so it gets its own query.
+    VQ.wox = wox;
+    VQ.woy = woy;
+    VQ.woz = oz;
+    VQ.u0 = q.u0;
+    VQ.u1 = q.u1;
+    VALPHA[0] = alpha;
+    ggxSampleVisibleNormal(VQ, VALPHA, 0, M);
     const c = wox * M.x + woy * M.y + oz * M.z;
     if (c <= 0) return false;
     if (u >= glassFrom) {
