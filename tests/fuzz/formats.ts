@@ -23,11 +23,15 @@ import {
   type FilmHeader,
   type PfmImage,
 } from '../../src/core/index.ts';
+import { GM_STRIDE } from '../../src/core/gltf/material-table.ts';
+import { type GltfModel, loadGltf } from '../../src/core/gltf/load.ts';
+import { decodeImageJs } from '../../src/core/texture/decode-js.ts';
+import { POSITION_Y2_OFFSET, quadGlb, quadGltfDataUri } from './gltf-samples.ts';
 
 export interface FormatEntry {
   /** As the decoder's FormatError names it (error.format), e.g. "PFM". */
   name: string;
-  /** Decodes bytes; throws FormatError on bad input. */
+  /** Decodes bytes; throws (or rejects with) FormatError on bad input. */
   decode: (bytes: Uint8Array) => unknown;
   /** Asserts that a decoded value is sane: finite numbers, sizes that agree. */
   check: (value: unknown) => void;
@@ -300,6 +304,134 @@ export const FORMATS: FormatEntry[] = [
         name: 'a fractional limb',
         bytes: filmSample(1, 1, (f) => (f.lo[0] = 0.5)),
         message: /pixel \(0, 0\) channel R: invalid exact sum/,
+      },
+    ],
+  },
+  {
+    name: 'glTF',
+    decode: (bytes) =>
+      loadGltf(bytes, 'model.glb', {
+        reader: null,
+        decodeImage: decodeImageJs,
+        generateTangents: null,
+      }),
+    check: (value) => {
+      const m = value as GltfModel;
+      const vertices = m.positions.length / 3;
+      expect(m.positions.every(Number.isFinite)).toBe(true);
+      expect(m.indices.length % 3).toBe(0);
+      expect(m.indices.every((i) => i < vertices)).toBe(true);
+      expect(m.triangleMaterial.length).toBe(m.indices.length / 3);
+      expect(m.triangleMaterial.every((k) => k < m.materials.length / GM_STRIDE)).toBe(true);
+      expect(m.materials.every(Number.isFinite)).toBe(true);
+      for (const a of [m.normals, m.uv0, m.uv1, m.colors, m.tangents]) {
+        if (a !== null) expect(a.every(Number.isFinite)).toBe(true);
+      }
+    },
+    samples: () => [quadGlb(), quadGlb({ texture: true }), quadGltfDataUri()],
+    lyingHeaders: () => [
+      {
+        name: 'GLB length past the end of the file',
+        bytes: (() => {
+          const b = quadGlb();
+          new DataView(b.buffer).setUint32(8, b.length + 100, true);
+          return b;
+        })(),
+        message: /^glTF: GLB header: says \d+ bytes, but the file has \d+/,
+      },
+      {
+        name: 'an accessor past the end of its buffer view',
+        bytes: quadGlb({ edit: (j) => ((j.accessors as { count: number }[])[0].count = 1e6) }),
+        message: /^glTF: accessors\[0\]: needs 12000000 bytes of bufferViews\[0\]/,
+      },
+      {
+        name: 'a buffer view past the end of its buffer',
+        bytes: quadGlb({
+          edit: (j) => ((j.bufferViews as { byteLength: number }[])[3].byteLength = 1e9),
+        }),
+        message: /^glTF: bufferViews\[3\]: ends at byte \d+, past the end of buffers\[0\]/,
+      },
+      {
+        name: 'an index out of range',
+        bytes: quadGlb({
+          edit: (_, bin) => new DataView(bin.buffer).setUint16(128 + 4, 60000, true),
+        }),
+        message:
+          /^glTF: meshes\[0\]\.primitives\[0\]\.indices: index 60000 at position 2 is out of range/,
+      },
+      {
+        name: '60 million indices (an index bomb)',
+        bytes: quadGlb({
+          edit: (j) => ((j.accessors as { count: number }[])[3].count = 60_000_000),
+        }),
+        message: /^glTF: scene: instances more than 10,000,000 triangles, the limit$/,
+      },
+      {
+        name: 'a texture claiming 16000 x 16000 texels',
+        bytes: quadGlb({
+          texture: true,
+          edit: (_, bin) => {
+            // The PNG starts after positions, normals, uvs and indices (48 + 48 + 32 + 12 bytes).
+            new DataView(bin.buffer).setUint32(140 + 16, 16000);
+            new DataView(bin.buffer).setUint32(140 + 20, 16000);
+          },
+        }),
+        message: /over the texture memory limit of 1\.00 GiB/,
+      },
+    ],
+    nonFinite: () => [
+      {
+        name: 'NaN in a position',
+        bytes: quadGlb({
+          edit: (_, bin) => new DataView(bin.buffer).setFloat32(POSITION_Y2_OFFSET, NaN, true),
+        }),
+        message:
+          /^glTF: meshes\[0\]\.primitives\[0\]\.attributes\.POSITION: vertex 2 has a non-finite value$/,
+      },
+      {
+        name: 'Inf in a normal',
+        bytes: quadGlb({
+          edit: (_, bin) => new DataView(bin.buffer).setFloat32(48 + 8, Infinity, true),
+        }),
+        message: /attributes\.NORMAL: vertex 0 has a non-finite value$/,
+      },
+      {
+        name: 'NaN in a texture coordinate',
+        bytes: quadGlb({
+          edit: (_, bin) => new DataView(bin.buffer).setFloat32(96 + 12, NaN, true),
+        }),
+        message: /attributes\.TEXCOORD_0: vertex 1 has a non-finite value$/,
+      },
+      {
+        name: 'an infinite emission factor (1e400 in the JSON)',
+        bytes: quadGlb({ edit: (j) => (j.materials = [{ emissiveFactor: [Infinity, 0, 0] }]) }),
+        message: /^glTF: materials\[0\]\.emissiveFactor: must be 3 numbers in \[0, 1\]$/,
+      },
+    ],
+    others: () => [
+      { name: 'empty file', bytes: new Uint8Array(0), message: /^glTF: JSON: line 1, column 1: / },
+      {
+        name: 'glTF 1.0',
+        bytes: ascii('{"asset": {"version": "1.0"}}'),
+        message: /glTF "1\.0" is not supported, only 2\.x$/,
+      },
+      {
+        name: 'a required extension pathwise lacks',
+        bytes: quadGlb({ edit: (j) => (j.extensionsRequired = ['KHR_draco_mesh_compression']) }),
+        message: /requires "KHR_draco_mesh_compression", which pathwise does not support$/,
+      },
+      {
+        name: 'a node cycle',
+        bytes: quadGlb({
+          edit: (j) => (j.nodes = [{ mesh: 0 }, { children: [2] }, { children: [1] }]),
+        }),
+        message: /is its own ancestor \(the node hierarchy has a cycle\)$/,
+      },
+      {
+        name: 'an external file with no reader',
+        bytes: ascii('{"asset":{"version":"2.0"},"buffers":[{"uri":"a.bin","byteLength":4}]}'),
+        message:
+          /^glTF: buffers\[0\]\.uri: names the file "a\.bin", but no way to read files beside the model was given$/,
       },
     ],
   },
