@@ -2,17 +2,19 @@
 // a temporary .mjs (so imports of the core resolve as in the app) and
 // imports that. Usage: node scripts/run-ts.mjs FILE.ts [args…]
 import { build } from 'esbuild';
-import { mkdtempSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { join, resolve } from 'node:path';
-import { pathToFileURL } from 'node:url';
+import { mkdirSync, mkdtempSync } from 'node:fs';
+import { dirname, join, resolve } from 'node:path';
+import { fileURLToPath, pathToFileURL } from 'node:url';
 
 const [entry, ...args] = process.argv.slice(2);
 if (!entry) {
   process.stderr.write('usage: node scripts/run-ts.mjs FILE.ts [args…]\n');
   process.exit(2);
 }
-const outfile = join(mkdtempSync(join(tmpdir(), 'pathwise-run-')), 'entry.mjs');
+// Inside the repository, so that the external packages resolve from node_modules.
+const cache = join(dirname(fileURLToPath(import.meta.url)), '..', 'node_modules', '.cache');
+mkdirSync(cache, { recursive: true });
+const outfile = join(mkdtempSync(join(cache, 'pathwise-run-')), 'entry.mjs');
 await build({
   entryPoints: [resolve(entry)],
   outfile,

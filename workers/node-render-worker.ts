@@ -1,52 +1,91 @@
 /**
- * worker_threads entry of the command line: unpacks the scene the main
- * thread compiled (shared memory, no parsing or BVH build here), claims
- * stripes from the shared counter until none are left, renders all samples
- * of each into the shared film, and reports its counters, when it was
- * ready to trace and its heap.
+ * worker_threads entry of the command line. The first message brings the
+ * job and the scene the main thread compiled (shared memory, no parsing or
+ * BVH build here); the worker then says when it was ready to trace. For
+ * each round that follows ({ s0, s1 }) it claims stripes from the shared
+ * counter until none are left, adds samples [s0, s1) of each into the
+ * shared film, and replies with its counters for the round and its heap.
+ * The film's sums are exact, so which worker renders which stripe, and in
+ * which order, never changes a bit.
  */
 import { getHeapStatistics } from 'node:v8';
 import { parentPort, workerData } from 'node:worker_threads';
-import { Film, RenderStats, unpackScene, type PackedScene } from '../src/core/index.ts';
+import {
+  Film,
+  RenderStats,
+  unpackScene,
+  type PackedScene,
+  type PathTracer,
+} from '../src/core/index.ts';
 import { createTracer, renderStripe, stripeCount, type StripeJob } from './stripes.ts';
 
 interface WorkerInput {
   film: SharedArrayBuffer;
-  /** Int32Array[0]: next stripe to claim; [1]: stripes finished. */
+  /** Int32Array[0]: next stripe to claim; [1]: stripes finished (both reset by the main thread per round). */
   counter: SharedArrayBuffer;
 }
 
 /** Sent once the main thread has compiled the scene (the worker starts before that). */
-interface RenderMessage {
+export interface InitMessage {
+  type: 'init';
   job: StripeJob;
   scene: PackedScene;
-  spp: number;
+}
+
+/** A round: add samples [s0, s1) of every stripe. */
+export interface RoundMessage {
+  type: 'round';
+  s0: number;
+  s1: number;
+}
+
+export interface ReadyReport {
+  type: 'ready';
+  /** Absolute time (ms since the epoch, sub-millisecond): comparable across threads. */
+  readyAt: number;
+}
+
+export interface RoundReport {
+  type: 'done';
+  paths: number;
+  segments: number;
+  rejected: number;
+  heapBytes: number;
 }
 
 const { film: filmBuffer, counter: counterBuffer } = workerData as WorkerInput;
-parentPort!.once('message', ({ job, scene, spp }: RenderMessage) => {
-  const tracer = createTracer(job, unpackScene(scene));
-  const film = new Film(job.width, job.height, filmBuffer);
-  const counter = new Int32Array(counterBuffer);
+const counter = new Int32Array(counterBuffer);
+let tracer: PathTracer;
+let film: Film;
+let job: StripeJob;
+let stripes = 0;
+
+parentPort!.on('message', (m: InitMessage | RoundMessage) => {
+  if (m.type === 'init') {
+    job = m.job;
+    tracer = createTracer(job, unpackScene(m.scene));
+    film = new Film(job.width, job.height, filmBuffer);
+    stripes = stripeCount(job.height, job.stripeRows);
+    const ready: ReadyReport = {
+      type: 'ready',
+      readyAt: performance.timeOrigin + performance.now(),
+    };
+    parentPort!.postMessage(ready);
+    return;
+  }
   const stats = new RenderStats();
-  const stripes = stripeCount(job.height, job.stripeRows);
-  // Absolute time (ms since the epoch, sub-millisecond): comparable across threads.
-  const readyAt = performance.timeOrigin + performance.now();
   for (;;) {
     const stripe = Atomics.add(counter, 0, 1);
     if (stripe >= stripes) break;
-    renderStripe(tracer, film, job, stripe, 0, spp, stats);
+    renderStripe(tracer, film, job, stripe, m.s0, m.s1, stats);
     Atomics.add(counter, 1, 1);
   }
-  const heap = getHeapStatistics();
-  parentPort!.postMessage({
+  const done: RoundReport = {
+    type: 'done',
     paths: stats.paths,
     segments: stats.segments,
     rejected: stats.rejected,
-    readyAt,
-    heapBytes: heap.used_heap_size,
-    externalBytes: heap.external_memory,
-  });
-  // Nothing else keeps this thread: it exits once the message is out.
-  parentPort!.close();
+    heapBytes: getHeapStatistics().used_heap_size,
+  };
+  parentPort!.postMessage(done);
 });

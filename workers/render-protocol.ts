@@ -181,7 +181,7 @@ export interface StripeTask {
   pass: number;
   y0: number;
   rows: number;
-  /** Film window (sums then extra of rows [y0, y0+rows)); transferred. */
+  /** Film window (every plane of rows [y0, y0+rows)); transferred. */
   buffer: ArrayBuffer;
 }
 

@@ -7,10 +7,11 @@
  * copy of the film and commits the row under the lock only if the
  * generation is unchanged — so a reset drops stale work at row granularity
  * and no stale sample lands. Pass k+1 of a stripe waits until pass k of it
- * is done, so every pixel receives samples 0, 1, 2, … in order and the
- * image is bit-identical to the command line's. Claims and commits follow
- * shared-claims.ts, so that the worker may die anywhere: the pool then
- * hands what it held to the others, and nothing counts twice.
+ * is done, so two commits of a row never overwrite each other's samples;
+ * the film's sums are exact, so the image is bit-identical to the command
+ * line's. Claims and commits follow shared-claims.ts, so that the worker
+ * may die anywhere: the pool then hands what it held to the others, and
+ * nothing counts twice.
  *
  * Transfer mode (no SharedArrayBuffer): the main thread sends one pass of
  * one stripe with its rows of the film; the worker adds the pass and sends

@@ -98,23 +98,16 @@ export function initControl(ctrl: Int32Array): void {
 }
 
 /**
- * The typed arrays that make up a film (all of them travel with a row).
- * The one place that knows the film's planes.
+ * Copies row `fromRow` of `from` over row `toRow` of `to` (rows counted
+ * within each film): every plane (the Float32 sums, the exact sums' limbs).
  */
-function filmPlanes(film: Film): (Float32Array | Float64Array)[] {
-  return [film.sums, film.extra];
-}
-
-/** Copies row `fromRow` of `from` over row `toRow` of `to` (rows counted within each film). */
 export function copyFilmRow(to: Film, toRow: number, from: Film, fromRow: number): void {
   const n = to.width * 4;
   const a = fromRow * n;
   const b = toRow * n;
-  const src = filmPlanes(from);
-  const dst = filmPlanes(to);
-  for (let i = 0; i < src.length; i++) {
-    (dst[i] as Float32Array).set((src[i] as Float32Array).subarray(a, a + n), b);
-  }
+  to.sums.set(from.sums.subarray(a, a + n), b);
+  to.hi.set(from.hi.subarray(a, a + n), b);
+  to.lo.set(from.lo.subarray(a, a + n), b);
 }
 
 function minReclaimIndex(ctrl: Int32Array): number {

@@ -2,9 +2,10 @@
  * The stripe scheme shared by the Node command line and the browser pool:
  * the image is cut into horizontal stripes of `stripeRows` rows, and
  * workers claim stripes from a shared atomic counter. Because every pixel's
- * samples depend only on (seed, pixel, sample) and are added in sample
- * order, the result is bit-identical for any stripe height and any number
- * of workers.
+ * samples depend only on (seed, pixel, sample) and the film's sums are
+ * exact (independent of order and grouping), the result is bit-identical
+ * for any stripe height, any number of workers and any split of the
+ * samples.
  */
 import {
   Film,

@@ -21,8 +21,8 @@
  *   true       e_c = (L̂_c − R_c)² / (R_c² + ε)
  *   estimated  v_c = Var̂(L̂_c) / (L̂_c² + ε),  Var̂(L̂_c) = Σ_p s_p² / n_p / (k²)²
  *
- * with s_p² the sample variance of pixel p's n_p samples (film.extra keeps
- * ΣL²) and ε = 0.01, the usual relMSE guard against division by black
+ * with s_p² the sample variance of pixel p's n_p samples (the film's exact
+ * sums keep ΣL²) and ε = 0.01, the usual relMSE guard against division by black
  * (as in pbrt-v4's imgtool). relMSE is the mean over cells; the estimate
  * needs no reference, so every scene has one. Each is a mean square: its
  * square root falls as 1/√t, which is what the demo plots.
@@ -32,6 +32,7 @@
  * so the true error can fall below the estimate; with independent samples
  * the two agree in expectation (tests/unit/error-grid.test.ts).
  */
+import { exactValue } from '../core/index.ts';
 
 export const REL_MSE_EPSILON = 0.01;
 /** Cells per side at most: plenty for a mean, cheap to read a few times a second. */
@@ -137,17 +138,20 @@ export interface ErrorFigures {
 /**
  * relMSE against `reference` (null: only the estimate) on the grid,
  * visiting every other cell in a checkerboard, for a film `width` pixels
- * wide with `sums` (RGB, samples) and `extra` (A: Σ luminance²). Reads the
- * arrays once; allocates nothing.
+ * wide with `sums` (RGB, samples) and `squares`: Σ luminance² per pixel, at
+ * index 4p + 3 — the film's exact sums ({ hi, lo }, film/exact-sum.ts), or
+ * a plain array. Reads the arrays once; allocates nothing.
  */
 export function errorFigures(
   width: number,
   sums: Float32Array,
-  extra: Float32Array,
+  squares: Float32Array | { hi: Float64Array; lo: Float64Array },
   layout: GridLayout,
   reference: ReferenceLuminance | null,
 ): ErrorFigures {
   const { rows, columns, k, g, filmX0, refColumn0 } = layout;
+  const exact = squares instanceof Float32Array ? null : squares;
+  const plain = squares instanceof Float32Array ? squares : null;
   const perCell = k * k;
   let trueSum = 0;
   let estSum = 0;
@@ -169,7 +173,8 @@ export function errorFigures(
           const mean = sumL / n;
           lumMeans += mean;
           if (n >= 2) {
-            const ss = extra[i + 3] - n * mean * mean;
+            const sq = exact ? exactValue(exact.hi, exact.lo, i + 3) : plain![i + 3];
+            const ss = sq - n * mean * mean;
             if (ss > 0) se2 += ss / (n - 1) / n;
           }
         }

@@ -119,7 +119,7 @@ export class ErrorMeter {
       this.plot.draw(this.points, note);
       return;
     }
-    const f = errorFigures(snap.width, snap.sums, snap.extra, layout, useReference ? ref : null);
+    const f = errorFigures(snap.width, snap.sums, snap, layout, useReference ? ref : null);
     this.points.push({
       seconds: snap.seconds,
       spp: snap.spp,

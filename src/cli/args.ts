@@ -4,6 +4,12 @@
  */
 import { DEFAULT_SAMPLER, SAMPLER_KINDS, type Estimator, type SamplerKind } from '../core/index.ts';
 import { quote, sanitize } from '../core/scene/message.ts';
+import {
+  BATCH_OPTION_NAMES,
+  BATCH_USAGE,
+  parseBatchOptions,
+  type BatchOptions,
+} from './batch-args.ts';
 import { CliError } from './errors.ts';
 import {
   POSITIVE_DECIMAL,
@@ -30,9 +36,11 @@ export interface RenderArgs {
   sampler: SamplerKind;
   json: boolean;
   stripeRows?: number;
+  batch: BatchOptions;
 }
 
-export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png [options]
+export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png|FILE.film [options]
+       pathwise merge PART.film... --out FILE.pfm|FILE.png|FILE.film (see pathwise merge --help)
   SCENE.json          a scene file, or - (or /dev/stdin) for standard input; at most 16 MiB
   --spp N             samples per pixel (default: the scene's settings.spp)
   --width W --height H  image size (default: the scene's settings)
@@ -43,7 +51,8 @@ export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png 
   --estimator nee-mis|bsdf  next-event estimation with MIS (default) or BSDF sampling only
   --sampler sobol|independent  random numbers: Owen-scrambled Sobol for the leading dimensions (default), or the independent PCG hash
   --stripe-rows R     rows per work stripe (default: automatic; the image does not depend on it)
-  --json              print one JSON line of statistics on stdout (a switch: no value)`;
+  --json              print one JSON line of statistics on stdout (a switch: no value)
+${BATCH_USAGE}`;
 
 /** The first line of USAGE, printed alone (on stderr) when no command is given. */
 export const SYNOPSIS = USAGE.split('\n')[0];
@@ -104,6 +113,7 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     'sampler',
     'json',
     'help',
+    ...BATCH_OPTION_NAMES,
   ]);
   for (const name of options.keys()) {
     if (!known.has(name)) throw new UsageError(`unknown option --${sanitize(name)}`);
@@ -117,9 +127,9 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     );
   }
   const out = options.get('out');
-  if (typeof out !== 'string') throw new UsageError('missing --out FILE.pfm|FILE.png');
-  if (!/\.(pfm|png)$/i.test(out))
-    throw new UsageError(`--out must end in .pfm or .png, got ${quote(out, 240)}`);
+  if (typeof out !== 'string') throw new UsageError('missing --out FILE.pfm|FILE.png|FILE.film');
+  if (!/\.(pfm|png|film)$/i.test(out))
+    throw new UsageError(`--out must end in .pfm, .png or .film, got ${quote(out, 240)}`);
   const int = (name: string, min: number, max: number): number | undefined => {
     const v = options.get(name);
     return typeof v === 'string' ? parseInteger(name, v, min, max) : undefined;
@@ -159,5 +169,6 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     sampler: sampler as SamplerKind,
     json: options.has('json'),
     stripeRows: int('stripe-rows', 1, 1 << 24),
+    batch: parseBatchOptions(options),
   };
 }

@@ -27,3 +27,25 @@ export { acesFilmic, srgbEncode, toDisplayByte, tonemapSums } from './io/tonemap
 export { pcgHash } from './rng/pcg.ts';
 export { Sampler, SAMPLER_KINDS, DEFAULT_SAMPLER, type SamplerKind } from './sampling/sampler.ts';
 export { estimateNoise, type NoiseInput } from './film/noise.ts';
+export {
+  FILM_FORMAT,
+  FilmFileError,
+  MAX_HEADER_BYTES,
+  decodeFilmFile,
+  decodeFilmHeader,
+  encodeFilmFile,
+  filmFileLength,
+  type FilmFile,
+  type FilmHeader,
+  type FilmSettings,
+} from './film/film-file.ts';
+export { SCALE_BITS, SAMPLE_LIMIT, exactValue } from './film/exact-sum.ts';
+export {
+  findOverlap,
+  formatRanges,
+  missingRanges,
+  normalizeRanges,
+  rangeSamples,
+  type SampleRange,
+} from './film/sample-ranges.ts';
+export { crc32 } from './io/crc32.ts';

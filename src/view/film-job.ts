@@ -13,7 +13,7 @@ export interface FilmJob {
   readonly width: number;
   readonly height: number;
   readonly stripeRows: number;
-  /** Approximate bytes held for this film (sums, Kahan terms, control). */
+  /** Approximate bytes held for this film (sums, exact sums, control). */
   readonly memoryBytes: number;
   /** Clears the film and drops all work in flight. */
   reset(): void;
@@ -60,7 +60,9 @@ export interface FilmSnapshot {
   width: number;
   height: number;
   sums: Float32Array;
-  extra: Float32Array;
+  /** The film's exact sums (film/exact-sum.ts); index 4p + 3 holds pixel p's Σ luminance². */
+  hi: Float64Array;
+  lo: Float64Array;
   spp: number;
   seconds: number;
   camera: CameraDesc;

@@ -1,10 +1,10 @@
 /**
  * The fallback without SharedArrayBuffer: the film lives on the main
- * thread, and each task ships one stripe's rows (sums and Kahan terms) to
+ * thread, and each task ships one stripe's rows (every plane of the film) to
  * a worker, which adds one pass and ships them back. A stripe is out at
- * most once at a time and stripes are handed out pass by pass, so every
- * pixel still receives samples 0, 1, 2, … in order and the image is the
- * same, bit for bit, as the shared path's.
+ * most once at a time (its rows come back whole and replace the film's),
+ * and the film's sums are exact, so the image is the same, bit for bit,
+ * as the shared path's.
  */
 import { Film } from '../core/index.ts';
 import { stripeOrder, type StripeResult, type StripeTask } from '../../workers/render-protocol.ts';
@@ -126,10 +126,7 @@ export class TransferFilmJob implements FilmJob {
     const rows = Math.min(this.height, y0 + this.stripeRows) - y0;
     const buffer = new ArrayBuffer(Film.byteLength(this.width, rows));
     const window = new Film(this.width, rows, buffer, y0);
-    const a = y0 * this.width * 4;
-    const b = a + rows * this.width * 4;
-    window.sums.set(this.film.sums.subarray(a, b));
-    window.extra.set(this.film.extra.subarray(a, b));
+    window.copyRowsFrom(this.film);
     this.inFlight[stripe] = 1;
     return {
       type: 'task',
@@ -163,9 +160,7 @@ export class TransferFilmJob implements FilmJob {
     this.inFlight[s] = 0;
     if (result.rendered) {
       const window = new Film(this.width, result.rows, result.buffer, result.y0);
-      const a = result.y0 * this.width * 4;
-      this.film.sums.set(window.sums, a);
-      this.film.extra.set(window.extra, a);
+      this.film.copyRowsFrom(window);
       this.done[s]++;
       // Collapsed when frames stop (a hidden tab) so the list stays small.
       if (this.dirty.length > 2 * this.stripes) this.dirty = [0, this.height];

@@ -62,14 +62,15 @@ describe('live error plot (Chromium)', () => {
       const snap = (window as any).__pathwise.controller.filmSnapshot();
       return {
         sums: Array.from(snap.sums as Float32Array),
-        extra: Array.from(snap.extra as Float32Array),
+        hi: Array.from(snap.hi as Float64Array),
+        lo: Array.from(snap.lo as Float64Array),
       };
     });
     const pfm = decodePfm(readFileSync(join(root, 'tests/references/cornell.pfm')));
     const f = errorFigures(
       SIZE,
       Float32Array.from(film.sums),
-      Float32Array.from(film.extra),
+      { hi: Float64Array.from(film.hi), lo: Float64Array.from(film.lo) },
       gridLayout(SIZE, SIZE, pfm.width, pfm.height)!,
       referenceLuminance(pfm.width, pfm.height, pfm.rgb),
     );

@@ -14,12 +14,19 @@ import { FORMATS, type FormatEntry } from './formats.ts';
 const SEED = Number(process.env.FUZZ_SEED ?? 20250109);
 const SCALE = Number(process.env.FUZZ_RUNS_SCALE ?? 1);
 
-/** Decoding `bytes` throws a FormatError of `format` with one printable line, quickly. */
-function expectFormatError(format: FormatEntry, bytes: Uint8Array, message?: RegExp): void {
+/**
+ * Decoding `bytes` throws a FormatError of `format` with one printable line, quickly.
+ * (Decoders may be asynchronous, as glTF's is: its resources and images load by promise.)
+ */
+async function expectFormatError(
+  format: FormatEntry,
+  bytes: Uint8Array,
+  message?: RegExp,
+): Promise<void> {
   const t0 = performance.now();
   let error: unknown;
   try {
-    format.decode(bytes);
+    await format.decode(bytes);
   } catch (e) {
     error = e;
   }
@@ -36,13 +43,13 @@ function expectFormatError(format: FormatEntry, bytes: Uint8Array, message?: Reg
 }
 
 describe.each(FORMATS.map((f) => [f.name, f] as const))('%s', (_, format) => {
-  it('decodes its valid samples', () => {
-    for (const bytes of format.samples()) format.check(format.decode(bytes));
+  it('decodes its valid samples', async () => {
+    for (const bytes of format.samples()) format.check(await format.decode(bytes));
   });
 
-  it('rejects every truncation of every sample with a FormatError', () => {
+  it('rejects every truncation of every sample with a FormatError', async () => {
     for (const bytes of format.samples()) {
-      for (let n = 0; n < bytes.length; n++) expectFormatError(format, bytes.subarray(0, n));
+      for (let n = 0; n < bytes.length; n++) await expectFormatError(format, bytes.subarray(0, n));
     }
   });
 
@@ -60,7 +67,7 @@ describe.each(FORMATS.map((f) => [f.name, f] as const))('%s', (_, format) => {
     expectFormatError(format, c.bytes, c.message),
   );
 
-  it('random byte mutations: a sane value or a FormatError, nothing else', () => {
+  it('random byte mutations: a sane value or a FormatError, nothing else', async () => {
     const samples = format.samples();
     const mutation = fc.record({
       sample: fc.nat({ max: samples.length - 1 }),
@@ -69,8 +76,8 @@ describe.each(FORMATS.map((f) => [f.name, f] as const))('%s', (_, format) => {
         { minLength: 1, maxLength: 4 },
       ),
     });
-    fc.assert(
-      fc.property(mutation, ({ sample, edits }) => {
+    await fc.assert(
+      fc.asyncProperty(mutation, async ({ sample, edits }) => {
         const b = Array.from(samples[sample]);
         for (const e of edits) {
           if (e.insert) b.splice(e.at % (b.length + 1), 0, e.byte);
@@ -79,7 +86,7 @@ describe.each(FORMATS.map((f) => [f.name, f] as const))('%s', (_, format) => {
         const bytes = Uint8Array.from(b);
         let value: unknown;
         try {
-          value = format.decode(bytes);
+          value = await format.decode(bytes);
         } catch (e) {
           expect(e).toBeInstanceOf(FormatError);
           expect(PRINTABLE_LINE.test((e as Error).message)).toBe(true);

@@ -12,12 +12,26 @@
  * To add a format (OBJ, PLY, HDR, glTF/GLB, .film), append one entry: see README.md here.
  */
 import { expect } from 'vitest';
-import { decodePfm, encodePfm, type PfmImage } from '../../src/core/index.ts';
+import {
+  Film,
+  crc32,
+  decodeFilmFile,
+  decodePfm,
+  encodeFilmFile,
+  encodePfm,
+  type FilmFile,
+  type FilmHeader,
+  type PfmImage,
+} from '../../src/core/index.ts';
+import { GM_STRIDE } from '../../src/core/gltf/material-table.ts';
+import { type GltfModel, loadGltf } from '../../src/core/gltf/load.ts';
+import { decodeImageJs } from '../../src/core/texture/decode-js.ts';
+import { POSITION_Y2_OFFSET, quadGlb, quadGltfDataUri } from './gltf-samples.ts';
 
 export interface FormatEntry {
   /** As the decoder's FormatError names it (error.format), e.g. "PFM". */
   name: string;
-  /** Decodes bytes; throws FormatError on bad input. */
+  /** Decodes bytes; throws (or rejects with) FormatError on bad input. */
   decode: (bytes: Uint8Array) => unknown;
   /** Asserts that a decoded value is sane: finite numbers, sizes that agree. */
   check: (value: unknown) => void;
@@ -62,6 +76,49 @@ function pfmWithValue(value: number, index: number): Uint8Array {
   const header = 'PF\n3 2\n-1.0\n'.length;
   new DataView(bytes.buffer).setFloat32(header + index * 4, value, true);
   return bytes;
+}
+
+/** A small `.film` (pathwise-film/1): `width`×`height`, samples [2, 5) of a 5-spp render. */
+function filmSample(width: number, height: number, spoil?: (f: Film) => void): Uint8Array {
+  const film = new Film(width, height);
+  for (let s = 2; s < 5; s++)
+    for (let y = 0; y < height; y++)
+      for (let x = 0; x < width; x++) film.addSample(x, y, 0.25 * s + x, y * 1e-3, 1e4 * s);
+  spoil?.(film);
+  return encodeFilmFile(filmHeader(width, height), film);
+}
+
+function filmHeader(width: number, height: number): FilmHeader {
+  return {
+    format: 'pathwise-film/1',
+    renderer: 'pathwise 0.1.0',
+    scene_sha256: '0'.repeat(64),
+    settings: { width, height, maxBounces: 4, seed: 7, sampler: 'sobol', estimator: 'nee-mis' },
+    key: '1'.repeat(64),
+    scale_bits: 40,
+    spp: 5,
+    ranges: [[2, 5]],
+    stats: { paths: width * height * 3, segments: 0, rejected: 0 },
+  };
+}
+
+/**
+ * A valid-looking `.film` with another header (an object, or raw text), the checksum
+ * recomputed so that only the header lies.
+ */
+function filmWithHeader(header: unknown, payloadOf = filmSample(2, 1)): Uint8Array {
+  const view = new DataView(payloadOf.buffer, payloadOf.byteOffset);
+  const oldLength = view.getUint32(16, true);
+  const payload = payloadOf.subarray(Math.ceil((20 + oldLength) / 8) * 8, payloadOf.length - 4);
+  const json = ascii(typeof header === 'string' ? header : JSON.stringify(header));
+  const start = Math.ceil((20 + json.length) / 8) * 8;
+  const out = new Uint8Array(start + payload.length + 4);
+  out.set(ascii('pathwise-film/1\n'));
+  new DataView(out.buffer).setUint32(16, json.length, true);
+  out.set(json, 20);
+  out.set(payload, start);
+  new DataView(out.buffer).setUint32(out.length - 4, crc32(out.subarray(0, out.length - 4)), true);
+  return out;
 }
 
 export const FORMATS: FormatEntry[] = [
@@ -157,6 +214,224 @@ export const FORMATS: FormatEntry[] = [
         name: 'escape codes in the magic',
         bytes: ascii('\u001b[2J 1 1 -1\n'),
         message: /it starts with "\\u001b\[2J"/,
+      },
+    ],
+  },
+  {
+    name: 'pathwise-film/1',
+    decode: (bytes) => decodeFilmFile(bytes),
+    check: (value) => {
+      const { header, film } = value as FilmFile;
+      expect(film.width).toBe(header.settings.width);
+      expect(film.rows).toBe(header.settings.height);
+      expect(film.sums.every(Number.isFinite)).toBe(true);
+      expect(film.hi.every(Number.isInteger)).toBe(true);
+      expect(film.lo.every(Number.isInteger)).toBe(true);
+    },
+    samples: () => [filmSample(2, 1), filmSample(1, 1)],
+    lyingHeaders: () => {
+      const h = filmHeader(2, 1);
+      return [
+        {
+          name: '10^6 x 10^6 pixels',
+          bytes: filmWithHeader({ ...h, settings: { ...h.settings, width: 1e6, height: 1e6 } }),
+          message: /settings.width \* settings.height must be at most 16777216 pixels/,
+        },
+        {
+          name: 'more pixels than the data holds',
+          bytes: filmWithHeader({ ...h, settings: { ...h.settings, width: 4000, height: 4000 } }),
+          message: /truncated: \d+ bytes, but a 4000×4000 film needs 1088000\d+/,
+        },
+        {
+          name: 'a header length of 2^32 - 1',
+          bytes: (() => {
+            const b = filmSample(2, 1);
+            new DataView(b.buffer).setUint32(16, 0xffffffff, true);
+            return b;
+          })(),
+          message: /header length 4294967295 is outside \[1, 1048576\]/,
+        },
+        {
+          name: 'more samples in a pixel than its ranges',
+          bytes: filmWithHeader({ ...h, ranges: [[4, 5]], stats: { ...h.stats, paths: 2 } }),
+          message: /pixel \(0, 0\) has 3 samples, more than the 1 of its ranges/,
+        },
+        {
+          name: 'stats that do not add up',
+          bytes: filmWithHeader({ ...h, stats: { ...h.stats, paths: 7 } }),
+          message: /stats do not add up/,
+        },
+        {
+          name: 'a range past the total',
+          bytes: filmWithHeader({ ...h, ranges: [[2, 9]] }),
+          message: /ranges\[0\]\[1\] must be an integer in \[3, 5\], got 9/,
+        },
+      ];
+    },
+    nonFinite: () => [
+      {
+        name: 'NaN in a high limb',
+        bytes: filmSample(2, 1, (f) => (f.hi[1] = NaN)),
+        message: /pixel \(0, 0\) channel G: invalid exact sum \(NaN/,
+      },
+      {
+        name: '+Inf in a low limb',
+        bytes: filmSample(2, 1, (f) => (f.lo[6] = Infinity)),
+        message: /pixel \(1, 0\) channel B: invalid exact sum/,
+      },
+      {
+        name: 'NaN in the header',
+        bytes: filmWithHeader(JSON.stringify(filmHeader(2, 1)).replace('"seed":7', '"seed":NaN')),
+        message: /header is not valid JSON/,
+      },
+    ],
+    others: () => [
+      {
+        name: 'a flipped payload bit',
+        bytes: (() => {
+          const b = filmSample(2, 1);
+          b[b.length - 20] ^= 1;
+          return b;
+        })(),
+        message: /checksum mismatch .* the file is corrupt/,
+      },
+      {
+        name: 'a PFM named .film',
+        bytes: pfmSample(2, 1),
+        message: /not a .film file: it does not start with "pathwise-film\/1"/,
+      },
+      {
+        name: 'a fractional limb',
+        bytes: filmSample(1, 1, (f) => (f.lo[0] = 0.5)),
+        message: /pixel \(0, 0\) channel R: invalid exact sum/,
+      },
+    ],
+  },
+  {
+    name: 'glTF',
+    decode: (bytes) =>
+      loadGltf(bytes, 'model.glb', {
+        reader: null,
+        decodeImage: decodeImageJs,
+        generateTangents: null,
+      }),
+    check: (value) => {
+      const m = value as GltfModel;
+      const vertices = m.positions.length / 3;
+      expect(m.positions.every(Number.isFinite)).toBe(true);
+      expect(m.indices.length % 3).toBe(0);
+      expect(m.indices.every((i) => i < vertices)).toBe(true);
+      expect(m.triangleMaterial.length).toBe(m.indices.length / 3);
+      expect(m.triangleMaterial.every((k) => k < m.materials.length / GM_STRIDE)).toBe(true);
+      expect(m.materials.every(Number.isFinite)).toBe(true);
+      for (const a of [m.normals, m.uv0, m.uv1, m.colors, m.tangents]) {
+        if (a !== null) expect(a.every(Number.isFinite)).toBe(true);
+      }
+    },
+    samples: () => [quadGlb(), quadGlb({ texture: true }), quadGltfDataUri()],
+    lyingHeaders: () => [
+      {
+        name: 'GLB length past the end of the file',
+        bytes: (() => {
+          const b = quadGlb();
+          new DataView(b.buffer).setUint32(8, b.length + 100, true);
+          return b;
+        })(),
+        message: /^glTF: GLB header: says \d+ bytes, but the file has \d+/,
+      },
+      {
+        name: 'an accessor past the end of its buffer view',
+        bytes: quadGlb({ edit: (j) => ((j.accessors as { count: number }[])[0].count = 1e6) }),
+        message: /^glTF: accessors\[0\]: needs 12000000 bytes of bufferViews\[0\]/,
+      },
+      {
+        name: 'a buffer view past the end of its buffer',
+        bytes: quadGlb({
+          edit: (j) => ((j.bufferViews as { byteLength: number }[])[3].byteLength = 1e9),
+        }),
+        message: /^glTF: bufferViews\[3\]: ends at byte \d+, past the end of buffers\[0\]/,
+      },
+      {
+        name: 'an index out of range',
+        bytes: quadGlb({
+          edit: (_, bin) => new DataView(bin.buffer).setUint16(128 + 4, 60000, true),
+        }),
+        message:
+          /^glTF: meshes\[0\]\.primitives\[0\]\.indices: index 60000 at position 2 is out of range/,
+      },
+      {
+        name: '60 million indices (an index bomb)',
+        bytes: quadGlb({
+          edit: (j) => ((j.accessors as { count: number }[])[3].count = 60_000_000),
+        }),
+        message: /^glTF: scene: instances more than 10,000,000 triangles, the limit$/,
+      },
+      {
+        name: 'a texture claiming 16000 x 16000 texels',
+        bytes: quadGlb({
+          texture: true,
+          edit: (_, bin) => {
+            // The PNG starts after positions, normals, uvs and indices (48 + 48 + 32 + 12 bytes).
+            new DataView(bin.buffer).setUint32(140 + 16, 16000);
+            new DataView(bin.buffer).setUint32(140 + 20, 16000);
+          },
+        }),
+        message: /over the texture memory limit of 1\.00 GiB/,
+      },
+    ],
+    nonFinite: () => [
+      {
+        name: 'NaN in a position',
+        bytes: quadGlb({
+          edit: (_, bin) => new DataView(bin.buffer).setFloat32(POSITION_Y2_OFFSET, NaN, true),
+        }),
+        message:
+          /^glTF: meshes\[0\]\.primitives\[0\]\.attributes\.POSITION: vertex 2 has a non-finite value$/,
+      },
+      {
+        name: 'Inf in a normal',
+        bytes: quadGlb({
+          edit: (_, bin) => new DataView(bin.buffer).setFloat32(48 + 8, Infinity, true),
+        }),
+        message: /attributes\.NORMAL: vertex 0 has a non-finite value$/,
+      },
+      {
+        name: 'NaN in a texture coordinate',
+        bytes: quadGlb({
+          edit: (_, bin) => new DataView(bin.buffer).setFloat32(96 + 12, NaN, true),
+        }),
+        message: /attributes\.TEXCOORD_0: vertex 1 has a non-finite value$/,
+      },
+      {
+        name: 'an infinite emission factor (1e400 in the JSON)',
+        bytes: quadGlb({ edit: (j) => (j.materials = [{ emissiveFactor: [Infinity, 0, 0] }]) }),
+        message: /^glTF: materials\[0\]\.emissiveFactor: must be 3 numbers in \[0, 1\]$/,
+      },
+    ],
+    others: () => [
+      { name: 'empty file', bytes: new Uint8Array(0), message: /^glTF: JSON: line 1, column 1: / },
+      {
+        name: 'glTF 1.0',
+        bytes: ascii('{"asset": {"version": "1.0"}}'),
+        message: /glTF "1\.0" is not supported, only 2\.x$/,
+      },
+      {
+        name: 'a required extension pathwise lacks',
+        bytes: quadGlb({ edit: (j) => (j.extensionsRequired = ['KHR_draco_mesh_compression']) }),
+        message: /requires "KHR_draco_mesh_compression", which pathwise does not support$/,
+      },
+      {
+        name: 'a node cycle',
+        bytes: quadGlb({
+          edit: (j) => (j.nodes = [{ mesh: 0 }, { children: [2] }, { children: [1] }]),
+        }),
+        message: /is its own ancestor \(the node hierarchy has a cycle\)$/,
+      },
+      {
+        name: 'an external file with no reader',
+        bytes: ascii('{"asset":{"version":"2.0"},"buffers":[{"uri":"a.bin","byteLength":4}]}'),
+        message:
+          /^glTF: buffers\[0\]\.uri: names the file "a\.bin", but no way to read files beside the model was given$/,
       },
     ],
   },

@@ -62,3 +62,11 @@ export function bsdfSample(
   query.u2 = u2;
   return core.bsdfSample(materials, m, query, out);
 }
+
+/**
+ * The shading record the calls above pass to glTF materials (the query's
+ * own), for tests to set a glTF material's per-hit parameters.
+ */
+export function shading(): BsdfQuery['shading'] {
+  return q.shading;
+}

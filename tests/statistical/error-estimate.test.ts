@@ -52,7 +52,7 @@ function ratios(
     });
     const film = new Film(SIZE, SIZE);
     tracer.renderRows(film, BAND[0], BAND[1], 0, SPP, new RenderStats());
-    const f = errorFigures(SIZE, film.sums, film.extra, layout, ref);
+    const f = errorFigures(SIZE, film.sums, film, layout, ref);
     return f.relMse / f.estimatedRelMse;
   });
 }

@@ -126,7 +126,7 @@ describe('pathwise render', () => {
       /16777216/,
     ],
     [['render', 'scenes/cornell.json', '--out', 'x.pfm', '--bounces', '65'], /--bounces/],
-    [['render', 'scenes/cornell.json', '--out', 'x.jpg'], /--out must end in .pfm or .png/],
+    [['render', 'scenes/cornell.json', '--out', 'x.jpg'], /--out must end in .pfm, .png or .film/],
     [['render', 'scenes/cornell.json'], /missing --out/],
     [['render', '--out', 'x.pfm'], /missing the scene file/],
     [['render', 'scenes/nope.json', '--out', 'x.pfm'], /cannot read scenes\/nope.json/],

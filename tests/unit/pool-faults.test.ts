@@ -92,8 +92,8 @@ function reference(): Film {
 }
 
 function differingWords(a: Film, b: Film): number {
-  const x = new Uint32Array(a.buffer as ArrayBuffer, 0, a.sums.length * 2);
-  const y = new Uint32Array(b.buffer as ArrayBuffer, 0, b.sums.length * 2);
+  const x = new Uint32Array(a.buffer as ArrayBuffer);
+  const y = new Uint32Array(b.buffer as ArrayBuffer);
   let n = 0;
   for (let i = 0; i < x.length; i++) if (x[i] !== y[i]) n++;
   return n;

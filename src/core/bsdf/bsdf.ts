@@ -6,11 +6,14 @@
 import { conductorEval, conductorPdf, conductorSample } from './conductor.ts';
 import { dielectricSample } from './dielectric.ts';
 import { diffuseEval, diffusePdf, diffuseSample } from './diffuse.ts';
+import { gltfEval, gltfPdf, gltfSample } from './gltf-pbr.ts';
 import {
   MATERIAL_CONDUCTOR,
   MATERIAL_DIELECTRIC,
   MATERIAL_DIFFUSE,
+  MATERIAL_GLTF,
   MATERIAL_STRIDE,
+  M_GEOMETRIC_SIDE,
   M_TYPE,
 } from './materials.ts';
 import type { BsdfQuery, BsdfSample, BsdfValue } from './records.ts';
@@ -28,6 +31,9 @@ export function bsdfEval(materials: Float64Array, m: number, q: BsdfQuery, out: 
     case MATERIAL_CONDUCTOR:
       conductorEval(materials, o, q, out);
       return;
+    case MATERIAL_GLTF:
+      gltfEval(q.shading, q, out);
+      return;
     default:
       out.r = 0;
       out.g = 0;
@@ -44,6 +50,8 @@ export function bsdfPdf(materials: Float64Array, m: number, q: BsdfQuery): numbe
       return diffusePdf(q);
     case MATERIAL_CONDUCTOR:
       return conductorPdf(materials, o, q);
+    case MATERIAL_GLTF:
+      return gltfPdf(q.shading, q);
     default:
       return 0;
   }
@@ -51,7 +59,7 @@ export function bsdfPdf(materials: Float64Array, m: number, q: BsdfQuery): numbe
 
 /**
  * Samples wi for q.wo from q.u0, q.u1 (the direction) and q.u2 (the choice
- * between delta lobes). Returns false when the sample carries no energy.
+ * between lobes). Returns false when the sample carries no energy.
  */
 export function bsdfSample(
   materials: Float64Array,
@@ -67,6 +75,8 @@ export function bsdfSample(
       return conductorSample(materials, o, q, out);
     case MATERIAL_DIELECTRIC:
       return dielectricSample(materials, o, q, out);
+    case MATERIAL_GLTF:
+      return gltfSample(q.shading, q, out);
     default:
       return false;
   }
@@ -74,5 +84,5 @@ export function bsdfSample(
 
 /** Whether material m's BSDF uses the geometric (outward) normal rather than the side of wo. */
 export function usesGeometricSide(materials: Float64Array, m: number): boolean {
-  return materials[m * MATERIAL_STRIDE + M_TYPE] === MATERIAL_DIELECTRIC;
+  return materials[m * MATERIAL_STRIDE + M_GEOMETRIC_SIDE] !== 0;
 }

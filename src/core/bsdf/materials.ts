@@ -8,8 +8,14 @@ import type { MaterialDesc } from '../scene/types.ts';
 export const MATERIAL_DIFFUSE = 0;
 export const MATERIAL_CONDUCTOR = 1;
 export const MATERIAL_DIELECTRIC = 2;
+/**
+ * glTF 2.0 metallic–roughness (gltf-pbr.ts). Its parameters can vary per
+ * hit, so the BSDF reads them from the query's ShadingParams, which the
+ * integrator fills from the glTF material table (src/core/gltf/).
+ */
+export const MATERIAL_GLTF = 3;
 
-export const MATERIAL_STRIDE = 12;
+export const MATERIAL_STRIDE = 16;
 /** Offsets inside one material record. */
 export const M_TYPE = 0;
 /** albedo (diffuse) or color (conductor F0, dielectric transmission tint) */
@@ -23,6 +29,14 @@ export const M_EMISSION = 6;
 export const M_EMISSIVE = 9;
 /** 1 when the BSDF is a Dirac delta (mirror, smooth glass): no light sampling there */
 export const M_DELTA = 10;
+/** glTF materials: the index of the material in the glTF material table */
+export const M_GLTF_INDEX = 11;
+/**
+ * 1 when the BSDF needs the geometric (outward) normal to tell inside from
+ * outside rather than a frame facing wo: dielectrics and transmissive glTF
+ * materials
+ */
+export const M_GEOMETRIC_SIDE = 12;
 
 /**
  * Smallest GGX alpha used: below it (roughness < 1e-3) the lobe is narrower
@@ -59,6 +73,7 @@ export function compileMaterials(descs: MaterialDesc[]): Float64Array {
         out[o + M_TYPE] = MATERIAL_DIELECTRIC;
         out[o + M_IOR] = m.ior;
         out[o + M_DELTA] = 1;
+        out[o + M_GEOMETRIC_SIDE] = 1;
         break;
     }
   });

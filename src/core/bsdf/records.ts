@@ -1,4 +1,5 @@
 /** Caller-owned records the BSDFs write into, so hot loops allocate nothing. */
+import { ShadingParams } from './shading.ts';
 
 /** Result of `sample`: a direction in the local frame and its weight f·|cosθi|/pdf. */
 export class BsdfSample {
@@ -32,6 +33,11 @@ export class BsdfQuery {
   u0 = 0;
   u1 = 0;
   u2 = 0;
+  /**
+   * Per-hit parameters of a glTF material (textures already looked up);
+   * the integrator fills it at each hit on one, the other kinds ignore it.
+   */
+  readonly shading = new ShadingParams();
 }
 
 /**

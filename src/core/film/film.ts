@@ -1,38 +1,52 @@
 /**
- * The accumulator: per-pixel running sums of radiance, in Float32 so the
- * display can upload them as an RGBA32F texture without conversion.
+ * The accumulator: per-pixel exact sums of radiance, and Float32 copies of
+ * them that the display uploads as an RGBA32F texture without conversion.
  *
  * Layout of the backing buffer (which may be a SharedArrayBuffer, so that
- * every worker writes its own rows in place):
- *   sums  [width·rows·4]  R, G, B sums and the count of accepted samples (A)
- *   extra [width·rows·4]  Kahan compensation for R, G, B, and the running sum
- *                         of squared luminance (for the noise estimate)
+ * every worker writes its own rows in place), n = width·rows:
+ *   sums [4n] Float32  R, G, B sums rounded from the exact sums, and A: the
+ *                      count of accepted samples — the display's contract
+ *   hi   [4n] Float64  high limbs of the exact sums of R, G, B and of the
+ *                      squared luminance (for the noise estimate)
+ *   lo   [4n] Float64  their low limbs
+ * 80 bytes per pixel.
  *
- * Why Kahan: adding 0.1 to a Float32 sum 65,536 times drifts by ~1e-3
- * relative because each add rounds to 24 bits. Compensated summation
- * (Kahan 1965; Higham, "Accuracy and Stability of Numerical Algorithms"
- * §4.3) carries the lost low bits in a second Float32, which keeps the
- * error at a few ulps whatever the sample count. The arithmetic runs in
- * doubles; only the stored values are rounded to Float32.
+ * The exact sums (see exact-sum.ts) make a pixel's value independent of
+ * the order and grouping of its samples: threads, stripe layouts, sample
+ * ranges rendered on other machines, checkpoints and resumes all give the
+ * same bits. `sums` is always the one rounding of the exact sum, so it is
+ * split-independent too.
  *
  * A film may cover only a window of rows [y0, y0+rows) of the image: the
  * non-shared fallback ships single stripes between threads.
  */
-/** The largest finite Float32. */
-const FLOAT32_MAX = 3.4028234663852886e38;
+import { SAMPLE_LIMIT, addExact, addFixed, exactValue } from './exact-sum.ts';
+
+/** Rec. 709 luminance weights, as in the noise estimate. */
+const LUM_R = 0.2126;
+const LUM_G = 0.7152;
+const LUM_B = 0.0722;
+/**
+ * Squared luminance above this is added as this: it feeds only the noise
+ * estimate, and keeps the exact sum in range (luminance ≤ 2^20 ≈ 1e6 is
+ * kept exactly).
+ */
+export const LUM2_LIMIT = 2 ** 40;
 
 export class Film {
   readonly width: number;
   readonly rows: number;
   readonly y0: number;
   readonly buffer: ArrayBuffer | SharedArrayBuffer;
-  /** RGBA: linear radiance sums and the accepted-sample count. */
+  /** RGBA: linear radiance sums (rounded from the exact sums) and the accepted-sample count. */
   readonly sums: Float32Array;
-  /** RGB Kahan compensation, A: sum of squared luminance. */
-  readonly extra: Float32Array;
+  /** High limbs of the exact sums of R, G, B and squared luminance. */
+  readonly hi: Float64Array;
+  /** Low limbs of the same. */
+  readonly lo: Float64Array;
 
   static byteLength(width: number, rows: number): number {
-    return width * rows * 8 * Float32Array.BYTES_PER_ELEMENT;
+    return width * rows * 80;
   }
 
   constructor(
@@ -52,59 +66,106 @@ export class Film {
         `film buffer of ${this.buffer.byteLength} bytes is too small for ${width}×${rows}`,
       );
     }
+    if (byteOffset % 8 !== 0)
+      throw new RangeError(`film byteOffset ${byteOffset} is not 8-aligned`);
     this.sums = new Float32Array(this.buffer, byteOffset, n);
-    this.extra = new Float32Array(this.buffer, byteOffset + n * 4, n);
+    this.hi = new Float64Array(this.buffer, byteOffset + n * 4, n);
+    this.lo = new Float64Array(this.buffer, byteOffset + n * 12, n);
   }
 
   /**
    * Adds one sample of radiance to pixel (x, y) (image coordinates). Returns
-   * false, adding nothing, when the sample is not finite (one NaN would
-   * otherwise poison the pixel for the rest of the run) or when adding it
-   * would overflow a Float32 sum to Infinity. The loader's radiance bound
-   * (1e12) keeps sums far from overflow; this check makes sure that no
-   * non-finite value ever reaches the film, whatever the sample count. The
-   * caller counts the rejected samples.
+   * false, adding nothing, when a component is not finite or beyond
+   * ±SAMPLE_LIMIT: one NaN would otherwise poison the pixel for the rest
+   * of the run.
    */
   addSample(x: number, y: number, r: number, g: number, b: number): boolean {
-    if (!(Number.isFinite(r) && Number.isFinite(g) && Number.isFinite(b))) return false;
+    if (!(
+      Math.abs(r) <= SAMPLE_LIMIT &&
+      Math.abs(g) <= SAMPLE_LIMIT &&
+      Math.abs(b) <= SAMPLE_LIMIT
+    ))
+      return false;
     const i = ((y - this.y0) * this.width + x) * 4;
     const sums = this.sums;
-    const extra = this.extra;
-    const yr = r - extra[i];
-    const yg = g - extra[i + 1];
-    const yb = b - extra[i + 2];
-    const sr = sums[i];
-    const sg = sums[i + 1];
-    const sb = sums[i + 2];
-    const tr = Math.fround(sr + yr);
-    const tg = Math.fround(sg + yg);
-    const tb = Math.fround(sb + yb);
-    const lum = 0.2126 * r + 0.7152 * g + 0.0722 * b;
-    const squares = Math.fround(extra[i + 3] + lum * lum);
-    // |t| <= FLOAT32_MAX is false for ±Infinity (and NaN): nothing is written then.
-    if (!(
-      Math.abs(tr) <= FLOAT32_MAX &&
-      Math.abs(tg) <= FLOAT32_MAX &&
-      Math.abs(tb) <= FLOAT32_MAX &&
-      squares <= FLOAT32_MAX
-    )) {
-      return false;
-    }
-    extra[i] = tr - sr - yr;
-    sums[i] = tr;
-    extra[i + 1] = tg - sg - yg;
-    sums[i + 1] = tg;
-    extra[i + 2] = tb - sb - yb;
-    sums[i + 2] = tb;
+    const hi = this.hi;
+    const lo = this.lo;
+    sums[i] = addFixed(hi, lo, i, r);
+    sums[i + 1] = addFixed(hi, lo, i + 1, g);
+    sums[i + 2] = addFixed(hi, lo, i + 2, b);
     sums[i + 3] += 1;
-    extra[i + 3] = squares;
+    const lum = LUM_R * r + LUM_G * g + LUM_B * b;
+    const lum2 = lum * lum;
+    addFixed(hi, lo, i + 3, lum2 < LUM2_LIMIT ? lum2 : LUM2_LIMIT);
     return true;
+  }
+
+  /**
+   * Adds every sample of `other` (same width; its rows must lie inside this
+   * film's) exactly: the result is the same bits as if this film had
+   * received those samples itself.
+   */
+  add(other: Film): void {
+    if (
+      other.width !== this.width ||
+      other.y0 < this.y0 ||
+      other.y0 + other.rows > this.y0 + this.rows
+    ) {
+      throw new RangeError('film.add: the other film does not fit inside this one');
+    }
+    const base = (other.y0 - this.y0) * this.width * 4;
+    const sums = this.sums;
+    const hi = this.hi;
+    const lo = this.lo;
+    const oh = other.hi;
+    const ol = other.lo;
+    const oc = other.sums;
+    for (let j = 0, n = oh.length; j < n; j += 4) {
+      const i = base + j;
+      for (let c = 0; c < 4; c++) addExact(hi, lo, i + c, oh[j + c], ol[j + c]);
+      sums[i] = exactValue(hi, lo, i);
+      sums[i + 1] = exactValue(hi, lo, i + 1);
+      sums[i + 2] = exactValue(hi, lo, i + 2);
+      sums[i + 3] += oc[j + 3];
+    }
+  }
+
+  /** Recomputes the Float32 RGB sums from the exact sums (after hi and lo were filled directly). */
+  resolve(): void {
+    const sums = this.sums;
+    const hi = this.hi;
+    const lo = this.lo;
+    for (let i = 0, n = sums.length; i < n; i += 4) {
+      sums[i] = exactValue(hi, lo, i);
+      sums[i + 1] = exactValue(hi, lo, i + 1);
+      sums[i + 2] = exactValue(hi, lo, i + 2);
+    }
+  }
+
+  /**
+   * Copies every plane of the rows that this film and `from` share (same
+   * width): how a one-row or one-stripe window travels between a worker
+   * and the full film.
+   */
+  copyRowsFrom(from: Film): void {
+    if (from.width !== this.width) throw new RangeError('film.copyRowsFrom: widths differ');
+    const y0 = Math.max(this.y0, from.y0);
+    const y1 = Math.min(this.y0 + this.rows, from.y0 + from.rows);
+    if (y1 <= y0) return;
+    const w4 = this.width * 4;
+    const a = (y0 - from.y0) * w4;
+    const b = (y1 - from.y0) * w4;
+    const at = (y0 - this.y0) * w4;
+    this.sums.set(from.sums.subarray(a, b), at);
+    this.hi.set(from.hi.subarray(a, b), at);
+    this.lo.set(from.lo.subarray(a, b), at);
   }
 
   /** Clears every sum (e.g. after a scene or camera change). */
   clear(): void {
     this.sums.fill(0);
-    this.extra.fill(0);
+    this.hi.fill(0);
+    this.lo.fill(0);
   }
 
   /** Mean radiance image, RGB float32 row-major with row 0 at the top. */

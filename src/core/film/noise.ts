@@ -10,16 +10,22 @@
  * pixel's luminance as a fraction of the image's brightness. It falls as
  * 1/√N, which is what the demo shows the user.
  *
- * ΣL is recomputed from the RGB sums with the film's luminance weights;
- * ΣL² is film.extra[i + 3]. In Float32 the difference ΣL² − n·mean² can
- * come out slightly negative for a nearly constant pixel, so it is clamped
- * at zero.
+ * ΣL is recomputed from the film's exact RGB sums with its luminance
+ * weights; ΣL² is the exact sum at plane index i + 3 (squared luminance
+ * is capped at 2^40 per sample, see film.ts). Both are read in double
+ * precision from the exact sums, so the estimate is the same bits however
+ * the samples were split; rounding can still leave ΣL² − n·mean² slightly
+ * negative for a nearly constant pixel, so it is clamped at zero.
  */
+import { exactValue } from './exact-sum.ts';
 
-/** Sums and extra of a Film (or of any window of one), RGBA per pixel. */
+/** The planes of a Film (or of any window of one) that the estimate reads. */
 export interface NoiseInput {
+  /** RGBA per pixel; A is the sample count. */
   sums: Float32Array;
-  extra: Float32Array;
+  /** Exact sums of R, G, B and squared luminance (see exact-sum.ts). */
+  hi: Float64Array;
+  lo: Float64Array;
 }
 
 /**
@@ -30,7 +36,8 @@ export interface NoiseInput {
  */
 export function estimateNoise(film: NoiseInput, stride = 1): number {
   const sums = film.sums;
-  const extra = film.extra;
+  const hi = film.hi;
+  const lo = film.lo;
   const step = Math.max(1, Math.floor(stride)) * 4;
   let sumSe2 = 0;
   let sumMean = 0;
@@ -38,9 +45,12 @@ export function estimateNoise(film: NoiseInput, stride = 1): number {
   for (let i = 0, n = sums.length; i < n; i += step) {
     const count = sums[i + 3];
     if (count < 2) continue;
-    const lumSum = 0.2126 * sums[i] + 0.7152 * sums[i + 1] + 0.0722 * sums[i + 2];
+    const lumSum =
+      0.2126 * exactValue(hi, lo, i) +
+      0.7152 * exactValue(hi, lo, i + 1) +
+      0.0722 * exactValue(hi, lo, i + 2);
     const mean = lumSum / count;
-    const ss = extra[i + 3] - count * mean * mean;
+    const ss = exactValue(hi, lo, i + 3) - count * mean * mean;
     const variance = ss > 0 ? ss / (count - 1) : 0;
     sumSe2 += variance / count;
     sumMean += mean;

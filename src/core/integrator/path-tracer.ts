@@ -120,9 +120,10 @@ export class PathTracer {
   }
 
   /**
-   * Adds samples [sampleStart, sampleEnd) of every pixel of row y. Each
-   * pixel receives its samples in increasing order, so its Float32 sum is
-   * the same whichever worker renders the row.
+   * Adds samples [sampleStart, sampleEnd) of every pixel of row y. The
+   * film's sums are exact (film/exact-sum.ts), so the result is the same
+   * bits whichever worker renders the row and however the samples are
+   * split into calls.
    */
   renderRow(
     film: Film,

@@ -1,0 +1,29 @@
+/**
+ * The bytes of a render's output, chosen by the file's extension: PFM
+ * (the mean radiance, float32), PNG (tonemapped, 8-bit sRGB) or `.film`
+ * (the exact sums with their header, for merging and resuming). The same
+ * film gives the same bytes, whether it was rendered in one run, resumed,
+ * or merged from parts.
+ */
+import { deflateSync } from 'node:zlib';
+import {
+  encodeFilmFile,
+  encodePfm,
+  encodePng,
+  tonemapSums,
+  type Film,
+  type FilmHeader,
+} from '../core/index.ts';
+
+export function encodeOutput(
+  path: string,
+  film: Film,
+  header: FilmHeader,
+  exposure: number,
+): Uint8Array {
+  if (/\.film$/i.test(path)) return encodeFilmFile(header, film);
+  if (/\.pfm$/i.test(path)) return encodePfm(film.width, film.rows, film.mean());
+  const rgba = new Uint8Array(film.width * film.rows * 4);
+  tonemapSums(film.sums, exposure, rgba);
+  return encodePng(film.width, film.rows, rgba, (raw) => deflateSync(raw));
+}

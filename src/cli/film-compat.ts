@@ -1,0 +1,42 @@
+/**
+ * Whether two films are parts of the same render, and if not, one sentence
+ * naming the first difference in the words of the command line (`--seed`,
+ * `--bounces`, …), so the user knows which part was rendered wrong.
+ */
+import type { FilmSettings } from '../core/index.ts';
+import type { FilmIdentity } from './film-file.ts';
+
+const SETTING_FLAGS: [keyof FilmSettings, string][] = [
+  ['maxBounces', '--bounces'],
+  ['seed', '--seed'],
+  ['sampler', '--sampler'],
+  ['estimator', '--estimator'],
+];
+
+/**
+ * null if `a` and `b` (named `nameA`, `nameB`) can be merged, else why not.
+ */
+export function explainMismatch(
+  nameA: string,
+  a: FilmIdentity,
+  nameB: string,
+  b: FilmIdentity,
+): string | null {
+  const both = `${nameA} and ${nameB}`;
+  if (a.renderer !== b.renderer) {
+    return `${both} come from different renderers (${a.renderer} and ${b.renderer}); their samples differ`;
+  }
+  if (a.scene_sha256 !== b.scene_sha256) {
+    return `${both} are renders of different scenes (scene sha256 ${a.scene_sha256.slice(0, 12)}… and ${b.scene_sha256.slice(0, 12)}…)`;
+  }
+  const sa = a.settings;
+  const sb = b.settings;
+  if (sa.width !== sb.width || sa.height !== sb.height) {
+    return `${both} differ in image size (${sa.width}×${sa.height} and ${sb.width}×${sb.height})`;
+  }
+  for (const [key, flag] of SETTING_FLAGS) {
+    if (sa[key] !== sb[key]) return `${both} differ in ${flag} (${sa[key]} and ${sb[key]})`;
+  }
+  if (a.key !== b.key) return `${both} have different keys though their settings agree`;
+  return null;
+}

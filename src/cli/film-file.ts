@@ -1,0 +1,159 @@
+/**
+ * `.film` files on disk: the identity of a render (hashes of the scene and
+ * of the settings that change its pixels), and bounded reading with one
+ * clear error per problem. (Writing is output.ts's atomic OutputFile.)
+ */
+import { createHash } from 'node:crypto';
+import { closeSync, fstatSync, openSync, readSync, statSync } from 'node:fs';
+import {
+  FILM_FORMAT,
+  FilmFileError,
+  MAX_HEADER_BYTES,
+  SCALE_BITS,
+  decodeFilmFile,
+  decodeFilmHeader,
+  type FilmFile,
+  type FilmHeader,
+  type FilmSettings,
+  type Scene,
+} from '../core/index.ts';
+import packageJson from '../../package.json' with { type: 'json' };
+import { CliError } from './errors.ts';
+import { reason, showPath } from './read-bounded.ts';
+
+export const RENDERER = `pathwise ${packageJson.version}`;
+
+/** What a render's parts must share to be merged. */
+export interface FilmIdentity {
+  renderer: string;
+  scene_sha256: string;
+  settings: FilmSettings;
+  key: string;
+}
+
+function sha256(text: string): string {
+  return createHash('sha256').update(text).digest('hex');
+}
+
+/**
+ * The identity of a render. The scene hash covers the loaded scene (every
+ * default filled in, so formatting and key order of the file do not
+ * matter) without its name and settings, which change no pixel; the
+ * settings that do are hashed separately, with the renderer's version.
+ */
+export function filmIdentity(scene: Scene, settings: FilmSettings): FilmIdentity {
+  const { name: _name, settings: _settings, ...pixels } = scene;
+  const scene_sha256 = sha256(JSON.stringify(pixels));
+  const canonical: FilmSettings = {
+    width: settings.width,
+    height: settings.height,
+    maxBounces: settings.maxBounces,
+    seed: settings.seed,
+    sampler: settings.sampler,
+    estimator: settings.estimator,
+  };
+  const key = sha256(JSON.stringify({ renderer: RENDERER, scene_sha256, settings: canonical }));
+  return { renderer: RENDERER, scene_sha256, settings: canonical, key };
+}
+
+export function makeHeader(
+  identity: FilmIdentity,
+  spp: number,
+  ranges: [number, number][],
+  stats: FilmHeader['stats'],
+): FilmHeader {
+  return {
+    format: FILM_FORMAT,
+    renderer: identity.renderer,
+    scene_sha256: identity.scene_sha256,
+    settings: identity.settings,
+    key: identity.key,
+    scale_bits: SCALE_BITS,
+    spp,
+    ranges,
+    stats,
+  };
+}
+
+/** Reads and checks only the header of a `.film` file (and that the file's length matches it). */
+export function readFilmHeader(path: string): FilmHeader {
+  return withFile(path, (fd, total) => {
+    const prefix = Buffer.alloc(Math.min(total, 20 + MAX_HEADER_BYTES));
+    readFully(fd, prefix, 0);
+    return decodeFilmHeader(prefix, total).header;
+  });
+}
+
+/**
+ * Reads and checks a `.film` file. The header is read and checked first,
+ * so the file's length is known to match it before the rest is read:
+ * nothing large is allocated on a lying header. (So a `.film` must be a
+ * regular file, not a pipe.) Errors are CliErrors (exit status 2) that
+ * name the file.
+ */
+export function readFilmFile(path: string): FilmFile {
+  return withFile(path, (fd, total) => {
+    const prefix = Buffer.alloc(Math.min(total, 20 + MAX_HEADER_BYTES));
+    readFully(fd, prefix, 0);
+    const { byteLength } = decodeFilmHeader(prefix, total);
+    const bytes = Buffer.alloc(byteLength);
+    prefix.copy(bytes, 0, 0, prefix.length);
+    readFully(fd, bytes, prefix.length);
+    return decodeFilmFile(bytes);
+  });
+}
+
+/** Runs `body`, naming the file in a FilmFileError. */
+function named<T>(path: string, body: () => T): T {
+  try {
+    return body();
+  } catch (e) {
+    if (e instanceof FilmFileError) throw new CliError(`${showPath(path)}: ${e.message}`);
+    throw e;
+  }
+}
+
+function withFile<T>(path: string, body: (fd: number, total: number) => T): T {
+  let fd: number;
+  try {
+    // Not opened if not a regular file: opening a FIFO would wait for a writer.
+    const info = statSync(path);
+    if (!info.isFile() && !info.isDirectory()) {
+      throw new CliError(
+        `cannot read ${showPath(path)}: not a regular file (a .film's length is checked against its header)`,
+      );
+    }
+    fd = openSync(path, 'r');
+  } catch (e) {
+    if (e instanceof CliError) throw e;
+    throw new CliError(`cannot read ${showPath(path)}: ${reason(e)}`);
+  }
+  try {
+    const info = fstatSync(fd);
+    if (info.isDirectory()) throw new CliError(`cannot read ${showPath(path)}: it is a directory`);
+    if (!info.isFile()) {
+      throw new CliError(
+        `cannot read ${showPath(path)}: not a regular file (a .film's length is checked against its header)`,
+      );
+    }
+    return named(path, () => body(fd, info.size));
+  } catch (e) {
+    if (e instanceof CliError) throw e;
+    if (e instanceof RangeError) throw new CliError(`${showPath(path)}: ${e.message}`);
+    if ((e as NodeJS.ErrnoException).code) {
+      throw new CliError(`cannot read ${showPath(path)}: ${reason(e)}`);
+    }
+    throw e;
+  } finally {
+    closeSync(fd);
+  }
+}
+
+function readFully(fd: number, into: Buffer, from: number): void {
+  let at = from;
+  while (at < into.length) {
+    const n = readSync(fd, into, at, into.length - at, at);
+    if (n === 0) throw new FilmFileError(`truncated while reading: ${at} of ${into.length} bytes`);
+    at += n;
+  }
+}

@@ -1,0 +1,141 @@
+/**
+ * `pathwise merge PART.film… --out FILE.pfm|FILE.png|FILE.film`: adds the
+ * exact sums of parts of one render. Integer addition is associative, so
+ * the result is the same bits as one render of all the samples, in
+ * whatever order the parts come and wherever the ranges were cut.
+ *
+ * Every header is read and checked before any pixel is: parts of another
+ * scene or other settings, overlapping ranges and disagreeing totals are
+ * refused with one sentence each, and missing ranges are named (written
+ * anyway, with a warning, under --allow-gaps). Pixels are then read one
+ * part at a time, so memory holds two films at most.
+ */
+import { basename } from 'node:path';
+import {
+  estimateNoise,
+  findOverlap,
+  formatRanges,
+  missingRanges,
+  normalizeRanges,
+  rangeSamples,
+  type Film,
+  type FilmHeader,
+  type SampleRange,
+} from '../core/index.ts';
+import { MERGE_USAGE, parseMergeArgs, type MergeArgs } from './batch-args.ts';
+import { encodeOutput } from './encode-output.ts';
+import { CliError } from './errors.ts';
+import { explainMismatch } from './film-compat.ts';
+import { makeHeader, readFilmFile, readFilmHeader } from './film-file.ts';
+import { Interrupts } from './interrupt.ts';
+import { showPath } from './read-bounded.ts';
+
+export async function merge(argv: string[]): Promise<void> {
+  if (argv.includes('--help')) {
+    process.stdout.write(MERGE_USAGE + '\n');
+    return;
+  }
+  const args = parseMergeArgs(argv);
+  const headers: FilmHeader[] = args.parts.map((p) => readFilmHeader(p));
+  const first = headers[0];
+  const name = (k: number) => showPath(basename(args.parts[k]));
+  for (let k = 1; k < headers.length; k++) {
+    const why = explainMismatch(name(0), first, name(k), headers[k]);
+    if (why) throw new CliError(`cannot merge: ${why}`);
+  }
+  const total = args.spp ?? first.spp;
+  if (args.spp === undefined) {
+    const other = headers.findIndex((h) => h.spp !== first.spp);
+    if (other >= 0) {
+      throw new CliError(
+        `cannot merge: ${name(0)} is part of a ${first.spp}-spp render and ${name(other)} of a ${headers[other].spp}-spp one (give --spp N to choose the total)`,
+      );
+    }
+  }
+  let union: SampleRange[] = [];
+  for (let k = 0; k < headers.length; k++) {
+    for (const r of headers[k].ranges) {
+      if (r[1] > total) {
+        throw new CliError(
+          `cannot merge: ${name(k)} holds samples ${formatRanges([r])}, beyond the total of ${total}`,
+        );
+      }
+    }
+    for (let j = 0; j < k; j++) {
+      const both = findOverlap(headers[j].ranges, headers[k].ranges);
+      if (both) {
+        throw new CliError(
+          `cannot merge: ${name(j)} and ${name(k)} both hold samples ${formatRanges([both])}`,
+        );
+      }
+    }
+    union = normalizeRanges([...union, ...headers[k].ranges])!;
+  }
+  const missing = missingRanges(union, total);
+  const held = rangeSamples(union);
+  if (missing.length > 0 && !args.allowGaps) {
+    throw new CliError(
+      `missing samples ${formatRanges(missing)}: the parts hold ${held} of ${total} samples per pixel (render the missing ranges, or give --allow-gaps to write the partial result)`,
+    );
+  }
+  if (held === 0) throw new CliError('the parts hold no samples');
+
+  const interrupts = new Interrupts();
+  const output = await interrupts.prepare(args.out).catch((e) => {
+    interrupts.dispose();
+    throw e;
+  });
+  try {
+    // Pixels, one part at a time.
+    const acc = readFilmFile(args.parts[0]);
+    const stats = { ...acc.header.stats };
+    for (let k = 1; k < args.parts.length; k++) {
+      const part = readFilmFile(args.parts[k]);
+      acc.film.add(part.film);
+      stats.paths += part.header.stats.paths;
+      stats.segments += part.header.stats.segments;
+      stats.rejected += part.header.stats.rejected;
+    }
+    const header = makeHeader(first, total, union, stats);
+    await output.commit(encodeOutput(args.out, acc.film, header, args.exposure));
+    report(args, header, acc.film, missing, held, total);
+  } finally {
+    await output.discard();
+    interrupts.dispose();
+  }
+}
+
+function report(
+  args: MergeArgs,
+  header: FilmHeader,
+  film: Film,
+  missing: SampleRange[],
+  held: number,
+  total: number,
+): void {
+  const stats = header.stats;
+  const union = header.ranges;
+  if (missing.length > 0) {
+    process.stderr.write(
+      `pathwise: warning: ${showPath(args.out)} lacks samples ${formatRanges(missing)}: it holds ${held} of ${total} samples per pixel\n`,
+    );
+  }
+  if (args.json) {
+    const noise = estimateNoise(film);
+    process.stdout.write(
+      JSON.stringify({
+        parts: args.parts.length,
+        width: header.settings.width,
+        height: header.settings.height,
+        spp: held,
+        total,
+        ranges: union,
+        missing,
+        noise: Number.isFinite(noise) ? noise : null,
+        paths: stats.paths,
+        segments: stats.segments,
+        rejected_samples: stats.rejected,
+      }) + '\n',
+    );
+  }
+}

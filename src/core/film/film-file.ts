@@ -1,0 +1,412 @@
+/**
+ * The `.film` file, format `pathwise-film/1` (docs/film-format.md): a
+ * film's exact sums with what is needed to merge it with other parts of
+ * the same render — the settings and scene it was rendered from, and the
+ * sample ranges it holds.
+ *
+ *   offset 0    "pathwise-film/1\n"                     16 bytes, ASCII
+ *          16   header length H                          uint32 LE
+ *          20   header, JSON in ASCII (other characters as \uXXXX), H bytes;
+ *               zero bytes up to a multiple of 8
+ *          P    count [n]   uint32 LE   accepted samples per pixel; zero-padded to 8
+ *               hi    [4n]  float64 LE  exact-sum high limbs, R G B L² per pixel
+ *               lo    [4n]  float64 LE  exact-sum low limbs
+ *          end−4 CRC-32 of every byte before it         uint32 LE
+ *
+ * n = width·height, pixels row-major from the top row. The Float32 display
+ * sums are not stored: they are one rounding of the exact sums (Film.resolve).
+ *
+ * The decoder trusts nothing: every header field is checked for type and
+ * range, the file's length must be exactly what the header implies (so a
+ * truncated file or a lying header is named as such before anything large
+ * is allocated), the checksum must match, and every pixel's values must be
+ * canonical exact sums that its sample count can reach (no NaN, no
+ * fractions, nothing out of range). Each problem is one FilmFileError
+ * sentence.
+ */
+import { LIMITS } from '../scene/types.ts';
+import { SAMPLER_KINDS, type SamplerKind } from '../sampling/sampler.ts';
+import { crc32 } from '../io/crc32.ts';
+import { FormatError } from '../io/format-error.ts';
+import { MAX_COUNT, SCALE_BITS, isValidExact } from './exact-sum.ts';
+import { Film } from './film.ts';
+import { normalizeRanges, rangeSamples, type SampleRange } from './sample-ranges.ts';
+
+export const FILM_FORMAT = 'pathwise-film/1';
+const MAGIC = FILM_FORMAT + '\n';
+const PROLOGUE = 20;
+/** Headers are small; this bounds what a lying length can make us read. */
+export const MAX_HEADER_BYTES = 1 << 20;
+const MAX_RANGES = 10_000;
+
+/** One problem of a `.film` file: a FormatError naming the format, one printable line. */
+export class FilmFileError extends FormatError {
+  override name = 'FilmFileError';
+
+  constructor(detail: string) {
+    super(FILM_FORMAT, detail);
+  }
+}
+
+/** Everything that changes a sample's value, besides the scene. */
+export interface FilmSettings {
+  width: number;
+  height: number;
+  maxBounces: number;
+  seed: number;
+  sampler: SamplerKind;
+  estimator: 'nee-mis' | 'bsdf';
+}
+
+export interface FilmHeader {
+  format: typeof FILM_FORMAT;
+  /** Name and version of the renderer; parts of different renderers never merge. */
+  renderer: string;
+  /** SHA-256 (hex) of the scene as loaded, settings excluded (see docs/film-format.md). */
+  scene_sha256: string;
+  settings: FilmSettings;
+  /** SHA-256 (hex) of renderer, scene_sha256 and settings: parts merge only with an equal key. */
+  key: string;
+  /** Fixed-point fraction bits of the exact sums (always 40 in this format). */
+  scale_bits: number;
+  /** The render's total: a complete film holds samples [0, spp). */
+  spp: number;
+  /** Sample ranges every pixel holds: sorted, disjoint, touching ranges joined. */
+  ranges: SampleRange[];
+  /** Paths traced (pixels × samples), path segments, and samples rejected as non-finite. */
+  stats: { paths: number; segments: number; rejected: number };
+}
+
+export interface FilmFile {
+  header: FilmHeader;
+  film: Film;
+}
+
+const align8 = (n: number) => Math.ceil(n / 8) * 8;
+const LITTLE_ENDIAN = new Uint8Array(new Uint32Array([1]).buffer)[0] === 1;
+
+/** Byte length of a whole file whose header takes `headerBytes` bytes. */
+export function filmFileLength(headerBytes: number, width: number, height: number): number {
+  const n = width * height;
+  return align8(PROLOGUE + headerBytes) + align8(4 * n) + 64 * n + 4;
+}
+
+export function encodeFilmFile(header: FilmHeader, film: Film): Uint8Array {
+  const { width, height } = header.settings;
+  if (film.width !== width || film.rows !== height) {
+    throw new RangeError(`film is ${film.width}×${film.rows}, header says ${width}×${height}`);
+  }
+  const json = asciiBytes(
+    JSON.stringify(header).replace(
+      /[^\x20-\x7e]/g,
+      (ch) => '\\u' + ch.charCodeAt(0).toString(16).padStart(4, '0'),
+    ),
+  );
+  const n = width * height;
+  const total = filmFileLength(json.length, width, height);
+  const out = new Uint8Array(total);
+  const view = new DataView(out.buffer);
+  out.set(MAGIC_BYTES, 0);
+  view.setUint32(16, json.length, true);
+  out.set(json, PROLOGUE);
+  let at = align8(PROLOGUE + json.length);
+  const sums = film.sums;
+  for (let p = 0; p < n; p++) view.setUint32(at + 4 * p, sums[p * 4 + 3], true);
+  at += align8(4 * n);
+  for (const plane of [film.hi, film.lo]) {
+    if (LITTLE_ENDIAN) {
+      out.set(new Uint8Array(plane.buffer, plane.byteOffset, plane.byteLength), at);
+    } else {
+      for (let k = 0; k < plane.length; k++) view.setFloat64(at + 8 * k, plane[k], true);
+    }
+    at += 8 * plane.length;
+  }
+  view.setUint32(at, crc32(out.subarray(0, at)), true);
+  return out;
+}
+
+/**
+ * Reads and checks the magic and the header from the first bytes of a
+ * file (at least PROLOGUE + H of them; the caller may read the rest only
+ * once it knows how long the file must be). `total` is the whole file's
+ * length, to name truncation precisely.
+ */
+export function decodeFilmHeader(
+  prefix: Uint8Array,
+  total: number,
+): { header: FilmHeader; byteLength: number } {
+  const present = prefix.subarray(0, Math.min(total, MAGIC_BYTES.length));
+  if (!startsWith(MAGIC_BYTES, present)) {
+    throw new FilmFileError(`not a .film file: it does not start with "${FILM_FORMAT}"`);
+  }
+  if (total < PROLOGUE) {
+    throw new FilmFileError(`truncated: ${total} bytes, not even the ${PROLOGUE}-byte prologue`);
+  }
+  const view = new DataView(prefix.buffer, prefix.byteOffset, prefix.byteLength);
+  const h = view.getUint32(16, true);
+  if (h === 0 || h > MAX_HEADER_BYTES) {
+    throw new FilmFileError(`header length ${h} is outside [1, ${MAX_HEADER_BYTES}]`);
+  }
+  if (total < PROLOGUE + h) {
+    throw new FilmFileError(
+      `truncated: ${total} bytes, but the header alone needs ${PROLOGUE + h}`,
+    );
+  }
+  if (prefix.length < PROLOGUE + h) {
+    throw new RangeError(`decodeFilmHeader needs the first ${PROLOGUE + h} bytes`);
+  }
+  const text = asciiText(prefix.subarray(PROLOGUE, PROLOGUE + h));
+  if (text === null) throw new FilmFileError('header is not ASCII JSON');
+  let value: unknown;
+  try {
+    value = JSON.parse(text);
+  } catch (e) {
+    throw new FilmFileError(`header is not valid JSON: ${(e as Error).message}`);
+  }
+  const header = validateHeader(value);
+  const byteLength = filmFileLength(h, header.settings.width, header.settings.height);
+  if (total < byteLength) {
+    throw new FilmFileError(
+      `truncated: ${total} bytes, but a ${header.settings.width}×${header.settings.height} film needs ${byteLength}`,
+    );
+  }
+  if (total > byteLength) {
+    throw new FilmFileError(
+      `${total} bytes, more than the ${byteLength} that its ${header.settings.width}×${header.settings.height} header describes`,
+    );
+  }
+  return { header, byteLength };
+}
+
+/** The bytes of an ASCII string (the core has no TextEncoder: no DOM lib). */
+function asciiBytes(text: string): Uint8Array {
+  const out = new Uint8Array(text.length);
+  for (let i = 0; i < text.length; i++) out[i] = text.charCodeAt(i);
+  return out;
+}
+
+/** The text of ASCII bytes, or null if one is not ASCII. */
+function asciiText(bytes: Uint8Array): string | null {
+  let s = '';
+  for (let i = 0; i < bytes.length; i += 8192) {
+    const chunk = bytes.subarray(i, i + 8192);
+    for (const b of chunk)
+      if (b > 0x7e || (b < 0x20 && b !== 0x0a && b !== 0x09 && b !== 0x0d)) return null;
+    s += String.fromCharCode(...chunk);
+  }
+  return s;
+}
+
+const MAGIC_BYTES = asciiBytes(MAGIC);
+
+function startsWith(bytes: Uint8Array, prefix: string | Uint8Array): boolean {
+  const p = typeof prefix === 'string' ? asciiBytes(prefix) : prefix;
+  if (bytes.length < p.length) return false;
+  for (let i = 0; i < p.length; i++) if (bytes[i] !== p[i]) return false;
+  return true;
+}
+
+/** Decodes a whole `.film` file. Throws FilmFileError naming the first problem. */
+export function decodeFilmFile(bytes: Uint8Array): FilmFile {
+  const { header, byteLength } = decodeFilmHeader(bytes, bytes.length);
+  const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+  const stored = view.getUint32(byteLength - 4, true);
+  const actual = crc32(bytes.subarray(0, byteLength - 4));
+  if (stored !== actual) {
+    throw new FilmFileError(
+      `checksum mismatch (stored ${hex8(stored)}, computed ${hex8(actual)}): the file is corrupt`,
+    );
+  }
+  const { width, height } = header.settings;
+  const n = width * height;
+  const film = new Film(width, height);
+  let at = align8(PROLOGUE + view.getUint32(16, true));
+  const counts = new Uint32Array(n);
+  for (let p = 0; p < n; p++) counts[p] = view.getUint32(at + 4 * p, true);
+  at += align8(4 * n);
+  for (const plane of [film.hi, film.lo]) {
+    if (LITTLE_ENDIAN) {
+      new Uint8Array(plane.buffer, plane.byteOffset, plane.byteLength).set(
+        bytes.subarray(at, at + plane.byteLength),
+      );
+    } else {
+      for (let k = 0; k < plane.length; k++) plane[k] = view.getFloat64(at + 8 * k, true);
+    }
+    at += plane.byteLength;
+  }
+  const samples = rangeSamples(header.ranges);
+  const sums = film.sums;
+  const hi = film.hi;
+  const lo = film.lo;
+  let accepted = 0;
+  for (let p = 0; p < n; p++) {
+    const count = counts[p];
+    const where = () => `pixel (${p % width}, ${Math.floor(p / width)})`;
+    if (count > samples) {
+      throw new FilmFileError(
+        `${where()} has ${count} samples, more than the ${samples} of its ranges`,
+      );
+    }
+    for (let c = 0; c < 4; c++) {
+      const i = p * 4 + c;
+      if (!isValidExact(hi[i], lo[i], count)) {
+        throw new FilmFileError(
+          `${where()} channel ${'RGBL'[c]}: invalid exact sum (${hi[i]}, ${lo[i]}) for ${count} samples`,
+        );
+      }
+      hi[i] += 0; // −0 → +0, the canonical zero
+      lo[i] += 0;
+    }
+    sums[p * 4 + 3] = count;
+    accepted += count;
+  }
+  const { paths, rejected } = header.stats;
+  if (paths !== n * samples || accepted + rejected !== paths) {
+    throw new FilmFileError(
+      `stats do not add up: ${paths} paths and ${rejected} rejected for ${n} pixels × ${samples} samples with ${accepted} accepted`,
+    );
+  }
+  film.resolve();
+  return { header, film };
+}
+
+function hex8(v: number): string {
+  return v.toString(16).padStart(8, '0');
+}
+
+// --- header validation -----------------------------------------------------
+
+const HEADER_KEYS = [
+  'format',
+  'renderer',
+  'scene_sha256',
+  'settings',
+  'key',
+  'scale_bits',
+  'spp',
+  'ranges',
+  'stats',
+] as const;
+const SETTINGS_KEYS = ['width', 'height', 'maxBounces', 'seed', 'sampler', 'estimator'] as const;
+
+function isObject(v: unknown): v is Record<string, unknown> {
+  return typeof v === 'object' && v !== null && !Array.isArray(v);
+}
+
+function exactKeys(v: Record<string, unknown>, keys: readonly string[], where: string): void {
+  for (const k of keys) if (!(k in v)) throw new FilmFileError(`header: ${where}${k} is missing`);
+  for (const k of Object.keys(v)) {
+    if (!keys.includes(k)) throw new FilmFileError(`header: unknown key ${where}${k}`);
+  }
+}
+
+function integer(v: unknown, name: string, min: number, max: number): number {
+  if (typeof v !== 'number' || !Number.isInteger(v) || v < min || v > max) {
+    throw new FilmFileError(
+      `header: ${name} must be an integer in [${min}, ${max}], got ${short(v)}`,
+    );
+  }
+  return v;
+}
+
+function short(v: unknown): string {
+  const s = JSON.stringify(v) ?? String(v);
+  return s.length > 40 ? s.slice(0, 37) + '...' : s;
+}
+
+function sha256Hex(v: unknown, name: string): string {
+  if (typeof v !== 'string' || !/^[0-9a-f]{64}$/.test(v)) {
+    throw new FilmFileError(`header: ${name} must be 64 lowercase hex digits, got ${short(v)}`);
+  }
+  return v;
+}
+
+function validateHeader(v: unknown): FilmHeader {
+  if (!isObject(v)) throw new FilmFileError('header: not a JSON object');
+  exactKeys(v, HEADER_KEYS, '');
+  if (v.format !== FILM_FORMAT) {
+    throw new FilmFileError(`header: format must be "${FILM_FORMAT}", got ${short(v.format)}`);
+  }
+  if (typeof v.renderer !== 'string' || v.renderer.length === 0 || v.renderer.length > 200) {
+    throw new FilmFileError(
+      `header: renderer must be a non-empty string, got ${short(v.renderer)}`,
+    );
+  }
+  const s = v.settings;
+  if (!isObject(s)) throw new FilmFileError('header: settings must be an object');
+  exactKeys(s, SETTINGS_KEYS, 'settings.');
+  const width = integer(s.width, 'settings.width', 1, LIMITS.pixels);
+  const height = integer(s.height, 'settings.height', 1, LIMITS.pixels);
+  if (width * height > LIMITS.pixels) {
+    throw new FilmFileError(
+      `header: settings.width * settings.height must be at most ${LIMITS.pixels} pixels, got ${width * height}`,
+    );
+  }
+  const settings: FilmSettings = {
+    width,
+    height,
+    maxBounces: integer(s.maxBounces, 'settings.maxBounces', 0, LIMITS.maxBounces),
+    seed: integer(s.seed, 'settings.seed', 0, 2 ** 32 - 1),
+    sampler: s.sampler as SamplerKind,
+    estimator: s.estimator as FilmSettings['estimator'],
+  };
+  if (!SAMPLER_KINDS.includes(settings.sampler)) {
+    throw new FilmFileError(
+      `header: settings.sampler must be one of ${SAMPLER_KINDS.join(', ')}, got ${short(s.sampler)}`,
+    );
+  }
+  if (settings.estimator !== 'nee-mis' && settings.estimator !== 'bsdf') {
+    throw new FilmFileError(
+      `header: settings.estimator must be nee-mis or bsdf, got ${short(s.estimator)}`,
+    );
+  }
+  if (v.scale_bits !== SCALE_BITS) {
+    throw new FilmFileError(`header: scale_bits must be ${SCALE_BITS}, got ${short(v.scale_bits)}`);
+  }
+  const spp = integer(v.spp, 'spp', 1, LIMITS.spp);
+  const ranges = validateRanges(v.ranges, spp);
+  const st = v.stats;
+  if (!isObject(st)) throw new FilmFileError('header: stats must be an object');
+  exactKeys(st, ['paths', 'segments', 'rejected'], 'stats.');
+  return {
+    format: FILM_FORMAT,
+    renderer: v.renderer,
+    scene_sha256: sha256Hex(v.scene_sha256, 'scene_sha256'),
+    settings,
+    key: sha256Hex(v.key, 'key'),
+    scale_bits: SCALE_BITS,
+    spp,
+    ranges,
+    stats: {
+      paths: integer(st.paths, 'stats.paths', 0, Number.MAX_SAFE_INTEGER),
+      segments: integer(st.segments, 'stats.segments', 0, Number.MAX_SAFE_INTEGER),
+      rejected: integer(st.rejected, 'stats.rejected', 0, Number.MAX_SAFE_INTEGER),
+    },
+  };
+}
+
+function validateRanges(v: unknown, spp: number): SampleRange[] {
+  if (!Array.isArray(v) || v.length > MAX_RANGES) {
+    throw new FilmFileError(
+      `header: ranges must be an array of at most ${MAX_RANGES} [start, end] pairs`,
+    );
+  }
+  const ranges: SampleRange[] = v.map((r, k) => {
+    if (!Array.isArray(r) || r.length !== 2) {
+      throw new FilmFileError(`header: ranges[${k}] must be a [start, end] pair, got ${short(r)}`);
+    }
+    const a = integer(r[0], `ranges[${k}][0]`, 0, spp - 1);
+    const b = integer(r[1], `ranges[${k}][1]`, a + 1, spp);
+    return [a, b];
+  });
+  const canonical = normalizeRanges(ranges);
+  if (canonical === null || JSON.stringify(canonical) !== JSON.stringify(ranges)) {
+    throw new FilmFileError(
+      `header: ranges must be sorted, disjoint and not touching, got ${short(v)}`,
+    );
+  }
+  if (rangeSamples(ranges) > MAX_COUNT) {
+    throw new FilmFileError(`header: ranges hold more than ${MAX_COUNT} samples`);
+  }
+  return ranges;
+}

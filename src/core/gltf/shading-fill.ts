@@ -1,0 +1,182 @@
+/**
+ * Fills the per-hit ShadingParams of a glTF material from its record in the
+ * material table and, where it has textures, from bilinear lookups at the
+ * hit's texture coordinates (pbr-book 4e §10.5: textures are evaluated once
+ * per hit, before the BSDF is used). Allocation-free.
+ *
+ * glTF semantics (glTF 2.0 §3.9, and each extension's text):
+ * baseColor = factor × texture (sRGB, decoded to linear at load) × COLOR_0;
+ * roughness = factor × texture.g, metallic = factor × texture.b;
+ * emissive = factor × texture × strength; transmission = factor × texture.r;
+ * specular = factor × texture.a, specularColor = factor × texture.rgb;
+ * normal = normalize((2·texture.rgb − 1) × (scale, scale, 1)) in tangent space;
+ * opacity = baseColor.a for BLEND, (a ≥ cutoff) for MASK, 1 for OPAQUE.
+ */
+import { MIN_ALPHA } from '../bsdf/materials.ts';
+import type { ShadingParams } from '../bsdf/shading.ts';
+import { Texel, textureBilinear } from '../texture/bilinear.ts';
+import type { TextureStore } from '../texture/texture-store.ts';
+import {
+  ALPHA_BLEND,
+  ALPHA_MASK,
+  B_IMAGE,
+  B_TEXCOORD,
+  B_TRANSFORM,
+  B_WRAP_S,
+  B_WRAP_T,
+  BINDING_STRIDE,
+  GM_ALPHA_CUTOFF,
+  GM_ALPHA_MODE,
+  GM_BASE,
+  GM_EMISSIVE,
+  GM_IOR,
+  GM_METALLIC,
+  GM_NORMAL_SCALE,
+  GM_ROUGHNESS,
+  GM_SPECULAR,
+  GM_SPECULAR_COLOR,
+  GM_STRIDE,
+  GM_TEXTURES,
+  GM_TRANSMISSION,
+  TEX_BASE_COLOR,
+  TEX_EMISSIVE,
+  TEX_METALLIC_ROUGHNESS,
+  TEX_NORMAL,
+  TEX_SPECULAR,
+  TEX_SPECULAR_COLOR,
+  TEX_TRANSMISSION,
+} from './material-table.ts';
+
+/** What the integrator interpolates at a hit for `fillGltfShading`. */
+export class HitAttributes {
+  /** TEXCOORD_0 and TEXCOORD_1. */
+  u0 = 0;
+  v0 = 0;
+  u1 = 0;
+  v1 = 0;
+  /** COLOR_0 (linear RGBA), white without one. */
+  r = 1;
+  g = 1;
+  b = 1;
+  a = 1;
+}
+
+const T = new Texel();
+
+/** Looks up binding `slot` of the record at `o` into T; false when it has no texture. */
+function lookup(
+  table: Float64Array,
+  o: number,
+  slot: number,
+  textures: TextureStore,
+  hit: HitAttributes,
+): boolean {
+  const b = o + GM_TEXTURES + slot * BINDING_STRIDE;
+  const image = table[b + B_IMAGE];
+  if (image < 0) return false;
+  const set = table[b + B_TEXCOORD];
+  const u = set === 0 ? hit.u0 : hit.u1;
+  const v = set === 0 ? hit.v0 : hit.v1;
+  const tu =
+    table[b + B_TRANSFORM] * u + table[b + B_TRANSFORM + 1] * v + table[b + B_TRANSFORM + 2];
+  const tv =
+    table[b + B_TRANSFORM + 3] * u + table[b + B_TRANSFORM + 4] * v + table[b + B_TRANSFORM + 5];
+  textureBilinear(textures, image, tu, tv, table[b + B_WRAP_S], table[b + B_WRAP_T], T);
+  return true;
+}
+
+function clamp01(x: number): number {
+  return x < 0 ? 0 : x > 1 ? 1 : x;
+}
+
+export function fillGltfShading(
+  table: Float64Array,
+  textures: TextureStore,
+  m: number,
+  hit: HitAttributes,
+  sp: ShadingParams,
+): void {
+  const o = m * GM_STRIDE;
+  let r = table[o + GM_BASE] * hit.r;
+  let g = table[o + GM_BASE + 1] * hit.g;
+  let b = table[o + GM_BASE + 2] * hit.b;
+  let a = table[o + GM_BASE + 3] * hit.a;
+  if (lookup(table, o, TEX_BASE_COLOR, textures, hit)) {
+    r *= T.r;
+    g *= T.g;
+    b *= T.b;
+    a *= T.a;
+  }
+  sp.baseR = clamp01(r);
+  sp.baseG = clamp01(g);
+  sp.baseB = clamp01(b);
+  const mode = table[o + GM_ALPHA_MODE];
+  sp.opacity =
+    mode === ALPHA_BLEND
+      ? clamp01(a)
+      : mode === ALPHA_MASK
+        ? a >= table[o + GM_ALPHA_CUTOFF]
+          ? 1
+          : 0
+        : 1;
+
+  let metallic = table[o + GM_METALLIC];
+  let roughness = table[o + GM_ROUGHNESS];
+  if (lookup(table, o, TEX_METALLIC_ROUGHNESS, textures, hit)) {
+    roughness *= T.g;
+    metallic *= T.b;
+  }
+  sp.metallic = clamp01(metallic);
+  roughness = clamp01(roughness);
+  sp.alpha = roughness === 0 ? 0 : Math.max(MIN_ALPHA, roughness * roughness);
+
+  let er = table[o + GM_EMISSIVE];
+  let eg = table[o + GM_EMISSIVE + 1];
+  let eb = table[o + GM_EMISSIVE + 2];
+  if ((er > 0 || eg > 0 || eb > 0) && lookup(table, o, TEX_EMISSIVE, textures, hit)) {
+    er *= T.r;
+    eg *= T.g;
+    eb *= T.b;
+  }
+  sp.emR = er;
+  sp.emG = eg;
+  sp.emB = eb;
+
+  sp.ior = table[o + GM_IOR];
+  let transmission = table[o + GM_TRANSMISSION];
+  if (transmission > 0 && lookup(table, o, TEX_TRANSMISSION, textures, hit)) transmission *= T.r;
+  sp.transmission = clamp01(transmission);
+
+  let specular = table[o + GM_SPECULAR];
+  if (lookup(table, o, TEX_SPECULAR, textures, hit)) specular *= T.a;
+  sp.specular = clamp01(specular);
+  let sr = table[o + GM_SPECULAR_COLOR];
+  let sg = table[o + GM_SPECULAR_COLOR + 1];
+  let sb = table[o + GM_SPECULAR_COLOR + 2];
+  if (lookup(table, o, TEX_SPECULAR_COLOR, textures, hit)) {
+    sr *= T.r;
+    sg *= T.g;
+    sb *= T.b;
+  }
+  sp.specR = sr;
+  sp.specG = sg;
+  sp.specB = sb;
+
+  if (lookup(table, o, TEX_NORMAL, textures, hit)) {
+    const scale = table[o + GM_NORMAL_SCALE];
+    const nx = (2 * T.r - 1) * scale;
+    const ny = (2 * T.g - 1) * scale;
+    const nz = 2 * T.b - 1;
+    const l = Math.sqrt(nx * nx + ny * ny + nz * nz);
+    // A texel that decodes to no direction (or one below the surface) means "unperturbed".
+    if (l > 0 && nz > 0) {
+      sp.nx = nx / l;
+      sp.ny = ny / l;
+      sp.nz = nz / l;
+      return;
+    }
+  }
+  sp.nx = 0;
+  sp.ny = 0;
+  sp.nz = 1;
+}

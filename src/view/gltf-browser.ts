@@ -1,0 +1,50 @@
+/**
+ * What loading glTF needs in the browser (page or worker): images decoded by
+ * the platform's createImageBitmap (no colour-space conversion, no
+ * premultiplication, so the texels are the file's sRGB codes that the core
+ * converts to linear once), and MikkTSpace's WebAssembly fetched from the
+ * bundle's assets.
+ */
+import mikktspaceWasmUrl from 'mikktspace/dist/module/mikktspace_module_bg.wasm?url';
+import { createMikkTSpace } from '../core/gltf/mikktspace-wasm.ts';
+import type { TangentGenerator } from '../core/gltf/tangents.ts';
+import type { DecodedImage } from '../core/texture/decoded-image.ts';
+import { decodeImageJs } from '../core/texture/decode-js.ts';
+
+/** Decodes PNG or JPEG bytes to RGBA8; falls back to the pure-JS decoders where the platform cannot. */
+export async function decodeImageBrowser(
+  bytes: Uint8Array,
+  mimeType: string,
+): Promise<DecodedImage> {
+  if (typeof createImageBitmap !== 'function' || typeof OffscreenCanvas !== 'function') {
+    return decodeImageJs(bytes, mimeType);
+  }
+  const blob = new Blob([bytes as Uint8Array<ArrayBuffer>], { type: mimeType });
+  const bitmap = await createImageBitmap(blob, {
+    colorSpaceConversion: 'none',
+    premultiplyAlpha: 'none',
+  });
+  try {
+    const canvas = new OffscreenCanvas(bitmap.width, bitmap.height);
+    const ctx = canvas.getContext('2d', { willReadFrequently: true });
+    if (ctx === null) return decodeImageJs(bytes, mimeType);
+    ctx.drawImage(bitmap, 0, 0);
+    const data = ctx.getImageData(0, 0, bitmap.width, bitmap.height).data;
+    return { width: bitmap.width, height: bitmap.height, data, channels: 4, depth: 8 };
+  } finally {
+    bitmap.close();
+  }
+}
+
+let mikktspace: Promise<TangentGenerator> | null = null;
+
+/** MikkTSpace, loaded once per page or worker. */
+export function browserTangentGenerator(): Promise<TangentGenerator> {
+  mikktspace ??= fetch(mikktspaceWasmUrl)
+    .then((r) => {
+      if (!r.ok) throw new Error(`cannot load MikkTSpace (${r.status} ${r.statusText})`);
+      return r.arrayBuffer();
+    })
+    .then((b) => createMikkTSpace(new Uint8Array(b)));
+  return mikktspace;
+}

@@ -1,0 +1,108 @@
+/**
+ * glTF test files made in memory with glTF-Transform (textures as small PNGs
+ * by fast-png), and the loader's options over an in-memory file map.
+ */
+import { Document, type JSONDocument } from '@gltf-transform/core';
+import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
+import { encode as encodePng } from 'fast-png';
+import { nodeTangentGenerator } from '../../src/cli/gltf-node.ts';
+import { PreloadedIO } from '../../src/core/gltf/io.ts';
+import { type GltfLoadOptions, type GltfModel, loadGltf } from '../../src/core/gltf/load.ts';
+import { decodeImageJs } from '../../src/core/texture/decode-js.ts';
+
+export function io(): PreloadedIO {
+  return new PreloadedIO().registerExtensions(ALL_EXTENSIONS);
+}
+
+export async function toGlb(doc: Document): Promise<Uint8Array> {
+  return io().writeBinary(doc);
+}
+
+/** The .gltf JSON and its resources (buffers, images) as files, under `dir`. */
+export async function toGltfFiles(
+  doc: Document,
+  name: string,
+  dir = '',
+): Promise<Map<string, Uint8Array>> {
+  const { json, resources } = (await io().writeJSON(doc, { basename: name })) as JSONDocument;
+  const files = new Map<string, Uint8Array>();
+  files.set(dir + name + '.gltf', new TextEncoder().encode(JSON.stringify(json)));
+  for (const [uri, bytes] of Object.entries(resources))
+    files.set(dir + decodeURIComponent(uri), bytes);
+  return files;
+}
+
+export async function memoryOptions(
+  files: Map<string, Uint8Array> = new Map(),
+): Promise<GltfLoadOptions> {
+  return {
+    reader: {
+      async read(path: string, maxBytes: number): Promise<Uint8Array> {
+        const f = files.get(path);
+        if (f === undefined) throw new Error('no such file');
+        if (f.length > maxBytes) throw new Error(`over ${maxBytes} bytes`);
+        return f;
+      },
+    },
+    decodeImage: decodeImageJs,
+    generateTangents: await nodeTangentGenerator(),
+  };
+}
+
+export async function loadGlb(
+  doc: Document,
+  options?: Partial<GltfLoadOptions>,
+): Promise<GltfModel> {
+  return loadGltf(await toGlb(doc), 'model.glb', { ...(await memoryOptions()), ...options });
+}
+
+/** A w×h RGBA PNG whose texel (x, y) is f(x, y). */
+export function png(w: number, h: number, f: (x: number, y: number) => number[]): Uint8Array {
+  const data = new Uint8Array(w * h * 4);
+  for (let y = 0; y < h; y++) for (let x = 0; x < w; x++) data.set(f(x, y), 4 * (y * w + x));
+  return encodePng({ width: w, height: h, data, channels: 4, depth: 8 });
+}
+
+/**
+ * A unit quad in the xy plane facing +z: corners (0,0), (1,0), (1,1), (0,1),
+ * uv = (x, 1 − y) (the image upright), two triangles, indexed.
+ */
+export function quadPrimitive(
+  doc: Document,
+  opts: { normals?: boolean; uv?: boolean; indexed?: boolean } = {},
+) {
+  const buffer = doc.getRoot().listBuffers()[0] ?? doc.createBuffer();
+  const corners = [0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0];
+  const order = [0, 1, 2, 0, 2, 3];
+  const indexed = opts.indexed ?? true;
+  const pos = indexed ? corners : order.flatMap((i) => corners.slice(3 * i, 3 * i + 3));
+  const prim = doc.createPrimitive();
+  prim.setAttribute(
+    'POSITION',
+    doc.createAccessor().setType('VEC3').setArray(new Float32Array(pos)).setBuffer(buffer),
+  );
+  const n = pos.length / 3;
+  if (opts.normals ?? true) {
+    prim.setAttribute(
+      'NORMAL',
+      doc
+        .createAccessor()
+        .setType('VEC3')
+        .setArray(new Float32Array(Array.from({ length: n }, () => [0, 0, 1]).flat()))
+        .setBuffer(buffer),
+    );
+  }
+  if (opts.uv ?? true) {
+    const uv: number[] = [];
+    for (let i = 0; i < n; i++) uv.push(pos[3 * i], 1 - pos[3 * i + 1]);
+    prim.setAttribute(
+      'TEXCOORD_0',
+      doc.createAccessor().setType('VEC2').setArray(new Float32Array(uv)).setBuffer(buffer),
+    );
+  }
+  if (indexed)
+    prim.setIndices(
+      doc.createAccessor().setType('SCALAR').setArray(new Uint16Array(order)).setBuffer(buffer),
+    );
+  return prim;
+}
