@@ -417,17 +417,17 @@ describe('<pathwise-view> lifecycle and memory faults (Chromium)', () => {
   it('a SharedArrayBuffer that cannot be allocated is caught: a smaller film, or an error', async () => {
     const { page, errors } = await openWidgetPage({
       init: () => {
-        // As a browser out of memory: new SharedArrayBuffer throws above 200 KB.
+        // As a browser out of memory: new SharedArrayBuffer throws above 400 KB.
         const Real = SharedArrayBuffer;
         (globalThis as any).SharedArrayBuffer = class extends Real {
           constructor(n: number) {
-            if (n > 200_000) throw new RangeError('Array buffer allocation failed');
+            if (n > 400_000) throw new RangeError('Array buffer allocation failed');
             super(n);
           }
         };
       },
     });
-    // Sized from the canvas (300 × 150 × 32 B is over the limit): a smaller film.
+    // Sized from the canvas (300 × 150 × 80 B is over the limit): a smaller film.
     await page.evaluate(() => {
       const style = document.createElement('style');
       style.textContent = '#canvas-sized { width: 300px; height: 150px; }';
