@@ -40,6 +40,8 @@ import {
   type Problems,
   utf8Length,
 } from './validate-helpers.ts';
+import { checkEnvironment } from './environment-desc.ts';
+import { MESH_KEYS, checkMesh } from './mesh-desc.ts';
 
 const FORMAT = 'pathwise-scene/1';
 
@@ -92,10 +94,7 @@ export function validateScene(value: unknown): Scene {
   const settings = checkSceneSettings(root.settings, problems);
   const materials = checkMaterials(root.materials, problems);
   const shapes = checkShapes(root.shapes, materials, problems);
-  const environment =
-    root.environment === undefined
-      ? ([0, 0, 0] as Vec3)
-      : expectVec3(root.environment, 'environment', problems, NON_NEGATIVE);
+  const environment = checkEnvironment(root.environment, problems);
 
   if (problems.length > 0) throw new SceneError(problems);
   // No problem was recorded, so every part validated and is defined.
@@ -106,7 +105,8 @@ export function validateScene(value: unknown): Scene {
     settings: settings!,
     materials: Object.fromEntries(materials!),
     shapes: shapes!,
-    environment: environment!,
+    environment: environment!.constant,
+    environmentMap: environment!.map,
   };
 }
 
@@ -305,10 +305,11 @@ function checkMaterial(value: unknown, path: string, problems: Problems): Materi
   return problems.length > before ? undefined : material;
 }
 
-const SHAPE_TYPES = ['sphere', 'quad'] as const;
+const SHAPE_TYPES = ['sphere', 'quad', 'mesh'] as const;
 const SHAPE_KEYS: Record<ShapeDesc['type'], string[]> = {
   sphere: ['type', 'center', 'radius', 'material'],
   quad: ['type', 'corner', 'u', 'v', 'material'],
+  mesh: MESH_KEYS,
 };
 
 function checkShapes(
@@ -333,7 +334,21 @@ function checkShapes(
   const before = problems.length;
   const known = materials === undefined ? undefined : new MaterialNames(materials);
   const out = value.map((shape, i) => checkShape(shape, indexPath('shapes', i), known, problems));
-  return problems.length > before ? undefined : (out as ShapeDesc[]);
+  if (problems.length > before) return undefined;
+  // Inline meshes count against the scene's triangle limit here; mesh files when read.
+  let triangles = 0;
+  for (const shape of out) {
+    if (shape?.type === 'mesh' && shape.data !== null) {
+      triangles += shape.data.indices.length / 3 + shape.data.skipped;
+    }
+  }
+  if (triangles > LIMITS.triangles) {
+    problems.push(
+      `shapes hold ${triangles} triangles, more than the limit of ${LIMITS.triangles} per scene`,
+    );
+    return undefined;
+  }
+  return out as ShapeDesc[];
 }
 
 function checkShape(
@@ -348,6 +363,7 @@ function checkShape(
   if (type === undefined) return undefined; // the allowed keys depend on the type
   expectKnownKeys(obj, path, SHAPE_KEYS[type], problems);
   const material = checkMaterialRef(obj.material, `${path}.material`, materials, problems);
+  if (type === 'mesh') return checkMesh(obj, path, material, problems);
   if (type === 'sphere') {
     const center = expectVec3(obj.center, `${path}.center`, problems);
     const radius = expectNumber(obj.radius, `${path}.radius`, problems, POSITIVE);
