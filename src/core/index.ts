@@ -5,6 +5,12 @@
 export * from './scene/types.ts';
 export { parseScene, validateScene, validateSettingsOverride, SceneError } from './scene/load.ts';
 export {
+  loadScene,
+  resolveSceneFiles,
+  sceneNeedsFiles,
+  type SceneFileReader,
+} from './scene/files.ts';
+export {
   compileScene,
   CompiledScene,
   BVH_THRESHOLD,
@@ -19,6 +25,7 @@ export {
 export { Film } from './film/film.ts';
 export { Camera } from './camera/camera.ts';
 export { encodePfm, decodePfm, type PfmImage } from './io/pfm.ts';
+export { encodeHdr, decodeHdr } from './io/hdr.ts';
 export { encodePng, zlibStored } from './io/png.ts';
 export { acesFilmic, srgbEncode, toDisplayByte, tonemapSums } from './io/tonemap.ts';
 export { pcgHash } from './rng/pcg.ts';

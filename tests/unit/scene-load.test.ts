@@ -432,7 +432,9 @@ describe('shapes', () => {
     s.shapes[0].type = 'cube';
     s.shapes[1] = null;
     const problems = problemsOf(s);
-    expect(problems).toContain('shapes[0].type must be one of "sphere", "quad", got "cube"');
+    expect(problems).toContain(
+      'shapes[0].type must be one of "sphere", "quad", "mesh", got "cube"',
+    );
     expect(problems).toContain('shapes[1] must be an object, got null');
   });
 
