@@ -3,8 +3,16 @@
  * UsageError with a one-line message; the caller exits with status 2.
  */
 import { DEFAULT_SAMPLER, SAMPLER_KINDS, type Estimator, type SamplerKind } from '../core/index.ts';
+import { quote, sanitize } from '../core/scene/message.ts';
+import { CliError } from './errors.ts';
+import {
+  POSITIVE_DECIMAL,
+  parseDecimalValue,
+  parseIntegerValue,
+  switchWithoutValue,
+} from './values.ts';
 
-export class UsageError extends Error {
+export class UsageError extends CliError {
   override name = 'UsageError';
 }
 
@@ -34,7 +42,13 @@ export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png 
   --estimator nee-mis|bsdf  next-event estimation with MIS (default) or BSDF sampling only
   --sampler sobol|independent  random numbers: Owen-scrambled Sobol for the leading dimensions (default), or the independent PCG hash
   --stripe-rows R     rows per work stripe (default: automatic; the image does not depend on it)
-  --json              print one JSON line of statistics on stdout`;
+  --json              print one JSON line of statistics on stdout (a switch: no value)`;
+
+/** The first line of USAGE, printed alone (on stderr) when no command is given. */
+export const SYNOPSIS = USAGE.split('\n')[0];
+
+/** Options that are switches: present or absent, never with a value. */
+const SWITCHES = new Set(['json', 'help']);
 
 const INTEGER_OPTIONS = new Set([
   'spp',
@@ -47,13 +61,11 @@ const INTEGER_OPTIONS = new Set([
 ]);
 
 function parseInteger(name: string, text: string, min: number, max: number): number {
-  const value = Number(text);
-  if (!/^-?\d+$/.test(text) || !Number.isSafeInteger(value) || value < min || value > max) {
-    throw new UsageError(
-      `--${name} must be an integer in [${min}, ${max}], got ${JSON.stringify(text)}`,
-    );
+  try {
+    return parseIntegerValue(`--${name}`, text, min, max);
+  } catch (e) {
+    throw new UsageError((e as Error).message);
   }
-  return value;
 }
 
 export function parseRenderArgs(argv: string[]): RenderArgs {
@@ -67,13 +79,20 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     }
     const eq = a.indexOf('=');
     const name = eq >= 0 ? a.slice(2, eq) : a.slice(2);
-    if (options.has(name)) throw new UsageError(`--${name} is given twice`);
-    if (name === 'json' || name === 'help') {
+    if (options.has(name)) throw new UsageError(`--${sanitize(name)} is given twice`);
+    if (SWITCHES.has(name)) {
+      if (eq >= 0) {
+        try {
+          switchWithoutValue(`--${name}`, a);
+        } catch (e) {
+          throw new UsageError((e as Error).message);
+        }
+      }
       options.set(name, true);
       continue;
     }
     const value = eq >= 0 ? a.slice(eq + 1) : argv[++i];
-    if (value === undefined) throw new UsageError(`--${name} needs a value`);
+    if (value === undefined) throw new UsageError(`--${sanitize(name)} needs a value`);
     options.set(name, value);
   }
   const known = new Set([
@@ -86,19 +105,20 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     'help',
   ]);
   for (const name of options.keys()) {
-    if (!known.has(name)) throw new UsageError(`unknown option --${name}`);
+    if (!known.has(name)) throw new UsageError(`unknown option --${sanitize(name)}`);
   }
   if (positional.length !== 1) {
     throw new UsageError(
       positional.length === 0
         ? 'missing the scene file'
-        : `expected one scene file, got ${positional.length}: ${positional.join(' ')}`,
+        : `expected one scene file, got ${positional.length}: ` +
+            positional.map((p) => quote(p)).join(' '),
     );
   }
   const out = options.get('out');
   if (typeof out !== 'string') throw new UsageError('missing --out FILE.pfm|FILE.png');
   if (!/\.(pfm|png)$/i.test(out))
-    throw new UsageError(`--out must end in .pfm or .png, got ${JSON.stringify(out)}`);
+    throw new UsageError(`--out must end in .pfm or .png, got ${quote(out, 240)}`);
   const int = (name: string, min: number, max: number): number | undefined => {
     const v = options.get(name);
     return typeof v === 'string' ? parseInteger(name, v, min, max) : undefined;
@@ -106,21 +126,20 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
   const exposureText = options.get('exposure');
   let exposure = 1;
   if (typeof exposureText === 'string') {
-    exposure = Number(exposureText);
-    if (exposureText.trim() === '' || !Number.isFinite(exposure) || exposure <= 0) {
-      throw new UsageError(
-        `--exposure must be a finite number > 0, got ${JSON.stringify(exposureText)}`,
-      );
+    try {
+      exposure = parseDecimalValue('--exposure', exposureText, POSITIVE_DECIMAL);
+    } catch (e) {
+      throw new UsageError((e as Error).message);
     }
   }
   const estimator = options.get('estimator') ?? 'nee-mis';
   if (estimator !== 'nee-mis' && estimator !== 'bsdf') {
-    throw new UsageError(`--estimator must be nee-mis or bsdf, got ${JSON.stringify(estimator)}`);
+    throw new UsageError(`--estimator must be nee-mis or bsdf, got ${quote(String(estimator))}`);
   }
   const sampler = options.get('sampler') ?? DEFAULT_SAMPLER;
   if (!SAMPLER_KINDS.includes(sampler as SamplerKind)) {
     throw new UsageError(
-      `--sampler must be one of ${SAMPLER_KINDS.join(', ')}, got ${JSON.stringify(sampler)}`,
+      `--sampler must be one of ${SAMPLER_KINDS.join(', ')}, got ${quote(String(sampler))}`,
     );
   }
   return {

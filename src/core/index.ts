@@ -10,6 +10,7 @@ export {
   sceneNeedsFiles,
   type SceneFileReader,
 } from './scene/files.ts';
+export { countSkippedTriangles } from './scene/mesh-desc.ts';
 export {
   compileScene,
   CompiledScene,

@@ -189,17 +189,18 @@ describe('environment maps in scenes', () => {
     expect(
       await problems(loadScene(scene({ type: 'map', file: 'sky.pfm', scale: 2e11 }), files(img))),
     ).toEqual([
-      'environment.file "sky.pfm": texel (column 1, row 0) times scale must be at most 1000000000000, ' +
-        'got [800000000000, 1000000000000, 1200000000000]',
+      'environment.file "sky.pfm": texel (1, 0) b times scale (6 * 200000000000 = ' +
+        '1200000000000) must be at most 1e12 (the radiance bound, so that sums of samples ' +
+        'cannot overflow)',
     ]);
     const bad = encodePfm(2, 1, Float32Array.from([1, 2, 3, 4, -5, 6]));
     expect(await problems(loadScene(scene({ type: 'map', file: 'sky.pfm' }), files(bad)))).toEqual([
-      'environment.file "sky.pfm": texel (column 1, row 0) must be finite and >= 0, got [4, -5, 6]',
+      'environment.file "sky.pfm": texel (1, 0) g must be a finite number >= 0, got -5',
     ]);
     const nan = encodePfm(1, 1, Float32Array.from([NaN, 0, 0]));
     expect(
       (await problems(loadScene(scene({ type: 'map', file: 'a.pfm' }), files(nan))))[0],
-    ).toMatch(/texel \(column 0, row 0\) must be finite/);
+    ).toMatch(/texel \(0, 0\) r must be a finite number >= 0, got NaN/);
     expect(
       await problems(
         loadScene(

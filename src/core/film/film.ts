@@ -18,6 +18,9 @@
  * A film may cover only a window of rows [y0, y0+rows) of the image: the
  * non-shared fallback ships single stripes between threads.
  */
+/** The largest finite Float32. */
+const FLOAT32_MAX = 3.4028234663852886e38;
+
 export class Film {
   readonly width: number;
   readonly rows: number;
@@ -55,32 +58,46 @@ export class Film {
 
   /**
    * Adds one sample of radiance to pixel (x, y) (image coordinates). Returns
-   * false, adding nothing, when the sample is not finite: one NaN would
-   * otherwise poison the pixel for the rest of the run.
+   * false, adding nothing, when the sample is not finite (one NaN would
+   * otherwise poison the pixel for the rest of the run) or when adding it
+   * would overflow a Float32 sum to Infinity. The loader's radiance bound
+   * (1e12) keeps sums far from overflow; this check makes sure that no
+   * non-finite value ever reaches the film, whatever the sample count. The
+   * caller counts the rejected samples.
    */
   addSample(x: number, y: number, r: number, g: number, b: number): boolean {
     if (!(Number.isFinite(r) && Number.isFinite(g) && Number.isFinite(b))) return false;
     const i = ((y - this.y0) * this.width + x) * 4;
     const sums = this.sums;
     const extra = this.extra;
-    let s = sums[i];
-    let yk = r - extra[i];
-    let t = Math.fround(s + yk);
-    extra[i] = t - s - yk;
-    sums[i] = t;
-    s = sums[i + 1];
-    yk = g - extra[i + 1];
-    t = Math.fround(s + yk);
-    extra[i + 1] = t - s - yk;
-    sums[i + 1] = t;
-    s = sums[i + 2];
-    yk = b - extra[i + 2];
-    t = Math.fround(s + yk);
-    extra[i + 2] = t - s - yk;
-    sums[i + 2] = t;
-    sums[i + 3] += 1;
+    const yr = r - extra[i];
+    const yg = g - extra[i + 1];
+    const yb = b - extra[i + 2];
+    const sr = sums[i];
+    const sg = sums[i + 1];
+    const sb = sums[i + 2];
+    const tr = Math.fround(sr + yr);
+    const tg = Math.fround(sg + yg);
+    const tb = Math.fround(sb + yb);
     const lum = 0.2126 * r + 0.7152 * g + 0.0722 * b;
-    extra[i + 3] += lum * lum;
+    const squares = Math.fround(extra[i + 3] + lum * lum);
+    // |t| <= FLOAT32_MAX is false for ±Infinity (and NaN): nothing is written then.
+    if (!(
+      Math.abs(tr) <= FLOAT32_MAX &&
+      Math.abs(tg) <= FLOAT32_MAX &&
+      Math.abs(tb) <= FLOAT32_MAX &&
+      squares <= FLOAT32_MAX
+    )) {
+      return false;
+    }
+    extra[i] = tr - sr - yr;
+    sums[i] = tr;
+    extra[i + 1] = tg - sg - yg;
+    sums[i + 1] = tg;
+    extra[i + 2] = tb - sb - yb;
+    sums[i + 2] = tb;
+    sums[i + 3] += 1;
+    extra[i + 3] = squares;
     return true;
   }
 

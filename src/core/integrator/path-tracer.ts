@@ -28,12 +28,11 @@ import { Camera } from '../camera/camera.ts';
 import type { Film } from '../film/film.ts';
 import { Hit, Ray, SHAPE_QUAD, SHAPE_SPHERE } from '../geometry/ray.ts';
 import {
+  OFFSET_SCALE,
   QUAD_STRIDE,
-  Q_CORNER,
   Q_NORMAL,
   Q_PLANE,
-  Q_U,
-  Q_V,
+  quadScale,
   SPHERE_STRIDE,
 } from '../geometry/shapes.ts';
 import { intersectScene, occluded } from '../geometry/trace.ts';
@@ -75,16 +74,6 @@ export class RenderStats {
   rejected = 0;
 }
 
-/**
- * Relative size of the offset that lifts a spawned ray off its surface:
- * 2^-36 of the magnitude of the coordinates involved. Doubles carry 2^-52
- * relative error, so this clears the rounding of the hit point by a factor
- * of ~65,000 while staying far below any visible scale — and, being
- * relative, it behaves the same for a scene scaled by 1e-4 or 1e4.
- */
-const OFFSET_SCALE = 2 ** -36;
-/** Shadow rays stop this fraction short of the light point, so they do not hit the light itself. */
-const SHADOW_SHORTEN = 1 - 2 ** -30;
 /** Russian roulette begins once a path has scattered this many times. */
 const ROULETTE_DEPTH = 3;
 
@@ -249,22 +238,7 @@ export class PathTracer {
         z -= off * nz;
         m = scene.quadMaterial[index];
         light = scene.quadLight[index];
-        shapeScale =
-          Math.max(
-            Math.abs(quads[o + Q_CORNER]),
-            Math.abs(quads[o + Q_CORNER + 1]),
-            Math.abs(quads[o + Q_CORNER + 2]),
-          ) +
-          Math.max(
-            Math.abs(quads[o + Q_U]),
-            Math.abs(quads[o + Q_U + 1]),
-            Math.abs(quads[o + Q_U + 2]),
-          ) +
-          Math.max(
-            Math.abs(quads[o + Q_V]),
-            Math.abs(quads[o + Q_V + 1]),
-            Math.abs(quads[o + Q_V + 2]),
-          );
+        shapeScale = quadScale(quads, index);
       }
       const mo = m * MATERIAL_STRIDE;
       const wox = -ray.dx,
@@ -324,16 +298,25 @@ export class PathTracer {
             bq.wiz = lwiz;
             bsdfEval(materials, m, bq, fv);
             if (fv.r !== 0 || fv.g !== 0 || fv.b !== 0) {
+              // Both ends lifted off their surfaces (see lights.ts): the
+              // segment between them crosses neither.
               const sr = this.shadowRay;
-              sr.ox = x + sx * scale;
-              sr.oy = y + sy * scale;
-              sr.oz = z + sz * scale;
-              sr.dx = wix;
-              sr.dy = wiy;
-              sr.dz = wiz;
-              sr.tMax = ls.distance * SHADOW_SHORTEN;
+              const ox = x + sx * scale;
+              const oy = y + sy * scale;
+              const oz = z + sz * scale;
+              const ex = ls.px - ox;
+              const ey = ls.py - oy;
+              const ez = ls.pz - oz;
+              const len = Math.sqrt(ex * ex + ey * ey + ez * ez);
+              sr.ox = ox;
+              sr.oy = oy;
+              sr.oz = oz;
+              sr.dx = ex / len;
+              sr.dy = ey / len;
+              sr.dz = ez / len;
+              sr.tMax = len;
               segments++;
-              if (!occluded(scene, sr)) {
+              if (len > 0 && !occluded(scene, sr)) {
                 const lm =
                   (lights!.kind[l] === SHAPE_QUAD
                     ? scene.quadMaterial[lights!.shape[l]]

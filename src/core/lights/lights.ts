@@ -7,8 +7,19 @@
  *   subtend (pbr-book 3e §14.2.2, Sphere::Sample(ref)), which wastes no
  *   samples on the hidden back side; from inside, uniformly by area.
  * Emission leaves only the front side of a surface (outside of a sphere).
+ *
+ * The shadow ray's far end is the sampled point lifted off the emitter, toward
+ * the reference point, by a distance relative to the emitter's coordinates
+ * (`OFFSET_SCALE`, the same rule the integrator uses to lift ray origins off
+ * receivers). Aiming at the surface point itself with a tMax shortened by a
+ * fixed fraction of the distance is not enough: the receiver's own lift can
+ * exceed that fraction (a huge ground sphere lifts by ~1e-6 while a shadow
+ * ray of length 5 keeps only ~5e-9 of slack), and then the emitter occludes
+ * its own sample — which is why NEE once lost 3 % of a sphere light over a
+ * floor and all of it over a ground sphere of radius 1000.
  */
 import {
+  OFFSET_SCALE,
   QUAD_STRIDE,
   Q_AREA,
   Q_CORNER,
@@ -34,7 +45,10 @@ export class LightSample {
   wy = 0;
   wz = 0;
   distance = 0;
-  /** The sampled point on the emitter (for the shadow ray's far end). */
+  /**
+   * The shadow ray's far end: the sampled point lifted off the emitter toward
+   * the reference point (see the module comment).
+   */
   px = 0;
   py = 0;
   pz = 0;
@@ -52,11 +66,14 @@ export class LightList {
   readonly prob: Float64Array;
   /** Cumulative distribution over lights (count + 1 entries). */
   readonly cdf: Float64Array;
+  /** Distance by which a sampled point is lifted off each light (OFFSET_SCALE × its scale). */
+  readonly offset: Float64Array;
 
-  constructor(kind: number[], shape: number[], power: number[]) {
+  constructor(kind: number[], shape: number[], power: number[], scale: number[]) {
     this.count = kind.length;
     this.kind = Int32Array.from(kind);
     this.shape = Int32Array.from(shape);
+    this.offset = Float64Array.from(scale, (s) => s * OFFSET_SCALE);
     const total = power.reduce((a, b) => a + b, 0);
     this.prob = Float64Array.from(power, (p) => p / total);
     this.cdf = new Float64Array(this.count + 1);
@@ -97,6 +114,7 @@ export function sampleLight(
     u1 = out.u1;
   const s = lights.shape[l];
   const choose = lights.prob[l];
+  const lift = lights.offset[l];
   out.light = l;
   if (lights.kind[l] === SHAPE_QUAD) {
     const o = s * QUAD_STRIDE;
@@ -115,6 +133,7 @@ export function sampleLight(
       quads[o + Q_NORMAL + 2],
       quads[o + Q_AREA],
       choose,
+      lift,
       out,
     );
   }
@@ -149,31 +168,33 @@ export function sampleLight(
       zz,
       4 * Math.PI * r * r,
       choose,
+      lift,
       out,
     );
   }
-  // Outside: uniform in the cone, then the point on the sphere by the law
-  // of cosines (pbrt-v3 Sphere::Sample(ref)).
+  // Outside: uniform in the cone of directions the sphere subtends, then the
+  // point on the sphere seen along that direction (pbr-book 4e §6.2.4).
   const dc = Math.sqrt(dc2);
   const inv = 1 / dc;
   wcx *= inv;
   wcy *= inv;
   wcz *= inv;
   const sin2Max = (r * r) / dc2;
+  const sinMax = r / dc;
   const cosMax = Math.sqrt(Math.max(0, 1 - sin2Max));
   // 1 − cosθmax without cancellation for small, distant spheres.
   const oneMinusCosMax = sin2Max / (1 + cosMax);
-  let sin2 = sin2Max * u0;
-  let cosT = Math.sqrt(Math.max(0, 1 - sin2));
-  if (sin2Max >= 0.00068523) {
-    // Not small: the direct form is accurate.
-    cosT = 1 - u0 * oneMinusCosMax;
-    sin2 = Math.max(0, 1 - cosT * cosT);
-  }
-  // Distance along the sampled direction to the near side, then the angle
-  // at the sphere's center.
-  const ds = dc * cosT - Math.sqrt(Math.max(0, r * r - dc2 * sin2));
-  const cosAlpha = Math.min(1, Math.max(-1, (dc2 + r * r - ds * ds) / (2 * dc * r)));
+  // Uniform in solid angle means 1 − cosθ uniform in [0, 1 − cosθmax]; keep
+  // 1 − cosθ itself so sin²θ = (1 − cosθ)(1 + cosθ) stays exact for tiny
+  // cones (where cosθ rounds to 1). Exact at every size, so sampling and
+  // pdf agree to rounding.
+  const oneMinusCos = u0 * oneMinusCosMax;
+  const cosT = 1 - oneMinusCos;
+  const sin2 = oneMinusCos * (2 - oneMinusCos);
+  // Angle α at the sphere's center between the reference direction and the
+  // sampled point, in the form that does not cancel (pbr-book 4e eq. 6.8,
+  // instead of the law of cosines, which loses digits when r ≪ distance).
+  const cosAlpha = Math.min(1, sin2 / sinMax + cosT * Math.sqrt(Math.max(0, 1 - sin2 / sin2Max)));
   const sinAlpha = Math.sqrt(Math.max(0, 1 - cosAlpha * cosAlpha));
   const phi = 2 * Math.PI * u1;
   // Frame around −wc (from the center toward the reference point).
@@ -191,9 +212,13 @@ export function sampleLight(
   const t1z = -ay;
   const cp = Math.cos(phi) * sinAlpha;
   const sp = Math.sin(phi) * sinAlpha;
-  const nx = cp * s1x + sp * t1x + cosAlpha * ax;
-  const ny = cp * s1y + sp * t1y + cosAlpha * ay;
-  const nz = cp * s1z + sp * t1z + cosAlpha * az;
+  let nx = cp * s1x + sp * t1x + cosAlpha * ax;
+  let ny = cp * s1y + sp * t1y + cosAlpha * ay;
+  let nz = cp * s1z + sp * t1z + cosAlpha * az;
+  const nInv = 1 / Math.sqrt(nx * nx + ny * ny + nz * nz);
+  nx *= nInv;
+  ny *= nInv;
+  nz *= nInv;
   const px = cx + r * nx;
   const py = cy + r * ny;
   const pz = cz + r * nz;
@@ -212,9 +237,9 @@ export function sampleLight(
   out.wy = wy;
   out.wz = wz;
   out.distance = dist;
-  out.px = px;
-  out.py = py;
-  out.pz = pz;
+  out.px = px + lift * nx;
+  out.py = py + lift * ny;
+  out.pz = pz + lift * nz;
   out.pdf = choose / (2 * Math.PI * oneMinusCosMax);
   return true;
 }
@@ -231,6 +256,7 @@ function finishAreaSample(
   nz: number,
   area: number,
   choose: number,
+  lift: number,
   out: LightSample,
 ): boolean {
   let wx = px - x;
@@ -248,9 +274,10 @@ function finishAreaSample(
   out.wy = wy;
   out.wz = wz;
   out.distance = dist;
-  out.px = px;
-  out.py = py;
-  out.pz = pz;
+  // The reference point is on the front side (cosLight > 0): lift toward it.
+  out.px = px + lift * nx;
+  out.py = py + lift * ny;
+  out.pz = pz + lift * nz;
   out.pdf = (choose * d2) / (area * cosLight);
   return true;
 }

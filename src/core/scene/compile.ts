@@ -12,7 +12,9 @@ import {
   compileSpheres,
   QUAD_STRIDE,
   Q_AREA,
+  quadScale,
   SPHERE_STRIDE,
+  sphereScale,
 } from '../geometry/shapes.ts';
 import { LightList } from '../lights/lights.ts';
 import type { QuadDesc, Scene, SphereDesc } from './types.ts';
@@ -67,6 +69,7 @@ export class CompiledScene {
     const kinds: number[] = [];
     const shapes: number[] = [];
     const power: number[] = [];
+    const scale: number[] = [];
     const emitted = (m: number): number => {
       const o = m * MATERIAL_STRIDE;
       if (this.materials[o + M_EMISSIVE] === 0) return 0;
@@ -89,6 +92,7 @@ export class CompiledScene {
       kinds.push(SHAPE_SPHERE);
       shapes.push(i);
       power.push(lum * 4 * Math.PI * r * r);
+      scale.push(sphereScale(this.spheres, i));
     }
     for (let i = 0; i < this.quadCount; i++) {
       const lum = emitted(this.quadMaterial[i]);
@@ -97,8 +101,9 @@ export class CompiledScene {
       kinds.push(SHAPE_QUAD);
       shapes.push(i);
       power.push(lum * this.quads[i * QUAD_STRIDE + Q_AREA]);
+      scale.push(quadScale(this.quads, i));
     }
-    this.lights = kinds.length > 0 ? new LightList(kinds, shapes, power) : null;
+    this.lights = kinds.length > 0 ? new LightList(kinds, shapes, power, scale) : null;
     [this.envR, this.envG, this.envB] = scene.environment;
     this.hasEnvironment = this.envR > 0 || this.envG > 0 || this.envB > 0;
     const total = this.sphereCount + this.quadCount;

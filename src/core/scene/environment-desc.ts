@@ -3,7 +3,8 @@
  * `{ "type": "map", "file", "scale", "rotationY" }` (docs/scene-format.md, Environment
  * maps). The map's file is only checked by name here; `resolveSceneFiles` reads it.
  */
-import { LIMITS, type EnvironmentMapDesc, type Vec3 } from './types.ts';
+import { RADIANCE } from './radiance.ts';
+import type { EnvironmentMapDesc, Vec3 } from './types.ts';
 import {
   NON_NEGATIVE,
   describe,
@@ -33,7 +34,7 @@ export function checkEnvironment(
 ): CheckedEnvironment | undefined {
   if (value === undefined) return { constant: [0, 0, 0], map: null };
   if (Array.isArray(value)) {
-    const constant = expectVec3(value, 'environment', problems, NON_NEGATIVE);
+    const constant = expectVec3(value, 'environment', problems, RADIANCE);
     return constant === undefined ? undefined : { constant, map: null };
   }
   if (typeof value !== 'object' || value === null) {
@@ -61,9 +62,6 @@ export function checkEnvironment(
     obj.rotationY === undefined
       ? 0
       : expectNumber(obj.rotationY, 'environment.rotationY', problems);
-  if (scale !== undefined && scale.some((s) => s > LIMITS.radiance)) {
-    problems.push(`environment.scale must be at most ${LIMITS.radiance}, got ${describe(scale)}`);
-  }
   if (problems.length > before) return undefined;
   return {
     constant: [0, 0, 0],

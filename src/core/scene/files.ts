@@ -15,6 +15,8 @@ import { parseObj } from '../io/obj.ts';
 import { decodePfm } from '../io/pfm.ts';
 import { parsePly } from '../io/ply.ts';
 import { envMapFileKind } from './environment-desc.ts';
+import { sanitize } from './message.ts';
+import { checkTexelRadiance } from './radiance.ts';
 import { SceneError, parseScene } from './load.ts';
 import { meshFileKind } from './mesh-desc.ts';
 import { LIMITS, type EnvironmentImage, type EnvironmentMapDesc, type Scene } from './types.ts';
@@ -79,7 +81,7 @@ export async function resolveSceneFiles(
     const map = environmentMap;
     const where = `environment.file ${describe(map.file)}`;
     const bytes = await readFile(files, map.file, envMapByteLimit(map.file), where);
-    const image = decode(where, () => decodeEnvironmentImage(bytes, map));
+    const image = decodeEnvironmentImage(bytes, map, where);
     environmentMap = { ...map, image };
   }
   return { ...scene, shapes, environmentMap };
@@ -124,43 +126,27 @@ function decode<T>(where: string, f: () => T): T {
   }
 }
 
+/** The message of an error from a reader or decoder, as one printable line. */
 function oneLine(e: unknown): string {
-  const text = e instanceof Error ? e.message : String(e);
-  const line = text.replace(/[\r\n\t]+/g, ' ').replace(/[^\x20-\x7e\u00a0-\uffff]/g, '?');
-  return line.length > 300 ? line.slice(0, 297) + '...' : line;
+  return sanitize(e instanceof Error ? e.message : String(e), 400);
 }
 
 /**
- * Decodes an environment map and checks every texel: finite, non-negative, and at most
- * the radiance limit once multiplied by the map's scale.
+ * Decodes an environment map and checks every texel (radiance.ts): finite, non-negative,
+ * and at most the radiance bound once multiplied by the map's scale. Throws SceneError.
  */
 export function decodeEnvironmentImage(
   bytes: Uint8Array,
   map: Pick<EnvironmentMapDesc, 'file' | 'scale'>,
+  where: string,
 ): EnvironmentImage {
   const limits = { maxWidth: LIMITS.envMapWidth, maxHeight: LIMITS.envMapHeight };
-  const image =
-    envMapFileKind(map.file) === 'pfm' ? decodePfm(bytes, limits) : decodeHdr(bytes, limits);
-  const { width, rgb } = image;
-  const [sr, sg, sb] = map.scale;
-  for (let i = 0; i < rgb.length; i += 3) {
-    const r = rgb[i],
-      g = rgb[i + 1],
-      b = rgb[i + 2];
-    if (!(r >= 0 && g >= 0 && b >= 0 && r < Infinity && g < Infinity && b < Infinity)) {
-      const t = i / 3;
-      throw new Error(
-        `texel (column ${t % width}, row ${Math.floor(t / width)}) must be finite and >= 0, ` +
-          `got [${r}, ${g}, ${b}]`,
-      );
-    }
-    if (r * sr > LIMITS.radiance || g * sg > LIMITS.radiance || b * sb > LIMITS.radiance) {
-      const t = i / 3;
-      throw new Error(
-        `texel (column ${t % width}, row ${Math.floor(t / width)}) times scale must be at most ` +
-          `${LIMITS.radiance}, got [${r * sr}, ${g * sg}, ${b * sb}]`,
-      );
-    }
+  const image = decode(where, () =>
+    envMapFileKind(map.file) === 'pfm' ? decodePfm(bytes, limits) : decodeHdr(bytes, limits),
+  );
+  const problems: string[] = [];
+  if (!checkTexelRadiance(image.rgb, image.width, map.scale, where, problems)) {
+    throw new SceneError(problems);
   }
   return image;
 }

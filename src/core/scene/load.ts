@@ -38,8 +38,11 @@ import {
   normalize,
   sub,
   type Problems,
-  utf8Length,
 } from './validate-helpers.ts';
+import { decodeUtf8, Utf8Error, utf8Length } from '../io/utf8.ts';
+import { JsonError, parseJson } from './json.ts';
+import { RADIANCE } from './radiance.ts';
+import { Q_NORMAL, QUAD_STRIDE, writeQuadRecord } from '../geometry/shapes.ts';
 import { checkEnvironment } from './environment-desc.ts';
 import { MESH_KEYS, checkMesh } from './mesh-desc.ts';
 
@@ -58,21 +61,51 @@ export class SceneError extends Error {
   }
 }
 
-/** Parses and validates the text of a scene file. Throws SceneError. */
-export function parseScene(text: string): Scene {
-  const bytes = utf8Length(text, LIMITS.fileBytes);
-  if (bytes > LIMITS.fileBytes) {
-    const size = bytes === Infinity ? `at least ${text.length}` : String(bytes);
-    throw new SceneError([
-      `scene file must be at most ${LIMITS.fileBytes} bytes (16 MiB), got ${size} bytes`,
-    ]);
+/**
+ * The problem of a scene file over the size limit. `size` is its size in bytes when known
+ * (a regular file, a File, the bytes in hand); when reading stopped at the limit (a pipe or
+ * a device reports no size), `exact` is false and `size` is what was read.
+ */
+export function sceneSizeProblem(size: number, exact = true): string {
+  const got = exact ? `${size}` : `at least ${size}`;
+  return `scene file must be at most ${LIMITS.fileBytes} bytes (16 MiB), got ${got} bytes`;
+}
+
+/**
+ * Parses and validates a scene file: its bytes (checked to be at most 16 MiB and strict
+ * UTF-8; a leading byte-order mark is dropped) or its text. Throws SceneError, whose
+ * message is one printable line.
+ */
+export function parseScene(input: string | Uint8Array): Scene {
+  let text: string;
+  if (typeof input === 'string') {
+    const bytes = utf8Length(input, LIMITS.fileBytes);
+    if (bytes > LIMITS.fileBytes) {
+      throw new SceneError([
+        bytes === Infinity ? sceneSizeProblem(input.length, false) : sceneSizeProblem(bytes),
+      ]);
+    }
+    // A leading byte-order mark is an artefact of the text encoding, not of the scene.
+    text = input.charCodeAt(0) === 0xfeff ? input.slice(1) : input;
+  } else {
+    if (input.length > LIMITS.fileBytes) throw new SceneError([sceneSizeProblem(input.length)]);
+    try {
+      text = decodeUtf8(input);
+    } catch (e) {
+      if (e instanceof Utf8Error) throw new SceneError([`scene file is ${e.message}`]);
+      throw e;
+    }
   }
   let value: unknown;
   try {
-    // A leading byte-order mark is an artefact of the text encoding, not of the scene.
-    value = JSON.parse(text.charCodeAt(0) === 0xfeff ? text.slice(1) : text);
+    value = parseJson(text);
   } catch (e) {
-    throw new SceneError([`scene file is not valid JSON: ${(e as Error).message}`]);
+    if (!(e instanceof JsonError)) throw e;
+    throw new SceneError([
+      e.kind === 'duplicate'
+        ? `${e.message}: a key may appear only once`
+        : `scene file is not valid JSON: ${e.message}`,
+    ]);
   }
   return validateScene(value);
 }
@@ -273,7 +306,7 @@ function checkMaterial(value: unknown, path: string, problems: Problems): Materi
   const emission =
     obj.emission === undefined
       ? ([0, 0, 0] as Vec3)
-      : expectVec3(obj.emission, at('emission'), problems, NON_NEGATIVE);
+      : expectVec3(obj.emission, at('emission'), problems, RADIANCE);
 
   let material: MaterialDesc | undefined;
   if (type === 'diffuse') {
@@ -372,25 +405,55 @@ function checkShape(
   const corner = expectVec3(obj.corner, `${path}.corner`, problems);
   const u = expectVec3(obj.u, `${path}.u`, problems);
   const v = expectVec3(obj.v, `${path}.v`, problems);
-  // Degenerate (zero-area) quads have no normal. The test is on unit vectors, i.e. relative
-  // to |u||v|, so that it neither overflows for huge quads nor accepts nearly parallel edges.
-  if (u !== undefined && v !== undefined) {
-    const uUnit = normalize(u);
-    const vUnit = normalize(v);
-    if (uUnit === undefined || vUnit === undefined || length(cross(uUnit, vUnit)) <= 1e-12) {
-      problems.push(
-        `${path} is a degenerate quad: u and v are parallel or zero (area 0), ` +
-          `got u ${formatVec(u)} and v ${formatVec(v)}`,
-      );
-    }
+  if (corner !== undefined && u !== undefined && v !== undefined) {
+    checkQuadGeometry(corner, u, v, path, problems);
   }
   return { type, corner: corner!, u: u!, v: v!, material: material! };
 }
 
-/** The material names, with "did you mean" suggestions memoized: many shapes may share a typo. */
+const quadScratch = new Float64Array(QUAD_STRIDE);
+
+/**
+ * A quad must span a non-zero, finite area in double precision, with a finite unit normal
+ * (docs/scene-format.md, "Bad input"). The record the renderer will use is built here with
+ * the same code (writeQuadRecord), so what passes here is exactly what renders: no quad can
+ * bring a NaN normal or an infinite axis into the tracer.
+ */
+function checkQuadGeometry(corner: Vec3, u: Vec3, v: Vec3, path: string, problems: Problems): void {
+  const area = writeQuadRecord(corner, u, v, quadScratch, 0);
+  const edges = `got u ${formatVec(u)} and v ${formatVec(v)}`;
+  const n: Vec3 = [quadScratch[Q_NORMAL], quadScratch[Q_NORMAL + 1], quadScratch[Q_NORMAL + 2]];
+  if (!(length(n) > 0.5)) {
+    // NaN normal: the scaled cross product is zero.
+    problems.push(`${path} is a degenerate quad: u and v are parallel or zero (area 0), ${edges}`);
+  } else if (area === 0) {
+    problems.push(
+      `${path} is a degenerate quad: its area |u x v| underflows to 0 in double precision, ${edges}`,
+    );
+  } else if (!Number.isFinite(area)) {
+    problems.push(`${path} is too large: its area |u x v| overflows double precision, ${edges}`);
+  } else if (!quadScratch.every(Number.isFinite)) {
+    problems.push(
+      `${path} cannot be intersected in double precision (an edge is too short or the ` +
+        `corner too far for its size), got corner ${formatVec(corner)}, u ${formatVec(u)} ` +
+        `and v ${formatVec(v)}`,
+    );
+  }
+}
+
+/**
+ * The material names, with "did you mean" suggestions. A suggestion compares the unknown
+ * name with every material (O(length) each, see `closest`), so 10,000 shapes naming 10,000
+ * different missing materials among 10,000 would still cost 10^8 comparisons: suggestions
+ * are memoized per name and stop once SUGGESTION_BUDGET comparisons are spent (only the
+ * first problems are ever read; every one is still reported).
+ */
+const SUGGESTION_BUDGET = 200_000;
+
 class MaterialNames {
   private readonly materials: Map<string, MaterialDesc>;
   private readonly suggestions = new Map<string, string | undefined>();
+  private spent = 0;
 
   constructor(materials: Map<string, MaterialDesc>) {
     this.materials = materials;
@@ -401,10 +464,12 @@ class MaterialNames {
   }
 
   suggest(name: string): string | undefined {
-    if (!this.suggestions.has(name)) {
-      this.suggestions.set(name, closest(name, this.materials.keys()));
-    }
-    return this.suggestions.get(name);
+    if (this.suggestions.has(name)) return this.suggestions.get(name);
+    if (this.spent + this.materials.size > SUGGESTION_BUDGET) return undefined;
+    this.spent += this.materials.size;
+    const guess = closest(name, this.materials.keys());
+    this.suggestions.set(name, guess);
+    return guess;
   }
 }
 

@@ -8,7 +8,7 @@
  */
 import { buildMeshData, MeshError } from '../geometry/mesh-data.ts';
 import { transformProblem } from '../math/affine.ts';
-import type { MeshDesc } from './types.ts';
+import type { MeshDesc, Scene } from './types.ts';
 import { describe, expectString, indexPath, type Problems } from './validate-helpers.ts';
 
 export const MESH_KEYS = [
@@ -176,4 +176,11 @@ function checkTransform(value: unknown, path: string, problems: Problems): numbe
     return null;
   }
   return (value as number[]).slice();
+}
+
+/** Zero-area triangles the scene's meshes skipped (the spec asks renderers to report it). */
+export function countSkippedTriangles(scene: Scene): number {
+  let n = 0;
+  for (const s of scene.shapes) if (s.type === 'mesh' && s.data !== null) n += s.data.skipped;
+  return n;
 }

@@ -144,8 +144,6 @@ export const LIMITS = {
   meshFileBytes: 1024 * 1024 * 1024,
   envMapWidth: 16384,
   envMapHeight: 8192,
-  /** Radiance bound: emission, constant environment, and every map texel times its scale. */
-  radiance: 1e12,
 } as const;
 
 export const DEFAULT_SETTINGS: SettingsDesc = {

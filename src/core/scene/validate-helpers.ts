@@ -5,15 +5,22 @@
  * problem in one pass and throws once, so a user can fix a file in one round trip.
  */
 
+import { childPath, indexPath, quote } from './message.ts';
 import type { Vec3 } from './types.ts';
+
+export { childPath, indexPath };
+export { utf8Length } from '../io/utf8.ts';
 
 /** The problems found so far, each a complete sentence that starts with a JSON path. */
 export type Problems = string[];
 
-/** A rule on a number: `ok` decides, `rule` completes "<path> must ...", e.g. "be > 0". */
+/**
+ * A rule on a number: `ok` decides, `rule` completes "<path> must ...", e.g. "be > 0"; it
+ * may depend on the value, to name the side of a range that was broken.
+ */
 export interface NumberRule {
   ok: (x: number) => boolean;
-  rule: string;
+  rule: string | ((x: number) => string);
 }
 
 export const POSITIVE: NumberRule = { ok: (x) => x > 0, rule: 'be > 0' };
@@ -25,10 +32,7 @@ export function describe(value: unknown): string {
   if (value === null) return 'null';
   if (value === undefined) return 'undefined';
   if (typeof value === 'number') return String(value);
-  if (typeof value === 'string') {
-    const shown = value.length > 60 ? value.slice(0, 57) + '...' : value;
-    return JSON.stringify(shown);
-  }
+  if (typeof value === 'string') return quote(value);
   if (typeof value === 'boolean') return String(value);
   if (Array.isArray(value)) {
     // Short arrays of numbers are shown in full; they are the usual vector mistakes.
@@ -45,43 +49,52 @@ export function formatVec(v: Vec3): string {
   return `[${v[0]}, ${v[1]}, ${v[2]}]`;
 }
 
-/** `materials` + `red` → `materials.red`; keys that are not identifiers are quoted. */
-export function childPath(base: string, key: string): string {
-  if (/^[A-Za-z_$][A-Za-z0-9_$]*$/.test(key)) return base === '' ? key : `${base}.${key}`;
-  return `${base}[${JSON.stringify(key)}]`;
-}
-
-export function indexPath(base: string, index: number): string {
-  return `${base}[${index}]`;
-}
-
-/** Levenshtein distance, for "did you mean" suggestions only (short strings). */
-function editDistance(a: string, b: string): number {
-  let previous = Array.from({ length: b.length + 1 }, (_, j) => j);
+/**
+ * Levenshtein distance if it is at most `k`, else k + 1. Only the diagonal band of width
+ * 2k + 1 is computed (Ukkonen 1985), so a comparison costs O(k · length), not O(length²).
+ */
+export function boundedEditDistance(a: string, b: string, k: number): number {
+  if (Math.abs(a.length - b.length) > k) return k + 1;
+  const far = k + 1;
+  let previous = new Array<number>(b.length + 1);
+  let current = new Array<number>(b.length + 1);
+  for (let j = 0; j <= b.length; j++) previous[j] = j <= k ? j : far;
   for (let i = 1; i <= a.length; i++) {
-    const current = [i];
-    for (let j = 1; j <= b.length; j++) {
+    const lo = Math.max(1, i - k);
+    const hi = Math.min(b.length, i + k);
+    current.fill(far);
+    current[0] = i <= k ? i : far;
+    let rowMin = current[0];
+    for (let j = lo; j <= hi; j++) {
       const substitution = previous[j - 1] + (a[i - 1] === b[j - 1] ? 0 : 1);
-      current.push(Math.min(previous[j] + 1, current[j - 1] + 1, substitution));
+      const d = Math.min(previous[j] + 1, current[j - 1] + 1, substitution, far);
+      current[j] = d;
+      if (d < rowMin) rowMin = d;
     }
-    previous = current;
+    if (rowMin > k) return far; // every path through this row already costs more than k
+    [previous, current] = [current, previous];
   }
-  return previous[b.length];
+  return Math.min(previous[b.length], far);
 }
 
-/** The candidate a misspelt `word` most likely meant, if any is close enough. */
+/**
+ * The candidate a misspelt `word` most likely meant, if any is close enough (at most 2
+ * edits, fewer for short names). Each candidate costs O(length): see boundedEditDistance.
+ */
 export function closest(word: string, candidates: Iterable<string>): string | undefined {
-  if (word.length > 64) return undefined; // not a typo; avoid quadratic work on huge keys
+  if (word.length > 64) return undefined; // not a typo
   let best: string | undefined;
   let bestDistance = Infinity;
+  const lower = word.toLowerCase();
   for (const candidate of candidates) {
     if (Math.abs(candidate.length - word.length) > 2) continue; // too far apart to be a typo
-    const distance =
-      candidate.toLowerCase() === word.toLowerCase() ? 0 : editDistance(word, candidate);
     const allowed = Math.min(2, Math.floor(candidate.length / 3));
+    const distance =
+      candidate.toLowerCase() === lower ? 0 : boundedEditDistance(word, candidate, allowed);
     if (distance <= allowed && distance < bestDistance) {
       best = candidate;
       bestDistance = distance;
+      if (distance === 0) break;
     }
   }
   return best;
@@ -165,7 +178,8 @@ export function expectNumber(
     return undefined;
   }
   if (rule !== undefined && !rule.ok(value)) {
-    problems.push(`${path} must ${rule.rule}, got ${describe(value)}`);
+    const text = typeof rule.rule === 'string' ? rule.rule : rule.rule(value);
+    problems.push(`${path} must ${text}, got ${describe(value)}`);
     return undefined;
   }
   return value;
@@ -230,28 +244,4 @@ export function normalize(a: Vec3): Vec3 | undefined {
   const len = length(a);
   if (len === 0 || !Number.isFinite(len)) return undefined;
   return [a[0] / len, a[1] / len, a[2] / len];
-}
-
-/**
- * UTF-8 length of `text` as TextEncoder would produce it (lone surrogates become U+FFFD, 3
- * bytes). TextEncoder itself is not in the ES2022 lib that src/core compiles against.
- * Returns Infinity without counting when the length is certainly over `limit`.
- */
-export function utf8Length(text: string, limit: number): number {
-  if (text.length > limit) return Infinity; // every UTF-16 code unit is at least one byte
-  let bytes = 0;
-  for (let i = 0; i < text.length; i++) {
-    const c = text.charCodeAt(i);
-    if (c < 0x80) bytes += 1;
-    else if (c < 0x800) bytes += 2;
-    else if (c >= 0xd800 && c <= 0xdbff && isLowSurrogate(text.charCodeAt(i + 1))) {
-      bytes += 4;
-      i++;
-    } else bytes += 3;
-  }
-  return bytes;
-}
-
-function isLowSurrogate(c: number): boolean {
-  return c >= 0xdc00 && c <= 0xdfff;
 }
