@@ -52,6 +52,11 @@ export class CompiledScene {
   readonly bvh: Bvh | null;
 
   constructor(scene: Scene, options: CompileOptions = {}) {
+    // Meshes and environment maps load (scene/files.ts) but are not traced yet: say so
+    // rather than render the scene without them.
+    if (scene.shapes.some((s) => s.type === 'mesh') || scene.environmentMap != null) {
+      throw new Error('meshes and environment maps are not supported by the tracer yet');
+    }
     const names = Object.keys(scene.materials);
     const materialIndex = new Map(names.map((n, i) => [n, i]));
     this.materials = compileMaterials(names.map((n) => scene.materials[n]));
