@@ -9,6 +9,68 @@ import { loadScene, renderSampled } from '../helpers/render.ts';
 import { Hit, Ray } from '../../src/core/geometry/ray.ts';
 import { intersectScene, occluded } from '../../src/core/geometry/trace.ts';
 import { pcgHash } from '../../src/core/rng/pcg.ts';
+import {
+  BVH_LEAF_BITS,
+  BVH_LEAF_MASK,
+  BVH_MAX_LEAF,
+  BVH_NODE_WORDS,
+  N_LEFT,
+  buildBvh,
+  f32Above,
+  f32Below,
+  type Bvh,
+} from '../../src/core/accel/bvh.ts';
+import { PRIM_KIND_BITS, PrimitiveBoxes } from '../../src/core/accel/primitives.ts';
+
+/**
+ * Walks the tree from the root: every reference must sit in exactly one
+ * leaf, and every primitive's box inside the box its parent stores for that
+ * leaf and for each node above it.
+ */
+function checkTree(bvh: Bvh, boxes: Float32Array, refs: Int32Array, n: number): void {
+  const seen = new Int32Array(n);
+  const byRef = new Map<number, number>();
+  for (let i = 0; i < n; i++) byRef.set(refs[i], i);
+  const walk = (code: number, box: number[]): void => {
+    if (code >= 0) {
+      expect(code).toBeLessThan(bvh.nodeCount);
+      for (let side = 0; side < 2; side++) {
+        const b = code * BVH_NODE_WORDS + side * 6;
+        const child = Array.from(bvh.nodes.subarray(b, b + 6));
+        // A child box lies inside its parent's box.
+        for (let a = 0; a < 3; a++) {
+          if (child[a] > child[a + 3]) continue; // the empty box of a one-primitive tree
+          expect(child[a]).toBeGreaterThanOrEqual(box[a]);
+          expect(child[a + 3]).toBeLessThanOrEqual(box[a + 3]);
+        }
+        walk(bvh.words[code * BVH_NODE_WORDS + N_LEFT + side], child);
+      }
+      return;
+    }
+    const leaf = ~code;
+    const first = leaf >> BVH_LEAF_BITS;
+    const count = leaf & BVH_LEAF_MASK;
+    if (box[0] > box[3]) return; // the empty sibling
+    expect(count).toBeGreaterThan(0);
+    expect(count).toBeLessThanOrEqual(BVH_MAX_LEAF);
+    for (let k = first; k < first + count; k++) {
+      const p = byRef.get(bvh.refs[k])!;
+      seen[p]++;
+      for (let a = 0; a < 3; a++) {
+        expect(boxes[p * 6 + a]).toBeGreaterThanOrEqual(box[a]);
+        expect(boxes[p * 6 + 3 + a]).toBeLessThanOrEqual(box[a + 3]);
+      }
+    }
+  };
+  walk(0, [-Infinity, -Infinity, -Infinity, Infinity, Infinity, Infinity]);
+  expect(Array.from(seen)).toEqual(new Array(n).fill(1));
+}
+
+function boxesOf(list: number[][]): { boxes: Float32Array; refs: Int32Array } {
+  const prims = new PrimitiveBoxes(list.length);
+  list.forEach((b, i) => prims.add(0, i, b[0], b[1], b[2], b[3], b[4], b[5]));
+  return { boxes: prims.boxes, refs: prims.refs };
+}
 
 describe('BVH', () => {
   it('answers nearest-hit and occlusion queries exactly like the plain loop', () => {
@@ -53,6 +115,50 @@ describe('BVH', () => {
     const a = renderSampled(scene, { width: 40, height: 24, spp: 2, bvh: false });
     const b = renderSampled(scene, { width: 40, height: 24, spp: 2, bvh: true });
     expect(Array.from(b.mean)).toEqual(Array.from(a.mean));
+  });
+
+  it('places every primitive in exactly one leaf, inside the boxes above it', () => {
+    const scene = compileScene(randomSpheresScene(1000, 9), { bvh: true });
+    let state = 3;
+    const rand = (): number => (state = pcgHash(state + 1)) / 4294967296;
+    const cases: number[][][] = [
+      // One primitive; two; a pile of coincident ones (no plane separates them).
+      [[0, 0, 0, 1, 1, 1]],
+      [
+        [0, 0, 0, 1, 1, 1],
+        [5, 0, 0, 6, 1, 1],
+      ],
+      Array.from({ length: 13 }, () => [0, 0, 0, 1, 1, 1]),
+      // Flat boxes (axis-aligned quads) and random ones.
+      Array.from({ length: 50 }, (_, i) => [i, 0, 0, i + 1, 0, 2]),
+      Array.from({ length: 500 }, () => {
+        const x = rand() * 100,
+          y = rand() * 100,
+          z = rand() * 100;
+        return [x, y, z, x + rand() * 5, y + rand(), z + rand() * 20];
+      }),
+    ];
+    for (const list of cases) {
+      const { boxes, refs } = boxesOf(list);
+      const bvh = buildBvh(boxes, refs, list.length)!;
+      expect(bvh.nodeCount).toBeLessThanOrEqual(Math.max(1, list.length - 1));
+      checkTree(bvh, boxes, refs, list.length);
+    }
+    expect(scene.bvh).not.toBeNull();
+    expect(buildBvh(new Float32Array(0), new Int32Array(0), 0)).toBeNull();
+    // References carry the kind in their low bits.
+    expect(scene.bvh!.refs.every((r) => (r & ((1 << PRIM_KIND_BITS) - 1)) <= 1)).toBe(true);
+  });
+
+  it('rounds boxes outwards to Float32, by at least one ulp', () => {
+    for (const x of [0, 1, -1, 0.1, -0.1, 555, 1e-30, -3.4e38, 123456.789, 2 ** -149]) {
+      const lo = f32Below(x);
+      const hi = f32Above(x);
+      expect(lo).toBeLessThan(x);
+      expect(hi).toBeGreaterThan(x);
+      expect(Math.fround(lo)).toBe(lo);
+      expect(Math.fround(hi)).toBe(hi);
+    }
   });
 
   it('is built only above the measured crossover', () => {

@@ -75,16 +75,14 @@ export function intersectQuad(
   const nx = quads[o + Q_NORMAL];
   const ny = quads[o + Q_NORMAL + 1];
   const nz = quads[o + Q_NORMAL + 2];
-  const denom = nx * dx + ny * dy + nz * dz;
-  if (denom === 0) return Infinity;
-  const t = (quads[o + Q_PLANE] - (nx * ox + ny * oy + nz * oz)) / denom;
+  const t = (quads[o + Q_PLANE] - (nx * ox + ny * oy + nz * oz)) / (nx * dx + ny * dy + nz * dz);
   if (!(t > 0 && t < tMax)) return Infinity;
   const qx = ox + t * dx - quads[o + Q_CORNER];
   const qy = oy + t * dy - quads[o + Q_CORNER + 1];
   const qz = oz + t * dz - quads[o + Q_CORNER + 2];
   const s = qx * quads[o + Q_SAXIS] + qy * quads[o + Q_SAXIS + 1] + qz * quads[o + Q_SAXIS + 2];
-  if (s < 0 || s > 1) return Infinity;
   const v = qx * quads[o + Q_TAXIS] + qy * quads[o + Q_TAXIS + 1] + qz * quads[o + Q_TAXIS + 2];
-  if (v < 0 || v > 1) return Infinity;
-  return t;
+  // One branch instead of six: the comparisons are combined as bits.
+  const ok = Number(s >= 0) & Number(s <= 1) & Number(v >= 0) & Number(v <= 1);
+  return ok !== 0 ? t : Infinity;
 }

@@ -2,11 +2,21 @@
  * Scene-level ray queries: the nearest hit (`intersectScene`) and any hit
  * before tMax (`occluded`, for shadow rays). Below the BVH threshold a plain
  * loop over the shapes is faster than any hierarchy; above it the BVH is
- * traversed front to back with a preallocated stack.
+ * traversed front to back with a preallocated stack. The leaf loops
+ * dispatch on each primitive's kind tag (accel/primitives.ts).
  */
 import type { CompiledScene } from '../scene/compile.ts';
 import { intersectQuad, intersectSphere } from './intersect.ts';
 import { SHAPE_QUAD, SHAPE_SPHERE, type Hit, type Ray } from './ray.ts';
+import {
+  BVH_LEAF_BITS,
+  BVH_LEAF_MASK,
+  BVH_NODE_WORDS,
+  N_LEFT,
+  N_RIGHT,
+  N_RIGHT_BOX,
+} from '../accel/bvh.ts';
+import { PRIM_KIND_BITS, PRIM_KIND_MASK } from '../accel/primitives.ts';
 
 export function intersectScene(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
   // Two small functions rather than one big one: V8 optimises (and inlines
@@ -49,6 +59,14 @@ function intersectList(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
   return true;
 }
 
+/**
+ * Nearest hit through the BVH (layout in accel/bvh.ts). The loop visits
+ * items: an interior node tests both children's boxes, enters the nearer
+ * and pushes the other with its entry distance (skipped when popped if a
+ * closer hit was found meanwhile); a leaf tests its primitives. Leaves are
+ * handled in one place so V8 inlines every intersector exactly once: a call
+ * that is not inlined would box its six double arguments on the heap.
+ */
 function intersectBvh(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
   const bvh = scene.bvh!;
   const ox = ray.ox,
@@ -57,20 +75,26 @@ function intersectBvh(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
   const dx = ray.dx,
     dy = ray.dy,
     dz = ray.dz;
-  let tBest = ray.tMax;
+  // The nearest distance so far lives in stackT[0] (the stack starts at 1):
+  // kept in a local, V8 gave it a tagged representation here and boxed a
+  // HeapNumber at every update (0.7 GB per 400k paths on the 10k-sphere
+  // scene; bench/inproc.ts with the heap sampler).
+  const tb = scene.stackT;
+  tb[0] = ray.tMax;
   let kind = -1;
   let index = -1;
-  const bounds = bvh.bounds;
   const nodes = bvh.nodes;
-  const primIds = bvh.primIds;
-  const stack = bvh.stack;
-  const sphereCount = scene.sphereCount;
+  const words = bvh.words;
+  const refs = bvh.refs;
   const spheres = scene.spheres;
   const quads = scene.quads;
+  const stack = scene.stack;
+  const stackT = scene.stackT;
   // Slab test with the near/far planes chosen once per ray by the sign of
   // the direction (Williams et al., "An Efficient and Robust Ray–Box
   // Intersection Algorithm", JGT 2005). 1/0 = ±Infinity keeps axis-parallel
-  // rays correct; a NaN from 0·∞ compares false and so keeps the box.
+  // rays correct; a NaN from 0·∞ fails every comparison and so narrows
+  // nothing: the box is kept.
   const ix = 1 / dx,
     iy = 1 / dy,
     iz = 1 / dz;
@@ -80,65 +104,102 @@ function intersectBvh(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
   const farX = 3 - nearX,
     farY = 5 - nearY,
     farZ = 7 - nearZ;
-  let sp = 0;
-  let node = 0;
+  let sp = 1;
+  let item = 0;
   for (;;) {
-    const b = node * 6;
-    let tNear = (bounds[b + nearX] - ox) * ix;
-    let tFar = (bounds[b + farX] - ox) * ix;
-    const ty0 = (bounds[b + nearY] - oy) * iy;
-    const ty1 = (bounds[b + farY] - oy) * iy;
-    const tz0 = (bounds[b + nearZ] - oz) * iz;
-    const tz1 = (bounds[b + farZ] - oz) * iz;
-    if (ty0 > tNear) tNear = ty0;
-    if (tz0 > tNear) tNear = tz0;
-    if (ty1 < tFar) tFar = ty1;
-    if (tz1 < tFar) tFar = tz1;
-    if (tNear < 0) tNear = 0;
-    if (tFar > tBest) tFar = tBest;
-    if (!(tNear > tFar)) {
-      const count = nodes[node * 3 + 1];
-      if (count > 0) {
-        const first = nodes[node * 3];
-        for (let k = first, end = first + count; k < end; k++) {
-          const p = primIds[k];
-          if (p < sphereCount) {
-            const t = intersectSphere(spheres, p, ox, oy, oz, dx, dy, dz, tBest);
-            if (t < tBest) {
-              tBest = t;
-              kind = SHAPE_SPHERE;
-              index = p;
-            }
+    if (item >= 0) {
+      const b = item * BVH_NODE_WORDS;
+      let l0 = 0;
+      let l1 = tb[0];
+      let v = (nodes[b + nearX] - ox) * ix;
+      if (v > l0) l0 = v;
+      v = (nodes[b + nearY] - oy) * iy;
+      if (v > l0) l0 = v;
+      v = (nodes[b + nearZ] - oz) * iz;
+      if (v > l0) l0 = v;
+      v = (nodes[b + farX] - ox) * ix;
+      if (v < l1) l1 = v;
+      v = (nodes[b + farY] - oy) * iy;
+      if (v < l1) l1 = v;
+      v = (nodes[b + farZ] - oz) * iz;
+      if (v < l1) l1 = v;
+      const c = b + N_RIGHT_BOX;
+      let r0 = 0;
+      let r1 = tb[0];
+      v = (nodes[c + nearX] - ox) * ix;
+      if (v > r0) r0 = v;
+      v = (nodes[c + nearY] - oy) * iy;
+      if (v > r0) r0 = v;
+      v = (nodes[c + nearZ] - oz) * iz;
+      if (v > r0) r0 = v;
+      v = (nodes[c + farX] - ox) * ix;
+      if (v < r1) r1 = v;
+      v = (nodes[c + farY] - oy) * iy;
+      if (v < r1) r1 = v;
+      v = (nodes[c + farZ] - oz) * iz;
+      if (v < r1) r1 = v;
+      if (l0 <= l1) {
+        if (r0 <= r1) {
+          // Both: the nearer now, the other later.
+          if (r0 < l0) {
+            stack[sp] = words[b + N_LEFT];
+            stackT[sp++] = l0;
+            item = words[b + N_RIGHT];
           } else {
-            const q = p - sphereCount;
-            const t = intersectQuad(quads, q, ox, oy, oz, dx, dy, dz, tBest);
-            if (t < tBest) {
-              tBest = t;
-              kind = SHAPE_QUAD;
-              index = q;
-            }
+            stack[sp] = words[b + N_RIGHT];
+            stackT[sp++] = r0;
+            item = words[b + N_LEFT];
           }
-        }
-      } else {
-        // Visit the child on the ray's near side first.
-        const axis = nodes[node * 3 + 2];
-        const neg = axis === 0 ? ix < 0 : axis === 1 ? iy < 0 : iz < 0;
-        const right = nodes[node * 3];
-        if (neg) {
-          stack[sp++] = node + 1;
-          node = right;
-        } else {
-          stack[sp++] = right;
-          node = node + 1;
-        }
+        } else item = words[b + N_LEFT];
         continue;
       }
+      if (r0 <= r1) {
+        item = words[b + N_RIGHT];
+        continue;
+      }
+    } else {
+      // A leaf: ~(first << BVH_LEAF_BITS | count).
+      const leaf = ~item;
+      const first = leaf >> BVH_LEAF_BITS;
+      for (let k = first, end = first + (leaf & BVH_LEAF_MASK); k < end; k++) {
+        const ref = refs[k];
+        const i = ref >> PRIM_KIND_BITS;
+        switch (ref & PRIM_KIND_MASK) {
+          case SHAPE_SPHERE: {
+            const t = intersectSphere(spheres, i, ox, oy, oz, dx, dy, dz, tb[0]);
+            if (t < tb[0]) {
+              tb[0] = t;
+              kind = SHAPE_SPHERE;
+              index = i;
+            }
+            break;
+          }
+          case SHAPE_QUAD: {
+            const t = intersectQuad(quads, i, ox, oy, oz, dx, dy, dz, tb[0]);
+            if (t < tb[0]) {
+              tb[0] = t;
+              kind = SHAPE_QUAD;
+              index = i;
+            }
+            break;
+          }
+        }
+      }
     }
-    if (sp === 0) break;
-    node = stack[--sp];
+    // Next: the latest pending item that may still hold a closer hit
+    // (-1 is no item: a leaf's code is at most ~1).
+    item = -1;
+    while (sp > 1) {
+      sp--;
+      if (stackT[sp] < tb[0]) {
+        item = stack[sp];
+        break;
+      }
+    }
+    if (item === -1) break;
   }
   if (kind < 0) return false;
-  hit.t = tBest;
+  hit.t = tb[0];
   hit.kind = kind;
   hit.index = index;
   return true;
@@ -168,6 +229,7 @@ function occludedList(scene: CompiledScene, ray: Ray): boolean {
   return false;
 }
 
+/** Any hit through the BVH: children in stored order, the first hit ends the search. */
 function occludedBvh(scene: CompiledScene, ray: Ray): boolean {
   const bvh = scene.bvh!;
   const ox = ray.ox,
@@ -177,13 +239,12 @@ function occludedBvh(scene: CompiledScene, ray: Ray): boolean {
     dy = ray.dy,
     dz = ray.dz;
   const tMax = ray.tMax;
-  const bounds = bvh.bounds;
   const nodes = bvh.nodes;
-  const primIds = bvh.primIds;
-  const stack = bvh.stack;
-  const sphereCount = scene.sphereCount;
+  const words = bvh.words;
+  const refs = bvh.refs;
   const spheres = scene.spheres;
   const quads = scene.quads;
+  const stack = scene.stack;
   const ix = 1 / dx,
     iy = 1 / dy,
     iz = 1 / dz;
@@ -194,40 +255,65 @@ function occludedBvh(scene: CompiledScene, ray: Ray): boolean {
     farY = 5 - nearY,
     farZ = 7 - nearZ;
   let sp = 0;
-  let node = 0;
+  let item = 0;
   for (;;) {
-    const b = node * 6;
-    let tNear = (bounds[b + nearX] - ox) * ix;
-    let tFar = (bounds[b + farX] - ox) * ix;
-    const ty0 = (bounds[b + nearY] - oy) * iy;
-    const ty1 = (bounds[b + farY] - oy) * iy;
-    const tz0 = (bounds[b + nearZ] - oz) * iz;
-    const tz1 = (bounds[b + farZ] - oz) * iz;
-    if (ty0 > tNear) tNear = ty0;
-    if (tz0 > tNear) tNear = tz0;
-    if (ty1 < tFar) tFar = ty1;
-    if (tz1 < tFar) tFar = tz1;
-    if (tNear < 0) tNear = 0;
-    if (tFar > tMax) tFar = tMax;
-    if (!(tNear > tFar)) {
-      const count = nodes[node * 3 + 1];
-      if (count > 0) {
-        const first = nodes[node * 3];
-        for (let k = first, end = first + count; k < end; k++) {
-          const p = primIds[k];
-          const t =
-            p < sphereCount
-              ? intersectSphere(spheres, p, ox, oy, oz, dx, dy, dz, tMax)
-              : intersectQuad(quads, p - sphereCount, ox, oy, oz, dx, dy, dz, tMax);
-          if (t < tMax) return true;
-        }
-      } else {
-        stack[sp++] = nodes[node * 3];
-        node = node + 1;
+    if (item >= 0) {
+      const b = item * BVH_NODE_WORDS;
+      let l0 = 0;
+      let l1 = tMax;
+      let v = (nodes[b + nearX] - ox) * ix;
+      if (v > l0) l0 = v;
+      v = (nodes[b + nearY] - oy) * iy;
+      if (v > l0) l0 = v;
+      v = (nodes[b + nearZ] - oz) * iz;
+      if (v > l0) l0 = v;
+      v = (nodes[b + farX] - ox) * ix;
+      if (v < l1) l1 = v;
+      v = (nodes[b + farY] - oy) * iy;
+      if (v < l1) l1 = v;
+      v = (nodes[b + farZ] - oz) * iz;
+      if (v < l1) l1 = v;
+      const c = b + N_RIGHT_BOX;
+      let r0 = 0;
+      let r1 = tMax;
+      v = (nodes[c + nearX] - ox) * ix;
+      if (v > r0) r0 = v;
+      v = (nodes[c + nearY] - oy) * iy;
+      if (v > r0) r0 = v;
+      v = (nodes[c + nearZ] - oz) * iz;
+      if (v > r0) r0 = v;
+      v = (nodes[c + farX] - ox) * ix;
+      if (v < r1) r1 = v;
+      v = (nodes[c + farY] - oy) * iy;
+      if (v < r1) r1 = v;
+      v = (nodes[c + farZ] - oz) * iz;
+      if (v < r1) r1 = v;
+      if (l0 <= l1) {
+        if (r0 <= r1) stack[sp++] = words[b + N_RIGHT];
+        item = words[b + N_LEFT];
         continue;
+      }
+      if (r0 <= r1) {
+        item = words[b + N_RIGHT];
+        continue;
+      }
+    } else {
+      const leaf = ~item;
+      const first = leaf >> BVH_LEAF_BITS;
+      for (let k = first, end = first + (leaf & BVH_LEAF_MASK); k < end; k++) {
+        const ref = refs[k];
+        const i = ref >> PRIM_KIND_BITS;
+        switch (ref & PRIM_KIND_MASK) {
+          case SHAPE_SPHERE:
+            if (intersectSphere(spheres, i, ox, oy, oz, dx, dy, dz, tMax) < tMax) return true;
+            break;
+          case SHAPE_QUAD:
+            if (intersectQuad(quads, i, ox, oy, oz, dx, dy, dz, tMax) < tMax) return true;
+            break;
+        }
       }
     }
     if (sp === 0) return false;
-    node = stack[--sp];
+    item = stack[--sp];
   }
 }

@@ -5,6 +5,7 @@
  * BVH_THRESHOLD), so the hot loops never pay for kinds that are absent.
  */
 import { buildBvh, type Bvh } from '../accel/bvh.ts';
+import { PrimitiveBoxes, quadBoxes, sphereBoxes } from '../accel/primitives.ts';
 import { compileMaterials, MATERIAL_STRIDE, M_EMISSION, M_EMISSIVE } from '../bsdf/materials.ts';
 import { SHAPE_QUAD, SHAPE_SPHERE } from '../geometry/ray.ts';
 import {
@@ -50,6 +51,13 @@ export class CompiledScene {
   readonly envB: number;
   readonly hasEnvironment: boolean;
   readonly bvh: Bvh | null;
+  /**
+   * Traversal stacks (node indices and entry distances), sized for the
+   * BVH's depth plus one (stackT[0] holds the nearest hit so far). Per
+   * scene object, never shared between threads.
+   */
+  readonly stack: Int32Array;
+  readonly stackT: Float64Array;
 
   constructor(scene: Scene, options: CompileOptions = {}) {
     // Meshes and environment maps load (scene/files.ts) but are not traced yet: say so
@@ -113,10 +121,17 @@ export class CompiledScene {
     this.hasEnvironment = this.envR > 0 || this.envG > 0 || this.envB > 0;
     const total = this.sphereCount + this.quadCount;
     const useBvh = options.bvh ?? total >= BVH_THRESHOLD;
-    this.bvh =
-      useBvh && total > 0
-        ? buildBvh(this.spheres, this.sphereCount, this.quads, this.quadCount)
-        : null;
+    let bvh: Bvh | null = null;
+    if (useBvh && total > 0) {
+      // One hierarchy over every primitive, whatever its kind.
+      const prims = new PrimitiveBoxes(total);
+      sphereBoxes(this.spheres, this.sphereCount, prims);
+      quadBoxes(this.quads, this.quadCount, prims);
+      bvh = buildBvh(prims.boxes, prims.refs, total);
+    }
+    this.bvh = bvh;
+    this.stack = new Int32Array((bvh?.depth ?? 0) + 2);
+    this.stackT = new Float64Array(this.stack.length);
   }
 }
 
