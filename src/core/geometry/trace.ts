@@ -7,7 +7,8 @@
  */
 import type { CompiledScene } from '../scene/compile.ts';
 import { intersectQuad, intersectSphere } from './intersect.ts';
-import { SHAPE_QUAD, SHAPE_SPHERE, type Hit, type Ray } from './ray.ts';
+import { SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE, type Hit, type Ray } from './ray.ts';
+import { intersectTriangle, intersectTriangleBary, setTriangleRay } from './triangle.ts';
 import {
   BVH_LEAF_BITS,
   BVH_LEAF_MASK,
@@ -52,11 +53,36 @@ function intersectList(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
       index = i;
     }
   }
+  const triCount = scene.triCount;
+  if (triCount > 0) {
+    const tr = scene.triRay;
+    setTriangleRay(ox, oy, oz, dx, dy, dz, tr);
+    const pos = scene.triPositions;
+    const idx = scene.triIndices;
+    for (let i = 0; i < triCount; i++) {
+      const t = intersectTriangle(pos, idx, i, tr, tBest);
+      if (t < tBest) {
+        tBest = t;
+        kind = SHAPE_TRIANGLE;
+        index = i;
+      }
+    }
+  }
   if (kind < 0) return false;
   hit.t = tBest;
   hit.kind = kind;
   hit.index = index;
+  if (kind === SHAPE_TRIANGLE) triangleBarycentrics(scene, hit);
   return true;
+}
+
+/** Barycentrics of the kept triangle hit, recomputed once with the same ray constants. */
+function triangleBarycentrics(scene: CompiledScene, hit: Hit): void {
+  const th = scene.triHit;
+  intersectTriangleBary(scene.triPositions, scene.triIndices, hit.index, scene.triRay, Infinity, th);
+  hit.b0 = th.b0;
+  hit.b1 = th.b1;
+  hit.b2 = th.b2;
 }
 
 /**
@@ -88,6 +114,10 @@ function intersectBvh(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
   const refs = bvh.refs;
   const spheres = scene.spheres;
   const quads = scene.quads;
+  const triPositions = scene.triPositions;
+  const triIndices = scene.triIndices;
+  const tr = scene.triRay;
+  if (scene.triCount > 0) setTriangleRay(ox, oy, oz, dx, dy, dz, tr);
   const stack = scene.stack;
   const stackT = scene.stackT;
   // Slab test with the near/far planes chosen once per ray by the sign of
@@ -183,6 +213,15 @@ function intersectBvh(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
             }
             break;
           }
+          case SHAPE_TRIANGLE: {
+            const t = intersectTriangle(triPositions, triIndices, i, tr, tb[0]);
+            if (t < tb[0]) {
+              tb[0] = t;
+              kind = SHAPE_TRIANGLE;
+              index = i;
+            }
+            break;
+          }
         }
       }
     }
@@ -202,6 +241,7 @@ function intersectBvh(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
   hit.t = tb[0];
   hit.kind = kind;
   hit.index = index;
+  if (kind === SHAPE_TRIANGLE) triangleBarycentrics(scene, hit);
   return true;
 }
 
@@ -226,6 +266,16 @@ function occludedList(scene: CompiledScene, ray: Ray): boolean {
   for (let i = 0, n = scene.quadCount; i < n; i++) {
     if (intersectQuad(quads, i, ox, oy, oz, dx, dy, dz, tMax) < tMax) return true;
   }
+  const triCount = scene.triCount;
+  if (triCount > 0) {
+    const tr = scene.triRay;
+    setTriangleRay(ox, oy, oz, dx, dy, dz, tr);
+    const pos = scene.triPositions;
+    const idx = scene.triIndices;
+    for (let i = 0; i < triCount; i++) {
+      if (intersectTriangle(pos, idx, i, tr, tMax) < tMax) return true;
+    }
+  }
   return false;
 }
 
@@ -244,6 +294,10 @@ function occludedBvh(scene: CompiledScene, ray: Ray): boolean {
   const refs = bvh.refs;
   const spheres = scene.spheres;
   const quads = scene.quads;
+  const triPositions = scene.triPositions;
+  const triIndices = scene.triIndices;
+  const tr = scene.triRay;
+  if (scene.triCount > 0) setTriangleRay(ox, oy, oz, dx, dy, dz, tr);
   const stack = scene.stack;
   const ix = 1 / dx,
     iy = 1 / dy,
@@ -309,6 +363,9 @@ function occludedBvh(scene: CompiledScene, ray: Ray): boolean {
             break;
           case SHAPE_QUAD:
             if (intersectQuad(quads, i, ox, oy, oz, dx, dy, dz, tMax) < tMax) return true;
+            break;
+          case SHAPE_TRIANGLE:
+            if (intersectTriangle(triPositions, triIndices, i, tr, tMax) < tMax) return true;
             break;
         }
       }

@@ -5,9 +5,10 @@
  * BVH_THRESHOLD), so the hot loops never pay for kinds that are absent.
  */
 import { buildBvh, type Bvh } from '../accel/bvh.ts';
-import { PrimitiveBoxes, quadBoxes, sphereBoxes } from '../accel/primitives.ts';
+import { PrimitiveBoxes, quadBoxes, sphereBoxes, triangleBoxes } from '../accel/primitives.ts';
 import { compileMaterials, MATERIAL_STRIDE, M_EMISSION, M_EMISSIVE } from '../bsdf/materials.ts';
-import { SHAPE_QUAD, SHAPE_SPHERE } from '../geometry/ray.ts';
+import { LIGHT_ENVIRONMENT, SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE } from '../geometry/ray.ts';
+import { TriangleHit, TriangleRay } from '../geometry/triangle.ts';
 import {
   compileQuads,
   compileSpheres,
@@ -17,8 +18,12 @@ import {
   SPHERE_STRIDE,
   sphereScale,
 } from '../geometry/shapes.ts';
+import { EnvironmentMap } from '../lights/environment-map.ts';
 import { LightList } from '../lights/lights.ts';
-import type { QuadDesc, Scene, SphereDesc } from './types.ts';
+import { MeshLight } from '../lights/mesh-light.ts';
+import { sceneRadius } from './bounds.ts';
+import { CompiledMeshes } from './compile-meshes.ts';
+import type { MeshDesc, QuadDesc, Scene, SphereDesc } from './types.ts';
 
 /**
  * Shape count from which a BVH beats the plain loop over all shapes,
@@ -45,7 +50,19 @@ export class CompiledScene {
   readonly quads: Float64Array;
   readonly quadMaterial: Int32Array;
   readonly quadLight: Int32Array;
+  /** The triangles of all meshes (compile-meshes.ts), or null without meshes. */
+  readonly meshes: CompiledMeshes | null;
+  readonly triCount: number;
+  readonly triPositions: Float64Array;
+  readonly triIndices: Uint32Array;
+  /** Light index of each mesh, −1 when it does not emit. */
+  readonly meshLight: Int32Array;
+  /** Per-ray constants of the triangle test and the barycentrics of the kept hit (trace.ts). */
+  readonly triRay = new TriangleRay();
+  readonly triHit = new TriangleHit();
   readonly lights: LightList | null;
+  /** The environment map, or null for the constant environment (envR, envG, envB). */
+  readonly envMap: EnvironmentMap | null;
   readonly envR: number;
   readonly envG: number;
   readonly envB: number;
@@ -60,10 +77,11 @@ export class CompiledScene {
   readonly stackT: Float64Array;
 
   constructor(scene: Scene, options: CompileOptions = {}) {
-    // Meshes and environment maps load (scene/files.ts) but are not traced yet: say so
-    // rather than render the scene without them.
-    if (scene.shapes.some((s) => s.type === 'mesh') || scene.environmentMap != null) {
-      throw new Error('meshes and environment maps are not supported by the tracer yet');
+    const meshDescs = scene.shapes.filter((s): s is MeshDesc => s.type === 'mesh');
+    if (meshDescs.some((m) => m.data === null) || scene.environmentMap?.image === null) {
+      throw new Error(
+        'the scene names files that were not read: load it with loadScene or resolveSceneFiles',
+      );
     }
     const names = Object.keys(scene.materials);
     const materialIndex = new Map(names.map((n, i) => [n, i]));
@@ -78,11 +96,20 @@ export class CompiledScene {
     this.quadMaterial = Int32Array.from(quads, (s) => materialIndex.get(s.material)!);
     this.sphereLight = new Int32Array(this.sphereCount).fill(-1);
     this.quadLight = new Int32Array(this.quadCount).fill(-1);
+    const meshes =
+      meshDescs.length > 0 ? new CompiledMeshes(meshDescs, (n) => materialIndex.get(n)!) : null;
+    this.meshes = meshes;
+    this.triCount = meshes?.triangleCount ?? 0;
+    this.triPositions = meshes?.positions ?? new Float64Array(0);
+    this.triIndices = meshes?.indices ?? new Uint32Array(0);
+    this.meshLight = new Int32Array(meshes?.count ?? 0).fill(-1);
 
     const kinds: number[] = [];
     const shapes: number[] = [];
     const power: number[] = [];
     const scale: number[] = [];
+    const material: number[] = [];
+    const meshLights: (MeshLight | null)[] = [];
     const emitted = (m: number): number => {
       const o = m * MATERIAL_STRIDE;
       if (this.materials[o + M_EMISSIVE] === 0) return 0;
@@ -106,6 +133,7 @@ export class CompiledScene {
       shapes.push(i);
       power.push(lum * 4 * Math.PI * r * r);
       scale.push(sphereScale(this.spheres, i));
+      material.push(this.sphereMaterial[i]);
     }
     for (let i = 0; i < this.quadCount; i++) {
       const lum = emitted(this.quadMaterial[i]);
@@ -115,11 +143,60 @@ export class CompiledScene {
       shapes.push(i);
       power.push(lum * this.quads[i * QUAD_STRIDE + Q_AREA]);
       scale.push(quadScale(this.quads, i));
+      material.push(this.quadMaterial[i]);
     }
-    this.lights = kinds.length > 0 ? new LightList(kinds, shapes, power, scale) : null;
+    for (let k = 0; k < (meshes?.count ?? 0); k++) {
+      // An emissive mesh is one light, sampled by area over its triangles.
+      const lum = emitted(meshes!.material[k]);
+      if (lum === 0) continue;
+      const first = meshes!.firstTriangle[k];
+      const light = new MeshLight(
+        meshes!.positions,
+        meshes!.indices,
+        first,
+        meshes!.firstTriangle[k + 1] - first,
+      );
+      this.meshLight[k] = kinds.length;
+      meshLights[k] = light;
+      kinds.push(SHAPE_TRIANGLE);
+      shapes.push(k);
+      power.push(lum * light.area);
+      scale.push(meshes!.scale[k]);
+      material.push(meshes!.material[k]);
+    }
+    const map = scene.environmentMap;
+    this.envMap = map != null ? new EnvironmentMap(map) : null;
+    if (this.envMap !== null && this.envMap.integral > 0) {
+      // Power of the map through the scene's bounding disc, in the units of the area
+      // lights' luminance × area: ∫ L dω × r² (the π of both cancels).
+      const r = sceneRadius(
+        this.spheres,
+        this.sphereCount,
+        this.quads,
+        this.quadCount,
+        this.triPositions,
+      );
+      kinds.push(LIGHT_ENVIRONMENT);
+      shapes.push(0);
+      power.push(this.envMap.integral * r * r);
+      scale.push(0);
+      material.push(-1);
+    }
+    this.lights =
+      kinds.length > 0
+        ? new LightList({
+            kind: kinds,
+            shape: shapes,
+            power,
+            scale,
+            material,
+            meshLights,
+            environment: this.envMap,
+          })
+        : null;
     [this.envR, this.envG, this.envB] = scene.environment;
     this.hasEnvironment = this.envR > 0 || this.envG > 0 || this.envB > 0;
-    const total = this.sphereCount + this.quadCount;
+    const total = this.sphereCount + this.quadCount + this.triCount;
     const useBvh = options.bvh ?? total >= BVH_THRESHOLD;
     let bvh: Bvh | null = null;
     if (useBvh && total > 0) {
@@ -127,6 +204,7 @@ export class CompiledScene {
       const prims = new PrimitiveBoxes(total);
       sphereBoxes(this.spheres, this.sphereCount, prims);
       quadBoxes(this.quads, this.quadCount, prims);
+      triangleBoxes(this.triPositions, this.triIndices, this.triCount, prims);
       bvh = buildBvh(prims.boxes, prims.refs, total);
     }
     this.bvh = bvh;
