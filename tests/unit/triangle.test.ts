@@ -8,7 +8,7 @@ import { describe, expect, it } from 'vitest';
 import {
   TriangleHit,
   TriangleRay,
-  intersectTriangle,
+  hitTriangle,
   intersectTriangleBary,
   setTriangleRay,
 } from '../../src/core/geometry/triangle.ts';
@@ -17,6 +17,19 @@ import { hashToUnit, sampleKey } from '../../src/core/rng/pcg.ts';
 import { cube, icosphere, octahedron, scaledMesh, type TestMesh } from '../helpers/mesh-gen.ts';
 
 const r = new TriangleRay();
+const best = new Float64Array(1);
+
+/** Distance by the fast test (hitTriangle), Infinity for a miss. */
+function intersectTriangle(
+  positions: Float64Array,
+  indices: Uint32Array,
+  tri: number,
+  ray: TriangleRay,
+  tMax: number,
+): number {
+  best[0] = tMax;
+  return hitTriangle(positions, indices, tri, ray, best) ? best[0] : Infinity;
+}
 
 function shoot(
   m: TestMesh,
@@ -196,6 +209,37 @@ describe('watertight: exactly one hit where a ray crosses the surface', () => {
       expect(shoot(plane, [gx / n, gy / n, 1], [0, 0, -1]).count).toBe(1);
       expect(shoot(plane, [(gx + 0.5) / n, gy / n, 1], [0, 0, -1]).count).toBe(1);
     }
+  });
+});
+
+describe('the fast and the careful test', () => {
+  it('give the same answers, near edges too', () => {
+    const m = icosphere(2);
+    let hits = 0;
+    for (let i = 0; i < 3000; i++) {
+      const key = sampleKey(17, i, 0);
+      const tri = Math.floor(hashToUnit(key, 0) * (m.indices.length / 3));
+      const [a, b, c] = [0, 1, 2].map((k) => m.indices[3 * tri + k] * 3);
+      // Aim at points inside, on the edges and just outside, from random origins.
+      const s = 1.2 * hashToUnit(key, 1) - 0.1;
+      const t = i % 3 === 0 ? 0 : hashToUnit(key, 2) * (1 - s);
+      const p = [0, 1, 2].map(
+        (k) =>
+          m.positions[a + k] +
+          s * (m.positions[b + k] - m.positions[a + k]) +
+          t * (m.positions[c + k] - m.positions[a + k]),
+      );
+      const o = [0, 1, 2].map((k) => 4 * hashToUnit(key, 3 + k) - 2);
+      setTriangleRay(o[0], o[1], o[2], p[0] - o[0], p[1] - o[1], p[2] - o[2], r);
+      for (const tMax of [Infinity, 1, 0.5]) {
+        const fast = intersectTriangle(m.positions, m.indices, tri, r, tMax);
+        const careful = intersectTriangleBary(m.positions, m.indices, tri, r, tMax, null);
+        if (fast !== careful)
+          expect.fail(`ray ${i}, tMax ${tMax}: fast ${fast}, careful ${careful}`);
+        if (fast < Infinity) hits++;
+      }
+    }
+    expect(hits).toBeGreaterThan(2000);
   });
 });
 

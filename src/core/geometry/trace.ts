@@ -8,7 +8,7 @@
 import type { CompiledScene } from '../scene/compile.ts';
 import { intersectQuad, intersectSphere } from './intersect.ts';
 import { SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE, type Hit, type Ray } from './ray.ts';
-import { intersectTriangle, intersectTriangleBary, setTriangleRay } from './triangle.ts';
+import { hitTriangle, intersectTriangleBary, setTriangleRay } from './triangle.ts';
 import {
   BVH_LEAF_BITS,
   BVH_LEAF_MASK,
@@ -59,14 +59,15 @@ function intersectList(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
     setTriangleRay(ox, oy, oz, dx, dy, dz, tr);
     const pos = scene.triPositions;
     const idx = scene.triIndices;
+    const best = scene.stackT;
+    best[0] = tBest;
     for (let i = 0; i < triCount; i++) {
-      const t = intersectTriangle(pos, idx, i, tr, tBest);
-      if (t < tBest) {
-        tBest = t;
+      if (hitTriangle(pos, idx, i, tr, best)) {
         kind = SHAPE_TRIANGLE;
         index = i;
       }
     }
+    tBest = best[0];
   }
   if (kind < 0) return false;
   hit.t = tBest;
@@ -79,7 +80,14 @@ function intersectList(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
 /** Barycentrics of the kept triangle hit, recomputed once with the same ray constants. */
 function triangleBarycentrics(scene: CompiledScene, hit: Hit): void {
   const th = scene.triHit;
-  intersectTriangleBary(scene.triPositions, scene.triIndices, hit.index, scene.triRay, Infinity, th);
+  intersectTriangleBary(
+    scene.triPositions,
+    scene.triIndices,
+    hit.index,
+    scene.triRay,
+    Infinity,
+    th,
+  );
   hit.b0 = th.b0;
   hit.b1 = th.b1;
   hit.b2 = th.b2;
@@ -213,15 +221,12 @@ function intersectBvh(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
             }
             break;
           }
-          case SHAPE_TRIANGLE: {
-            const t = intersectTriangle(triPositions, triIndices, i, tr, tb[0]);
-            if (t < tb[0]) {
-              tb[0] = t;
+          case SHAPE_TRIANGLE:
+            if (hitTriangle(triPositions, triIndices, i, tr, tb)) {
               kind = SHAPE_TRIANGLE;
               index = i;
             }
             break;
-          }
         }
       }
     }
@@ -272,8 +277,10 @@ function occludedList(scene: CompiledScene, ray: Ray): boolean {
     setTriangleRay(ox, oy, oz, dx, dy, dz, tr);
     const pos = scene.triPositions;
     const idx = scene.triIndices;
+    const best = scene.stackT;
     for (let i = 0; i < triCount; i++) {
-      if (intersectTriangle(pos, idx, i, tr, tMax) < tMax) return true;
+      best[0] = tMax;
+      if (hitTriangle(pos, idx, i, tr, best)) return true;
     }
   }
   return false;
@@ -299,6 +306,8 @@ function occludedBvh(scene: CompiledScene, ray: Ray): boolean {
   const tr = scene.triRay;
   if (scene.triCount > 0) setTriangleRay(ox, oy, oz, dx, dy, dz, tr);
   const stack = scene.stack;
+  // Scratch for the triangle test's distance (occlusion keeps no nearest hit).
+  const stackT = scene.stackT;
   const ix = 1 / dx,
     iy = 1 / dy,
     iz = 1 / dz;
@@ -365,7 +374,8 @@ function occludedBvh(scene: CompiledScene, ray: Ray): boolean {
             if (intersectQuad(quads, i, ox, oy, oz, dx, dy, dz, tMax) < tMax) return true;
             break;
           case SHAPE_TRIANGLE:
-            if (intersectTriangle(triPositions, triIndices, i, tr, tMax) < tMax) return true;
+            stackT[0] = tMax;
+            if (hitTriangle(triPositions, triIndices, i, tr, stackT)) return true;
             break;
         }
       }

@@ -80,21 +80,84 @@ export class TriangleHit {
 }
 
 /**
- * Distance along the ray to triangle `tri` in (0, tMax), or Infinity. `positions` holds
- * x, y, z per vertex and `indices` three vertex indices per triangle. The ray enters
- * only through `r` (setTriangleRay); its direction need not be unit length.
+ * Whether the ray hits triangle `tri` closer than best[0], the nearest distance so far
+ * (Infinity, or tMax); if so, writes the distance to best[0]. `positions` holds x, y, z
+ * per vertex and `indices` three vertex indices per triangle. The ray enters only
+ * through `r` (setTriangleRay); its direction need not be unit length.
+ *
+ * The distance travels through a Float64Array rather than as a number argument and
+ * result: where V8 does not inline a call (the traversal loops hold three
+ * intersectors), a double passed or returned is boxed on the heap, one allocation per
+ * triangle test.
  */
-export function intersectTriangle(
+export function hitTriangle(
   positions: Float64Array,
   indices: Uint32Array,
   tri: number,
   r: TriangleRay,
-  tMax: number,
-): number {
-  return intersectTriangleBary(positions, indices, tri, r, tMax, null);
+  best: Float64Array,
+): boolean {
+  // The common case, kept small so that V8 inlines it into the traversal loops: every
+  // edge function clearly non-zero. Anything closer to an edge takes the careful path
+  // (exact signs, the tie rule), which gives the same answer wherever both apply.
+  const kx = r.kx,
+    ky = r.ky,
+    kz = r.kz;
+  const ia = indices[3 * tri] * 3,
+    ib = indices[3 * tri + 1] * 3,
+    ic = indices[3 * tri + 2] * 3;
+  const o0 = r.o0,
+    o1 = r.o1,
+    o2 = r.o2;
+  const az = positions[ia + kz] - o2,
+    bz = positions[ib + kz] - o2,
+    cz = positions[ic + kz] - o2;
+  const sx = r.sx,
+    sy = r.sy;
+  const ax = positions[ia + kx] - o0 - sx * az,
+    ay = positions[ia + ky] - o1 - sy * az;
+  const bx = positions[ib + kx] - o0 - sx * bz,
+    by = positions[ib + ky] - o1 - sy * bz;
+  const cx = positions[ic + kx] - o0 - sx * cz,
+    cy = positions[ic + ky] - o1 - sy * cz;
+  const u1 = cx * by,
+    u2 = cy * bx;
+  const u = u1 - u2;
+  const eu = DIFF_OF_PRODUCTS_ERROR * (Math.abs(u1) + Math.abs(u2));
+  const v1 = ax * cy,
+    v2 = ay * cx;
+  const v = v1 - v2;
+  const ev = DIFF_OF_PRODUCTS_ERROR * (Math.abs(v1) + Math.abs(v2));
+  // Signs that are certain and differ: a miss (the usual exit, before W is computed).
+  if ((u < -eu && v > ev) || (u > eu && v < -ev)) return false;
+  const w1 = bx * ay,
+    w2 = by * ax;
+  const w = w1 - w2;
+  const ew = DIFF_OF_PRODUCTS_ERROR * (Math.abs(w1) + Math.abs(w2));
+  const tMax = best[0];
+  if (!(Math.abs(u) > eu && Math.abs(v) > ev && Math.abs(w) > ew)) {
+    const t = intersectTriangleBary(positions, indices, tri, r, tMax, null);
+    if (!(t < tMax)) return false;
+    best[0] = t;
+    return true;
+  }
+  if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return false;
+  const det = u + v + w;
+  const tScaled = r.sz * (u * az + v * bz + w * cz);
+  if (det > 0 ? tScaled <= 0 || tScaled >= tMax * det : tScaled >= 0 || tScaled <= tMax * det) {
+    return false;
+  }
+  const t = tScaled / det;
+  if (!(t > 0 && t < tMax)) return false;
+  best[0] = t;
+  return true;
 }
 
-/** As `intersectTriangle`, and on a hit writes the barycentrics into `hit` (if given). */
+/**
+ * Distance to triangle `tri` in (0, tMax), or Infinity, by the careful path alone (exact
+ * edge signs where rounding could decide them, the tie rule on edges); on a hit writes
+ * the barycentrics into `hit` (if given). `hitTriangle` answers the same, faster.
+ */
 export function intersectTriangleBary(
   positions: Float64Array,
   indices: Uint32Array,
