@@ -307,10 +307,7 @@ export class PathTracer {
       let sx = snx,
         sy = sny,
         sz = snz;
-      if (
-        materials[mo + M_TYPE] !== MATERIAL_DIELECTRIC &&
-        snx * wox + sny * woy + snz * woz < 0
-      ) {
+      if (materials[mo + M_TYPE] !== MATERIAL_DIELECTRIC && snx * wox + sny * woy + snz * woz < 0) {
         sx = -nx;
         sy = -ny;
         sz = -nz;

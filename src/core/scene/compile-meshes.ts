@@ -98,8 +98,6 @@ export class CompiledMeshes {
 
   /** Resident bytes of the triangle data (positions, indices, normals). */
   get byteLength(): number {
-    return (
-      this.positions.byteLength + this.indices.byteLength + (this.normals?.byteLength ?? 0)
-    );
+    return this.positions.byteLength + this.indices.byteLength + (this.normals?.byteLength ?? 0);
   }
 }
