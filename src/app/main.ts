@@ -7,7 +7,7 @@ import { createPathTracer } from '../view/index.ts';
 import { runBenchmark } from './benchmark.ts';
 import { attachControls } from './controls.ts';
 import { readParams } from './params.ts';
-import { PRESETS, type PresetName } from './presets.ts';
+import { PRESETS, PRESET_FILES, type PresetName } from './presets.ts';
 import { attachSceneFiles } from './scene-file.ts';
 import { startStatsPanel } from './stats-panel.ts';
 import './style.css';
@@ -19,7 +19,11 @@ if (options.width && options.height) {
   canvas.classList.add('fixed');
   canvas.style.aspectRatio = `${options.width} / ${options.height}`;
 }
-const controller = createPathTracer(canvas, { ...options, scene: PRESETS[preset] });
+const controller = createPathTracer(canvas, {
+  ...options,
+  scene: PRESETS[preset],
+  files: PRESET_FILES,
+});
 
 // Test hook for the browser tests (tests/browser): the controller, and the
 // factory so a test can put a second view on the page (the shared pool).
@@ -52,7 +56,7 @@ mode.textContent = `Display: ${m.display === 'webgl2' ? 'WebGL2' : 'Canvas 2D'} 
 for (const button of document.querySelectorAll<HTMLButtonElement>('[data-preset]')) {
   button.addEventListener('click', () => {
     showError(null);
-    void controller.setScene(PRESETS[button.dataset.preset as PresetName]);
+    void controller.setScene(PRESETS[button.dataset.preset as PresetName], PRESET_FILES);
   });
 }
 

@@ -3,7 +3,13 @@
  * the main thread alike.
  */
 export * from './scene/types.ts';
-export { parseScene, validateScene, validateSettingsOverride, SceneError } from './scene/load.ts';
+export {
+  parseScene,
+  validateScene,
+  validateSettingsOverride,
+  isValidatedScene,
+  SceneError,
+} from './scene/load.ts';
 export {
   loadScene,
   resolveSceneFiles,

@@ -23,12 +23,17 @@ import {
   compileScene,
   encodePfm,
   estimateNoise,
+  countSkippedTriangles,
+  isValidatedScene,
   parseScene,
+  resolveSceneFiles,
+  sceneNeedsFiles,
   tonemapSums,
   validateScene,
   type CameraDesc,
   type CompiledScene,
   type Scene,
+  type SceneFileReader,
 } from '../core/index.ts';
 import type { JobConfig } from '../../workers/render-protocol.ts';
 import type { Display, DisplayPixels } from './display.ts';
@@ -39,6 +44,7 @@ import { chooseCompute, createDisplay } from './mode.ts';
 import { dollyCamera, orbitCamera } from './orbit.ts';
 import { releasePool, sharedPool, type PoolClient, type WorkerPool } from './pool.ts';
 import { RateMeter } from './rate-meter.ts';
+import { urlSceneFiles } from './scene-files.ts';
 import { SharedFilmJob } from './shared-job.ts';
 import type {
   FallbackInfo,
@@ -95,6 +101,8 @@ export class Controller extends EventTarget implements PathTracerController {
   private detachControls: (() => void) | null = null;
   private picker: PathTracer | null = null;
   private sceneRequested = false;
+  /** Bumped by every setScene: one that finishes reading files after a newer one is dropped. */
+  private sceneRequest = 0;
 
   constructor(canvas: HTMLCanvasElement, options: PathTracerOptions) {
     super();
@@ -174,16 +182,31 @@ export class Controller extends EventTarget implements PathTracerController {
 
   // ---- scene -------------------------------------------------------------
 
-  async setScene(value: unknown): Promise<void> {
+  async setScene(value: unknown, files?: SceneFileReader): Promise<void> {
     this.sceneRequested = true;
+    const request = ++this.sceneRequest;
     let scene: Scene;
     try {
-      scene = typeof value === 'string' ? parseScene(value) : validateScene(value);
+      scene = isValidatedScene(value)
+        ? value
+        : typeof value === 'string'
+          ? parseScene(value)
+          : validateScene(value);
+      if (sceneNeedsFiles(scene)) {
+        // Mesh and environment-map files: fetched relative to the page unless the
+        // caller says how (a scene's URL, dropped files, a preset's assets).
+        scene = await resolveSceneFiles(
+          scene,
+          files ?? this.options.files ?? urlSceneFiles(document.baseURI),
+        );
+      }
     } catch (e) {
       const message = e instanceof Error ? e.message : String(e);
       this.emit('error', { message });
       throw new Error(message);
     }
+    // A later call started while this one read its files: that one wins.
+    if (request !== this.sceneRequest || this.destroyed) return;
     const first = this.currentScene === null;
     this.currentScene = scene;
     this.compiled = compileScene(scene);
@@ -195,22 +218,25 @@ export class Controller extends EventTarget implements PathTracerController {
         ? this.options.bounces
         : scene.settings.maxBounces;
     this.restart();
-    this.emit('load', { scene });
+    this.emit('load', { scene, skippedTriangles: countSkippedTriangles(scene) });
   }
 
   async load(url: string): Promise<void> {
     this.sceneRequested = true;
     let text: string;
+    let base: string;
     try {
       const response = await fetch(url);
       if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
+      base = response.url || new URL(url, document.baseURI).href;
       text = await response.text();
     } catch (e) {
       const message = e instanceof Error ? e.message : String(e);
       this.emit('error', { message });
       throw new Error(message);
     }
-    await this.setScene(text);
+    // The files the scene names live beside it.
+    await this.setScene(text, urlSceneFiles(base));
   }
 
   // ---- restart machinery -------------------------------------------------

@@ -34,6 +34,21 @@ export function urlSceneFiles(base: string | URL): SceneFileReader {
   };
 }
 
+/**
+ * Files from a table of URLs, by the path the scene names them with: for scenes whose
+ * files a bundler moved (the demo's presets, whose assets get hashed names).
+ */
+export function mappedSceneFiles(urls: Record<string, string>): SceneFileReader {
+  const byUrl = urlSceneFiles(document.baseURI);
+  return {
+    read(path: string, maxBytes: number): Promise<Uint8Array> {
+      const url = Object.hasOwn(urls, path) ? urls[path] : undefined;
+      if (url === undefined) return Promise.reject(new Error('it is not among the known files'));
+      return byUrl.read(url, maxBytes);
+    },
+  };
+}
+
 async function readLimited(response: Response, maxBytes: number): Promise<Uint8Array> {
   const body = response.body;
   if (body === null) {

@@ -17,7 +17,7 @@ import { parsePly } from '../io/ply.ts';
 import { envMapFileKind } from './environment-desc.ts';
 import { sanitize } from './message.ts';
 import { checkTexelRadiance } from './radiance.ts';
-import { SceneError, parseScene } from './load.ts';
+import { SceneError, markValidated, parseScene } from './load.ts';
 import { meshFileKind } from './mesh-desc.ts';
 import { LIMITS, type EnvironmentImage, type EnvironmentMapDesc, type Scene } from './types.ts';
 import { describe } from './validate-helpers.ts';
@@ -84,7 +84,7 @@ export async function resolveSceneFiles(
     const image = decodeEnvironmentImage(bytes, map, where);
     environmentMap = { ...map, image };
   }
-  return { ...scene, shapes, environmentMap };
+  return markValidated({ ...scene, shapes, environmentMap });
 }
 
 /**

@@ -131,7 +131,7 @@ export function validateScene(value: unknown): Scene {
 
   if (problems.length > 0) throw new SceneError(problems);
   // No problem was recorded, so every part validated and is defined.
-  return {
+  return markValidated({
     format: FORMAT,
     name: name!,
     camera: camera!,
@@ -140,7 +140,23 @@ export function validateScene(value: unknown): Scene {
     shapes: shapes!,
     environment: environment!.constant,
     environmentMap: environment!.map,
-  };
+  });
+}
+
+/**
+ * Scenes this loader made (validateScene, resolveSceneFiles), which may be handed back
+ * as they are: a loaded scene holds decoded meshes and maps, not the JSON it came from.
+ */
+const validated = new WeakSet<object>();
+
+export function markValidated(scene: Scene): Scene {
+  validated.add(scene);
+  return scene;
+}
+
+/** Whether `value` is a scene this loader made (in this thread). */
+export function isValidatedScene(value: unknown): value is Scene {
+  return typeof value === 'object' && value !== null && validated.has(value);
 }
 
 const CAMERA_KEYS = ['position', 'target', 'up', 'fovY', 'aperture', 'focusDistance'];
