@@ -3,12 +3,13 @@
  * three times; prints wall and process-CPU milliseconds per build (CPU time
  * is what other load on a shared machine disturbs least), nodes, depth and
  * bytes per primitive (nodes + references).
- *   node scripts/run-ts.mjs bench/bvh-build.ts [N]
+ *   node scripts/run-ts.mjs bench/bvh-build.ts [N [NODE_COST]]
  */
 import { buildBvh } from '../src/core/accel/bvh.ts';
 import { PrimitiveBoxes } from '../src/core/accel/primitives.ts';
 
 const n = Number(process.argv[2] ?? 1_000_000);
+const nodeCost = process.argv[3] === undefined ? undefined : Number(process.argv[3]);
 let state = 1;
 const rand = (): number => (state = (Math.imul(state, 1664525) + 1013904223) >>> 0) / 4294967296;
 let sink = 0;
@@ -24,7 +25,7 @@ for (let rep = 0; rep < 3; rep++) {
   }
   const c1 = process.cpuUsage(c0);
   const t1 = performance.now();
-  const bvh = buildBvh(prims.boxes, prims.refs, n)!;
+  const bvh = buildBvh(prims.boxes, prims.refs, n, nodeCost)!;
   const c2 = process.cpuUsage(c0);
   const t2 = performance.now();
   sink += bvh.nodeCount;

@@ -13,15 +13,20 @@ export const CLI = fileURLToPath(new URL('../bin/pathwise.js', import.meta.url))
 export function machineInfo() {
   let commit = null;
   let dirty = null;
+  // A copy of the tree on another machine names its commit here.
+  if (process.env.PATHWISE_GIT_COMMIT) return machineFields(process.env.PATHWISE_GIT_COMMIT, null);
   try {
     commit = execFileSync('git', ['rev-parse', 'HEAD'], { cwd: ROOT, encoding: 'utf8' }).trim();
     dirty =
       execFileSync('git', ['status', '--porcelain'], { cwd: ROOT, encoding: 'utf8' }).trim() !== '';
   } catch {
-    // Not a git checkout (e.g. a tree copied to another machine): take the
-    // commit from the environment if the caller passed it, else leave null.
-    commit = process.env.PATHWISE_GIT_COMMIT ?? null;
+    // Not a git checkout, and no commit named: leave it null.
+    commit = null;
   }
+  return machineFields(commit, dirty);
+}
+
+function machineFields(commit, dirty) {
   return {
     cpu: os.cpus()[0]?.model ?? 'unknown',
     cores: os.availableParallelism(),

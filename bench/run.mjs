@@ -14,6 +14,7 @@
 // --from FILE (only re-write the report and plots of an existing bench.json),
 // --scenes a,b, --device-results FILE[,FILE] (scaling measured elsewhere, to
 // include), --device-processes FILE (output of bench/processes.mjs).
+import { spawnSync } from 'node:child_process';
 import { existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -668,6 +669,7 @@ function writeMarkdown(result, deviceFull) {
     }
     L.push('');
   }
+  anchorSection(L);
   L.push('## Method');
   L.push('');
   L.push(
@@ -684,6 +686,163 @@ function writeMarkdown(result, deviceFull) {
   );
   L.push('');
   writeFileSync(mdPath, L.join('\n'));
+}
+
+// ------------------------------------------------- against the native anchor
+
+const readJson = (f) => (existsSync(f) ? JSON.parse(readFileSync(f, 'utf8')) : null);
+const readJsonLines = (f) =>
+  existsSync(f)
+    ? readFileSync(f, 'utf8')
+        .trim()
+        .split('\n')
+        .filter(Boolean)
+        .map((l) => JSON.parse(l))
+    : [];
+
+/**
+ * The section on speed against the native anchor (issue 10): bench:core
+ * figures of this machine (outDir/core.json) and of the 16-core device
+ * (bench/results/device/speed-*), each with its machine, date and commit.
+ */
+function anchorSection(L) {
+  const dev = (f) => path.join(ROOT, 'bench/results/device', f);
+  const cores = [readJson(path.join(outDir, 'core.json')), readJson(dev('speed-core.json'))].filter(
+    (c) => c && c.schema === 'pathwise-bench-core/2',
+  );
+  if (cores.length === 0) return;
+  L.push('## Speed against the native anchor');
+  L.push('');
+  L.push(
+    "pathwise against the C++ anchor of `../shared/anchors/native` (same estimator, double precision, `-O3 -march=native`, a SIMD loop over ≤ 48 primitives and a SAH BVH above), run alternately in the same `npm run bench:core` (bench/core.mjs), median of the repetitions. pathwise M paths/s use the command line's render time (workers started to finished, start-up and JIT warm-up included); the anchor's its own render time (no parsing). Cornell: 128×128, 6 bounces, NEE+MIS, pathwise's default sampler; 10k spheres: bench/scenes.mjs (10,000 non-overlapping spheres under an area light), same settings. All-thread runs render 512×512 (the same work per thread).",
+  );
+  L.push('');
+  for (const c of cores) {
+    const m = c.machine;
+    L.push(
+      `### ${m.cpu}, ${m.cores} cores, Node ${m.node} — ${m.date.slice(0, 10)}, commit ${(m.git_commit ?? 'unknown').slice(0, 7)}${m.git_dirty ? ' (uncommitted changes)' : ''}`,
+    );
+    L.push('');
+    const maxLoad = Math.max(m.loadavg_start[0], c.loadavg_end[0]);
+    if (maxLoad > m.cores * 0.75) {
+      L.push(
+        `> Shared machine: 1-minute load average up to ${maxLoad.toFixed(1)} on ${m.cores} cores. The ratios (pathwise and anchor alternated in one run) hold better than the absolute figures.`,
+      );
+      L.push('');
+    }
+    L.push(
+      '| scene | image | threads | pathwise M paths/s | native M paths/s | pathwise / native |',
+    );
+    L.push('|---|---|---:|---:|---:|---:|');
+    for (const t of c.throughput) {
+      L.push(
+        `| ${t.case} | ${t.width}×${t.height}, ${t.spp} spp | ${t.threads} | ${fmt(t.pathwise.mpaths_per_s)} | ${t.native ? fmt(t.native.mpaths_per_s) : '—'} | ${t.ratio === null ? '—' : `**${fmt(t.ratio)}**`} |`,
+      );
+    }
+    L.push('');
+    L.push(
+      '| 10k spheres, 1 spp, 128×128, whole process | pathwise | native | pathwise / native | pathwise: compile (once) | workers ready | worker heap |',
+    );
+    L.push('|---|---:|---:|---:|---:|---:|---:|');
+    for (const w of c.whole_process) {
+      L.push(
+        `| ${w.threads} threads | ${fmt(w.pathwise_process_seconds)} s | ${w.native_process_seconds === null ? '—' : `${fmt(w.native_process_seconds)} s`} | ${w.time_ratio === null ? '—' : `**${fmt(w.time_ratio)}×**`} | ${fmt(w.pathwise_compile_seconds)} s | ${fmt(w.pathwise_first_ready_seconds)}–${fmt(w.pathwise_last_ready_seconds)} s | ${fmt(w.pathwise_worker_heap_mb)} MB |`,
+      );
+    }
+    L.push('');
+    L.push(`Command: \`${c.command}\`.`);
+    L.push('');
+  }
+  const inproc = readJsonLines(dev('speed-inproc.jsonl'));
+  if (inproc.length) {
+    L.push('### Steady state in one thread (16-core device)');
+    L.push('');
+    L.push(
+      'In-process, no start-up: `node dist/bench/inproc.mjs SCENE 128 128 16 6 5` (bench/inproc.ts: a warm-up render, then the median of 5), "before" the same harness on commit 27f0092 (before issue 10), "native" the anchor\'s render time at 1 thread (median of 3).',
+    );
+    L.push('');
+    L.push(
+      '| scene | before M paths/s | pathwise M paths/s | native M paths/s | pathwise / native |',
+    );
+    L.push('|---|---:|---:|---:|---:|');
+    for (const scene of [...new Set(inproc.map((r) => r.scene))]) {
+      const of = (w) => inproc.filter((r) => r.scene === scene && r.which === w);
+      const before = of('before')[0]?.r.mpaths_per_s;
+      const now = of('pathwise')[0]?.r.mpaths_per_s;
+      const nat = median(of('native').map((r) => r.r.mpaths_per_s));
+      L.push(
+        `| ${scene.includes('cornell') ? 'cornell' : 'spheres-10k'} | ${fmt(before)} | ${fmt(now)} | ${fmt(nat)} | **${fmt(now / nat)}** |`,
+      );
+    }
+    L.push('');
+  }
+  const cli = readJsonLines(dev('speed-cli-scaling.jsonl'));
+  const pools = ['speed-pool-shared.json', 'speed-pool-transfer.json'].map((f) => readJson(dev(f)));
+  const procs = readJson(dev('speed-processes.json'));
+  if (cli.length) {
+    L.push('### Worker scaling (16-core device), cornell 512×512, 16 spp');
+    L.push('');
+    L.push(
+      'Command line: `node bin/pathwise.js render scenes/cornell.json --width 512 --height 512 --spp 16 --threads T --json` (with more than four workers it runs in a child node with `--v8-pool-size=0`; the "V8 pool 4" rows forbid that, as before this change). Browser pool: the page\'s WorkerPool and render worker in Node (`node dist/bench/pool-node.mjs --size 512 --spp 16 --mode shared|transfer`; bench/pool-node.ts), film bit-identical at every count. Processes: n independent single-thread renders at once (`node bench/processes.mjs --spp 16`), the machine\'s own ceiling.',
+    );
+    L.push('');
+    L.push('| threads | CLI s | CLI speed-up | CLI efficiency | workers ready (s) |');
+    L.push('|---:|---:|---:|---:|---:|');
+    const base = cli.find((r) => r.r.threads === 1 && r.v8pool !== 'four');
+    for (const r of cli) {
+      const sp = base ? base.r.seconds / r.r.seconds : null;
+      L.push(
+        `| ${r.r.threads}${r.v8pool === 'four' ? ' (V8 pool 4)' : ''} | ${fmt(r.r.seconds)} | ${sp === null ? '—' : fmt(sp)} | ${sp === null ? '—' : `${((sp / r.r.threads) * 100).toFixed(0)} %`} | ${fmt(r.r.first_ready_seconds)}–${fmt(r.r.last_ready_seconds)} |`,
+      );
+    }
+    L.push('');
+    for (const p of pools.filter(Boolean)) {
+      L.push(
+        `Browser pool, ${p.config.mode} mode${p.node_options?.length ? ` (node ${p.node_options.join(' ')})` : ''}: ` +
+          p.points
+            .map(
+              (q) =>
+                `${q.threads} workers ${fmt(q.seconds)} s (${(q.efficiency * 100).toFixed(0)} %)`,
+            )
+            .join(', ') +
+          `; films bit-identical: ${p.films_bit_identical ? 'yes' : 'NO'}.`,
+      );
+      L.push('');
+    }
+    const devCore = readJson(dev('speed-core.json'));
+    if (devCore?.throughput?.length) {
+      const parts = [];
+      for (const name of [...new Set(devCore.throughput.map((t) => t.case))]) {
+        const rows = devCore.throughput.filter((t) => t.case === name && t.native);
+        const one = rows.find((t) => t.threads === 1);
+        const all = rows.find((t) => t.threads > 1);
+        if (!one || !all) continue;
+        const f = (w) => all[w].mpaths_per_s / one[w].mpaths_per_s;
+        parts.push(
+          `${name} 1 → ${all.threads} threads: native ${fmt(f('native'))}× (${((f('native') / all.threads) * 100).toFixed(0)} %), pathwise ${fmt(f('pathwise'))}× (${((f('pathwise') / all.threads) * 100).toFixed(0)} %)`,
+        );
+      }
+      if (parts.length) {
+        L.push(
+          `Same lease, bench:core above (512×512 against 128×128, the same work per thread): ${parts.join('; ')}.`,
+        );
+        L.push('');
+      }
+    }
+    if (procs) {
+      L.push(
+        'Independent processes: ' +
+          procs.points
+            .map(
+              (q) =>
+                `${q.processes}: ${fmt(q.mpaths_per_s_total)} M paths/s (${(q.efficiency * 100).toFixed(0)} %)`,
+            )
+            .join(', ') +
+          '.',
+      );
+      L.push('');
+    }
+  }
 }
 
 // --------------------------------------------------------------------- main
@@ -743,6 +902,21 @@ try {
     const device_full = opt['device-full']
       ? JSON.parse(readFileSync(path.resolve(ROOT, opt['device-full']), 'utf8'))
       : null;
+    // The same run measures speed against the native anchor (bench:core).
+    if (!quick || opt['with-core']) {
+      log('bench:core: pathwise against the native anchor');
+      const r = spawnSync(
+        process.execPath,
+        [
+          path.join(ROOT, 'bench/core.mjs'),
+          '--out',
+          path.join(outDir, 'core.json'),
+          ...(quick ? ['--quick'] : []),
+        ],
+        { stdio: ['ignore', 'ignore', 'inherit'] },
+      );
+      if (r.status !== 0) log(`bench:core failed (${r.status}); the report goes without it`);
+    }
     const result = {
       schema: 'pathwise-bench/1',
       command,

@@ -9,7 +9,7 @@
  * so a reset (clear the film, bump the generation) can never interleave
  * with a commit, and no sample of an old generation lands in a new image.
  */
-import type { Estimator, SamplerKind, Scene } from '../src/core/index.ts';
+import type { CameraDesc, Estimator, PackedScene, SamplerKind } from '../src/core/index.ts';
 
 /** Word indices of the control block. */
 export const C_LOCK = 0;
@@ -72,16 +72,21 @@ export interface JobConfig {
   mode: JobMode;
   /** Equals the control block's C_CONFIG word (shared) or tags tasks (transfer). */
   version: number;
-  /** The scene travels only when `sceneId` changed since this worker last saw the job. */
+  /**
+   * The scene, compiled once on the main thread and packed (a
+   * SharedArrayBuffer when the page is isolated, else a buffer copied to
+   * each worker). It travels only when `sceneId` changed since this worker
+   * last saw the job.
+   */
   sceneId: number;
-  scene?: Scene;
+  scene?: PackedScene;
   width: number;
   height: number;
   maxBounces: number;
   seed: number;
   estimator: Estimator;
   sampler: SamplerKind;
-  camera: Scene['camera'];
+  camera: CameraDesc;
   stripeRows: number;
   /** Shared mode: the film's buffer and its control block. */
   film?: SharedArrayBuffer;

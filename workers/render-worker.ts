@@ -18,7 +18,7 @@
  * controller and serves them in turn.
  */
 import * as Comlink from 'comlink';
-import { Film, PathTracer, RenderStats, compileScene, type Scene } from '../src/core/index.ts';
+import { Film, PathTracer, RenderStats, unpackScene } from '../src/core/index.ts';
 import type { CompiledScene } from '../src/core/index.ts';
 import {
   C_CLAIM,
@@ -41,7 +41,6 @@ import {
 
 interface Job {
   config: JobConfig;
-  scene: Scene;
   compiled: CompiledScene;
   tracer: PathTracer;
   film?: Film;
@@ -56,16 +55,17 @@ let running = false;
 let stopping = false;
 let stopped: (() => void) | undefined;
 
-/** Rebuilds only what the new configuration changes: compile once per scene, tracer per size/seed. */
+/**
+ * Rebuilds only what the new configuration changes: the scene arrives
+ * compiled and packed (unpacked here into views, once per scene), the
+ * tracer per size/seed.
+ */
 function configure(id: number, config: JobConfig): void {
   const old = jobs.get(id);
-  let scene: Scene;
   let compiled: CompiledScene;
   if (config.scene) {
-    scene = config.scene;
-    compiled = compileScene(scene);
+    compiled = unpackScene(config.scene);
   } else if (old && old.config.sceneId === config.sceneId) {
-    scene = old.scene;
     compiled = old.compiled;
   } else {
     throw new Error(`job ${id}: configuration without its scene`);
@@ -95,7 +95,7 @@ function configure(id: number, config: JobConfig): void {
       camera: config.camera,
     });
   }
-  const job: Job = { config: { ...config, scene: undefined }, scene, compiled, tracer };
+  const job: Job = { config: { ...config, scene: undefined }, compiled, tracer };
   if (config.mode === 'shared') {
     job.film =
       old?.config.film === config.film && old?.film

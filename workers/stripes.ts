@@ -10,14 +10,15 @@ import {
   Film,
   PathTracer,
   RenderStats,
-  compileScene,
+  type CameraDesc,
+  type CompiledScene,
   type Estimator,
   type SamplerKind,
-  type Scene,
 } from '../src/core/index.ts';
 
+/** A render's settings; the scene itself travels packed (core/scene/pack.ts). */
 export interface StripeJob {
-  scene: Scene;
+  camera: CameraDesc;
   width: number;
   height: number;
   maxBounces: number;
@@ -31,16 +32,16 @@ export function stripeCount(height: number, stripeRows: number): number {
   return Math.ceil(height / stripeRows);
 }
 
-/** Builds the tracer for a job (each worker does this once). */
-export function createTracer(job: StripeJob): PathTracer {
-  return new PathTracer(compileScene(job.scene), {
+/** Builds the tracer for a job over an already compiled scene (each worker does this once). */
+export function createTracer(job: StripeJob, scene: CompiledScene): PathTracer {
+  return new PathTracer(scene, {
     width: job.width,
     height: job.height,
     maxBounces: job.maxBounces,
     seed: job.seed,
     estimator: job.estimator,
     sampler: job.sampler,
-    camera: job.scene.camera,
+    camera: job.camera,
   });
 }
 

@@ -28,7 +28,8 @@ export function attachSceneFiles(
     }
     const scene = scenes[0];
     try {
-      await getController().setScene(await scene.text(), droppedSceneFiles(files));
+      // The File itself: the loader applies the byte bound and strict UTF-8 to it.
+      await getController().setScene(scene, droppedSceneFiles(files));
       onLoaded();
     } catch (e) {
       onError(`${scene.name}: ${e instanceof Error ? e.message : String(e)}`);

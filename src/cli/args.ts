@@ -33,6 +33,7 @@ export interface RenderArgs {
 }
 
 export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png [options]
+  SCENE.json          a scene file, or - (or /dev/stdin) for standard input; at most 16 MiB
   --spp N             samples per pixel (default: the scene's settings.spp)
   --width W --height H  image size (default: the scene's settings)
   --bounces B         maximum scattering events per path (default: settings.maxBounces)

@@ -112,6 +112,11 @@ async function render(argv: string[]): Promise<void> {
           msegments_per_s: stats.segments / seconds / 1e6,
           rejected_samples: stats.rejected,
           skipped_triangles: skipped,
+          compile_seconds: result.compileSeconds,
+          first_ready_seconds: result.firstReadySeconds,
+          last_ready_seconds: result.lastReadySeconds,
+          scene_bytes: result.sceneBytes,
+          worker_heap_mb_median: median(result.workerHeapBytes) / 2 ** 20,
         }) + '\n',
       );
     }
@@ -120,6 +125,11 @@ async function render(argv: string[]): Promise<void> {
     process.off('SIGINT', abandon);
     process.off('SIGTERM', abandon);
   }
+}
+
+function median(values: number[]): number {
+  const v = [...values].sort((a, b) => a - b);
+  return v.length === 0 ? NaN : v[v.length >> 1];
 }
 
 async function main(argv: string[]): Promise<number> {

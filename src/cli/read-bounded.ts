@@ -6,7 +6,9 @@
  * limit + one chunk. A regular file that stat() says is too large is rejected before any
  * byte is read, with its exact size.
  */
+import { fstat, read } from 'node:fs';
 import { open, type FileHandle } from 'node:fs/promises';
+import { promisify } from 'node:util';
 import { sanitize } from '../core/scene/message.ts';
 import { CliError } from './errors.ts';
 
@@ -60,6 +62,18 @@ export function reason(e: unknown): string {
   return sanitize(e instanceof Error ? e.message : String(e), 200);
 }
 
+/** Descriptor 0 with the two FileHandle methods used here (it is not closed after). */
+class StdinHandle {
+  stat() {
+    return promisify(fstat)(0);
+  }
+  async read(buffer: Uint8Array, offset: number, length: number, position: null) {
+    const { bytesRead } = await promisify(read)(0, buffer, offset, length, position);
+    return { bytesRead };
+  }
+  async close(): Promise<void> {}
+}
+
 const sleep = (ms: number) => new Promise<void>((resolve) => setTimeout(resolve, ms));
 
 /**
@@ -67,9 +81,11 @@ const sleep = (ms: number) => new Promise<void>((resolve) => setTimeout(resolve,
  * CliError (`cannot read PATH: reason`) when the file cannot be opened or read.
  */
 export async function readBounded(path: string, limit: number): Promise<Uint8Array> {
-  let handle: FileHandle;
+  let handle: FileHandle | StdinHandle;
   try {
-    handle = await open(path, 'r');
+    // Standard input is read from descriptor 0 itself: opening /dev/stdin anew fails when
+    // it is a socket (ENXIO), as it is for a child spawned by Node.
+    handle = path === '-' || path === '/dev/stdin' ? new StdinHandle() : await open(path, 'r');
   } catch (e) {
     throw new CliError(`cannot read ${showPath(path)}: ${reason(e)}`);
   }

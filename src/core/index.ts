@@ -22,7 +22,9 @@ export {
   CompiledScene,
   BVH_THRESHOLD,
   type CompileOptions,
+  type SceneData,
 } from './scene/compile.ts';
+export { packScene, unpackScene, canShareMemory, type PackedScene } from './scene/pack.ts';
 export {
   PathTracer,
   RenderStats,
@@ -31,8 +33,9 @@ export {
 } from './integrator/path-tracer.ts';
 export { Film } from './film/film.ts';
 export { Camera } from './camera/camera.ts';
-export { encodePfm, decodePfm, type PfmImage } from './io/pfm.ts';
+export { encodePfm, decodePfm, type PfmImage, type PfmDecodeOptions } from './io/pfm.ts';
 export { encodeHdr, decodeHdr } from './io/hdr.ts';
+export { FormatError } from './io/format-error.ts';
 export { encodePng, zlibStored } from './io/png.ts';
 export { acesFilmic, srgbEncode, toDisplayByte, tonemapSums } from './io/tonemap.ts';
 export { pcgHash } from './rng/pcg.ts';

@@ -19,7 +19,9 @@
  */
 import {
   DEFAULT_SAMPLER,
+  LIMITS,
   PathTracer,
+  SceneError,
   compileScene,
   encodePfm,
   estimateNoise,
@@ -31,10 +33,13 @@ import {
   tonemapSums,
   validateScene,
   type CameraDesc,
+  packScene,
   type CompiledScene,
+  type PackedScene,
   type Scene,
   type SceneFileReader,
 } from '../core/index.ts';
+import { sceneSizeProblem } from '../core/scene/load.ts';
 import type { JobConfig } from '../../workers/render-protocol.ts';
 import type { Display, DisplayPixels } from './display.ts';
 import type { FilmJob } from './film-job.ts';
@@ -43,6 +48,7 @@ import { attachCameraControls } from './interaction.ts';
 import { chooseCompute, createDisplay } from './mode.ts';
 import { dollyCamera, orbitCamera } from './orbit.ts';
 import { releasePool, sharedPool, type PoolClient, type WorkerPool } from './pool.ts';
+import { ByteLimitError, readBlobBounded, readResponseBounded } from './read-bounded.ts';
 import { RateMeter } from './rate-meter.ts';
 import { urlSceneFiles } from './scene-files.ts';
 import { SharedFilmJob } from './shared-job.ts';
@@ -68,6 +74,8 @@ export class Controller extends EventTarget implements PathTracerController {
   private readonly display: Display;
   private currentScene: Scene | null = null;
   private compiled: CompiledScene | null = null;
+  /** The compiled scene packed for the workers (shared memory when the page is isolated). */
+  private packed: PackedScene | null = null;
   private sceneId = 0;
   private camera: CameraDesc | null = null;
   private bounces = 6;
@@ -187,9 +195,11 @@ export class Controller extends EventTarget implements PathTracerController {
     const request = ++this.sceneRequest;
     let scene: Scene;
     try {
+      // Bytes and files get the loader's byte bound and strict UTF-8, as on the command line.
+      if (value instanceof Blob) value = await readBlobBounded(value, LIMITS.fileBytes);
       scene = isValidatedScene(value)
         ? value
-        : typeof value === 'string'
+        : typeof value === 'string' || value instanceof Uint8Array
           ? parseScene(value)
           : validateScene(value);
       if (sceneNeedsFiles(scene)) {
@@ -201,6 +211,7 @@ export class Controller extends EventTarget implements PathTracerController {
         );
       }
     } catch (e) {
+      if (e instanceof ByteLimitError) e = new SceneError([sceneSizeProblem(e.size, e.exact)]);
       const message = e instanceof Error ? e.message : String(e);
       this.emit('error', { message });
       throw new Error(message);
@@ -210,6 +221,9 @@ export class Controller extends EventTarget implements PathTracerController {
     const first = this.currentScene === null;
     this.currentScene = scene;
     this.compiled = compileScene(scene);
+    // Compiled once here (the picker uses it too) and shipped packed: the
+    // workers neither parse nor compile nor build a BVH.
+    this.packed = packScene(this.compiled, this.mode.compute === 'shared');
     this.picker = null;
     this.sceneId++;
     this.camera = { ...scene.camera };
@@ -223,20 +237,25 @@ export class Controller extends EventTarget implements PathTracerController {
 
   async load(url: string): Promise<void> {
     this.sceneRequested = true;
-    let text: string;
+    let bytes: Uint8Array;
     let base: string;
     try {
       const response = await fetch(url);
       if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
       base = response.url || new URL(url, document.baseURI).href;
-      text = await response.text();
+      bytes = await readResponseBounded(response, LIMITS.fileBytes);
     } catch (e) {
-      const message = e instanceof Error ? e.message : String(e);
+      const message =
+        e instanceof ByteLimitError
+          ? `${url}: ${sceneSizeProblem(e.size, e.exact)}`
+          : e instanceof Error
+            ? e.message
+            : String(e);
       this.emit('error', { message });
       throw new Error(message);
     }
     // The files the scene names live beside it.
-    await this.setScene(text, urlSceneFiles(base));
+    await this.setScene(bytes, urlSceneFiles(base));
   }
 
   // ---- restart machinery -------------------------------------------------
@@ -257,7 +276,7 @@ export class Controller extends EventTarget implements PathTracerController {
       mode: this.mode.compute,
       version: this.version,
       sceneId: this.sceneId,
-      scene: this.currentScene,
+      scene: this.packed!,
       width: active.width,
       height: active.height,
       maxBounces: this.bounces,

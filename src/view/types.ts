@@ -84,9 +84,10 @@ export interface PathTracerController extends EventTarget {
   readonly mode: FallbackInfo;
   readonly scene: Scene | null;
   /**
-   * Validates and loads a scene object (or its JSON text), reading the files it names
-   * through `files` (default: URLs relative to the page); rejects with the loader's
-   * message, keeping the current scene.
+   * Validates and loads a scene: an object, its JSON text, or the bytes of a file (a
+   * Uint8Array or a File/Blob, held to the 16 MiB bound and strict UTF-8 like the command
+   * line), reading the mesh and map files it names through `files` (default: URLs
+   * relative to the page). Rejects with the loader's message, keeping the current scene.
    */
   setScene(scene: unknown, files?: SceneFileReader): Promise<void>;
   /** Fetches a scene; the files it names are fetched relative to its URL. */

@@ -4,6 +4,8 @@
  * 64×64 so the suite stays short on two cores; nothing here asserts on
  * timing.
  */
+import { readFileSync } from 'node:fs';
+import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
 import { decodePfm, toDisplayByte } from '../../src/core/index.ts';
 import { PASSES, SEED, SIZE, WEBGL, fixed, useDemo } from './context.ts';
@@ -18,6 +20,7 @@ import {
   waitForSpp,
 } from './harness.ts';
 import { nodePick, nodeRender } from './node-reference.ts';
+import { ROOT } from '../helpers/render.ts';
 
 const ctx = useDemo();
 
@@ -283,6 +286,15 @@ describe('browser demo (Chromium)', () => {
     );
     const now = await spp(page);
     await waitForSpp(page, now + 1);
+    // Bytes of a dropped file get the loader's strict UTF-8 rule (no silent U+FFFD).
+    await page.setInputFiles('#file', {
+      name: 'names.json',
+      mimeType: 'application/json',
+      buffer: readFileSync(join(ROOT, 'tests/fuzz/corpus/invalid-utf8-names.json')),
+    });
+    await expect
+      .poll(async () => (await error.textContent()) ?? '')
+      .toMatch(/^names\.json: scene file is not valid UTF-8 at byte 351 \(line 29\)/);
     await page.close();
   });
 });

@@ -41,6 +41,31 @@ describe('Film', () => {
     expect(film.sums[7]).toBe(1);
   });
 
+  it('rejects (and leaves out) a finite sample whose sum would overflow Float32', () => {
+    const film = new Film(1, 1);
+    // A pixel after a long run of huge samples: its red sum is near the Float32 maximum.
+    film.sums[0] = 3.3e38;
+    film.sums[3] = 1000;
+    // 3.3e38 + 1e37 is finite in double but overflows the Float32 sum to Infinity.
+    expect(film.addSample(0, 0, 1e17, 1, 1)).toBe(true);
+    expect(film.addSample(0, 0, 1e37, 1, 1)).toBe(false);
+    expect(film.sums.every(Number.isFinite)).toBe(true);
+    expect(film.extra.every(Number.isFinite)).toBe(true);
+    expect(film.sums[3]).toBe(1001);
+  });
+
+  it('rejects a sample whose squared luminance would overflow the noise sum', () => {
+    const film = new Film(1, 1);
+    expect(film.addSample(0, 0, 1e19, 1e19, 1e19)).toBe(true); // (1e19)^2 = 1e38 fits
+    expect(film.addSample(0, 0, 1e19, 1e19, 1e19)).toBe(true);
+    expect(film.addSample(0, 0, 1e19, 1e19, 1e19)).toBe(true);
+    expect(film.addSample(0, 0, 1e19, 1e19, 1e19)).toBe(false); // 4e38 does not
+    expect(film.addSample(0, 0, 1e19, 0, 0)).toBe(true); // lum 2.1e18: still fits
+    expect(film.extra.every(Number.isFinite)).toBe(true);
+    expect(film.sums.every(Number.isFinite)).toBe(true);
+    expect(film.sums[3]).toBe(4);
+  });
+
   it('addresses a window of rows through y0', () => {
     const film = new Film(3, 2, undefined, 5);
     film.addSample(2, 6, 1, 2, 3);

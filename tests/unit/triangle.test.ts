@@ -17,7 +17,8 @@ import { hashToUnit, sampleKey } from '../../src/core/rng/pcg.ts';
 import { cube, icosphere, octahedron, scaledMesh, type TestMesh } from '../helpers/mesh-gen.ts';
 
 const r = new TriangleRay();
-const best = new Float64Array(1);
+/** A ray record: the far bound lives at index 6 (geometry/trace.ts R_T). */
+const best = new Float64Array(8);
 
 /** Distance by the fast test (hitTriangle), Infinity for a miss. */
 function intersectTriangle(
@@ -27,8 +28,8 @@ function intersectTriangle(
   ray: TriangleRay,
   tMax: number,
 ): number {
-  best[0] = tMax;
-  return hitTriangle(positions, indices, tri, ray, best) ? best[0] : Infinity;
+  best[6] = tMax;
+  return hitTriangle(positions, indices, tri, ray, best) ? best[6] : Infinity;
 }
 
 function shoot(

@@ -328,6 +328,9 @@ describe('<pathwise-view> on a page without cross-origin isolation', () => {
     const { page, errors, close } = await openPage(server, 'blank.html');
     try {
       const missing = await addView(page, 'missing', { src: 'scenes/no-such-scene.json' });
+      // Strict UTF-8 and duplicate keys, with the same messages as the command line.
+      const utf8 = await addView(page, 'utf8', { src: 'scenes/invalid-utf8-names.json' });
+      const twice = await addView(page, 'twice', { src: 'scenes/duplicate-radius.json' });
       const invalid = await addView(page, 'invalid', {});
       // A real scene with one broken key, so the message must name that key.
       await page.evaluate(async () => {
@@ -337,6 +340,8 @@ describe('<pathwise-view> on a page without cross-origin isolation', () => {
       });
       for (const [selector, pattern] of [
         [missing, /404/],
+        [utf8, /^scene file is not valid UTF-8 at byte 351 \(line 29\): byte 0xff/],
+        [twice, /^shapes\[1\]\.radius appears twice in one object \(line 78, column 21\)/],
         [invalid, /shapes/],
       ] as const) {
         await waitForEvent(page, selector, 'error');

@@ -18,7 +18,9 @@
  *   i32 12, 13   left, right child: an interior node's index (≥ 0), or a
  *                leaf as ~(first << BVH_LEAF_BITS | count) (< 0): its
  *                references are refs[first, first + count)
- *   i32 14, 15   unused (keeps nodes on cache-line boundaries)
+ *   i32 14       the split axis (0, 1, 2): a ray going down that axis
+ *                visits the right child first
+ *   i32 15       unused (keeps nodes on cache-line boundaries)
  * Boxes are Float32, rounded outwards (and padded by one float ulp), so they
  * always contain the exact double-precision primitive: the box test may let a
  * ray through that misses, never the reverse. Node 0 is the root; there are
@@ -32,6 +34,7 @@ export const N_LEFT_BOX = 0;
 export const N_RIGHT_BOX = 6;
 export const N_LEFT = 12;
 export const N_RIGHT = 13;
+export const N_AXIS = 14;
 /** Bits of a leaf code that hold its reference count. */
 export const BVH_LEAF_BITS = 3;
 export const BVH_LEAF_MASK = (1 << BVH_LEAF_BITS) - 1;
@@ -42,11 +45,15 @@ export const BVH_MAX_LEAF = 4;
 export const BVH_MAX_PRIMS = 2 ** (31 - BVH_LEAF_BITS);
 const BINS = 16;
 /**
- * SAH costs relative to one primitive test: a node visit tests two boxes.
- * Measured on V8 (bench/inproc.ts on the 10,000-sphere scene): a box test
- * costs about as much as a sphere test.
+ * SAH cost of a node visit (two boxes, tested branch-free) relative to one
+ * primitive test. On the 10,000-sphere scene's recorded rays, node costs of
+ * 0.25 to 2 gave times within the noise of the shared 2-core machine; 1
+ * gives single-sphere leaves there and 2–4-quad leaves in the Cornell box.
+ * A larger cost gives larger leaves and fewer nodes: 2 takes 42 bytes per
+ * primitive (nodes + references) for a million triangle-sized boxes, 1
+ * takes 68 (bench/bvh-build.ts) — what a mesh's memory budget may call for.
  */
-const COST_NODE = 2;
+export const BVH_NODE_COST = 1;
 const COST_PRIM = 1;
 
 export class Bvh {
@@ -120,11 +127,16 @@ export function f32Above(x: number): number {
  * an index permutation the same passes missed the cache at every step (7 s
  * for a million boxes against ~1 s; bench/bvh-build.ts).
  */
-export function buildBvh(boxes: Float32Array, refs: Int32Array, n: number): Bvh | null {
+export function buildBvh(
+  boxes: Float32Array,
+  refs: Int32Array,
+  n: number,
+  nodeCost = BVH_NODE_COST,
+): Bvh | null {
   if (n === 0) return null;
   if (n > BVH_MAX_PRIMS)
     throw new RangeError(`${n} primitives: a BVH holds at most ${BVH_MAX_PRIMS}`);
-  const b = new Builder(boxes, refs, n);
+  const b = new Builder(boxes, refs, n, nodeCost);
   if (n === 1) {
     const nodes = b.nodes;
     for (let a = 0; a < 6; a++) nodes[N_LEFT_BOX + a] = boxes[a];
@@ -174,7 +186,10 @@ class Builder {
   private bestCost = Infinity;
   private leftCount = 0;
 
-  constructor(boxes: Float32Array, refs: Int32Array, n: number) {
+  private readonly nodeCost: number;
+
+  constructor(boxes: Float32Array, refs: Int32Array, n: number, nodeCost: number) {
+    this.nodeCost = nodeCost;
     this.boxes = boxes;
     this.refs = refs;
     this.n = n;
@@ -281,7 +296,8 @@ class Builder {
         bounds[tb + 5],
       );
       const splitCost =
-        COST_NODE + (parentArea > 0 ? (COST_PRIM * this.bestCost) / parentArea : COST_PRIM * count);
+        this.nodeCost +
+        (parentArea > 0 ? (COST_PRIM * this.bestCost) / parentArea : COST_PRIM * count);
       if (count <= BVH_MAX_LEAF && COST_PRIM * count <= splitCost && !isRoot) {
         this.leaf(slot, start, count);
         return;
@@ -296,6 +312,7 @@ class Builder {
     if (depth > this.maxDepth) this.maxDepth = depth;
     const split = this.split;
     const o = node * BVH_NODE_WORDS;
+    this.words[o + N_AXIS] = axis;
     for (let k = 0; k < 6; k++) {
       this.nodes[o + N_LEFT_BOX + k] = split[k];
       this.nodes[o + N_RIGHT_BOX + k] = split[6 + k];

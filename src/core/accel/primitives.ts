@@ -99,7 +99,7 @@ export function quadBoxes(quads: Float64Array, count: number, out: PrimitiveBoxe
 
 export function triangleBoxes(
   positions: Float64Array,
-  indices: Uint32Array,
+  indices: Uint32Array | Int32Array,
   count: number,
   out: PrimitiveBoxes,
 ): void {

@@ -100,7 +100,7 @@ export function conductorSample(
     out.weightB = b0 + (1 - b0) * w;
     return true;
   }
-  ggxSampleVisibleNormal(wox, woy, woz, alpha, q.u0, q.u1, M);
+  ggxSampleVisibleNormal(q, materials, o + M_ALPHA, M);
   const cosOM = wox * M.x + woy * M.y + woz * M.z;
   if (cosOM <= 0) return false;
   const wix = 2 * cosOM * M.x - wox;

@@ -5,6 +5,7 @@
  * local frame, +z the macro-surface normal.
  */
 import type { Vec3Out } from '../sampling/warps.ts';
+import type { BsdfQuery } from './records.ts';
 
 /** D(m) for a microfacet normal whose cosine with the normal is `cosThetaM`. */
 export function ggxD(cosThetaM: number, alpha: number): number {
@@ -27,18 +28,24 @@ export function ggxG1(z: number, alpha: number): number {
 }
 
 /**
- * Samples a visible microfacet normal for the view direction wo (wo.z > 0)
- * from the unit square (Heitz 2018, listing 1). Writes the normal to `m`.
+ * Samples a visible microfacet normal for the view direction q.wo (wo.z >
+ * 0) from the unit square q.u0, q.u1 (Heitz 2018, listing 1), for the
+ * roughness α = materials[alphaAt]. Writes the normal to `m`. Records in,
+ * record out: when V8 does not inline the call, double arguments would be
+ * boxed on the heap.
  */
 export function ggxSampleVisibleNormal(
-  wox: number,
-  woy: number,
-  woz: number,
-  alpha: number,
-  u0: number,
-  u1: number,
+  q: BsdfQuery,
+  materials: Float64Array,
+  alphaAt: number,
   m: Vec3Out,
 ): void {
+  const wox = q.wox,
+    woy = q.woy,
+    woz = q.woz,
+    u0 = q.u0,
+    u1 = q.u1;
+  const alpha = materials[alphaAt];
   // Stretch the view direction into the hemisphere configuration.
   let vx = alpha * wox;
   let vy = alpha * woy;

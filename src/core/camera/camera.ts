@@ -83,6 +83,15 @@ export class Camera {
    * Primary ray through film point (filmX, filmY) in pixels; (lensU, lensV)
    * pick the point on the lens when the aperture is open. Writes `ray`.
    */
+  /**
+   * generateRay for pixel (px, py) with the film offset in u[0], u[1] and
+   * the lens point in u[lens], u[lens + 1]. The tracer calls this form: no
+   * double arguments, which a call V8 does not inline would box on the heap.
+   */
+  generateRayFromSamples(px: number, py: number, u: Float64Array, lens: number, ray: Ray): void {
+    this.generateRay(px + u[0], py + u[1], u[lens], u[lens + 1], ray);
+  }
+
   generateRay(filmX: number, filmY: number, lensU: number, lensV: number, ray: Ray): void {
     const a = filmX * this.scaleX - this.tanX;
     const b = this.tanY - filmY * this.scaleY;

@@ -1,14 +1,16 @@
 /**
  * Scene-level ray queries: the nearest hit (`intersectScene`) and any hit
  * before tMax (`occluded`, for shadow rays). Below the BVH threshold a plain
- * loop over the shapes is faster than any hierarchy; above it the BVH is
- * traversed front to back with a preallocated stack. The leaf loops
+ * loop over the shapes; above it the BVH (accel/bvh.ts), whose leaves
  * dispatch on each primitive's kind tag (accel/primitives.ts).
+ *
+ * The queries copy the ray into the scene's ray record (a Float64Array:
+ * origin, direction and the current far bound R_T), and the primitive tests
+ * `hitSphere`/`hitQuad` read it and move R_T to a closer hit. They take and
+ * return no double: when V8 does not inline a call (it declines for a kind
+ * that is rare in the scene), a double argument or result would be boxed on
+ * the heap at every call.
  */
-import type { CompiledScene } from '../scene/compile.ts';
-import { intersectQuad, intersectSphere } from './intersect.ts';
-import { SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE, type Hit, type Ray } from './ray.ts';
-import { hitTriangle, intersectTriangleBary, setTriangleRay } from './triangle.ts';
 import {
   BVH_LEAF_BITS,
   BVH_LEAF_MASK,
@@ -18,21 +20,95 @@ import {
   N_RIGHT_BOX,
 } from '../accel/bvh.ts';
 import { PRIM_KIND_BITS, PRIM_KIND_MASK } from '../accel/primitives.ts';
+import type { CompiledScene } from '../scene/compile.ts';
+import { intersectQuad, intersectSphere } from './intersect.ts';
+import { SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE, type Hit, type Ray } from './ray.ts';
+import { hitTriangle, intersectTriangleBary, setTriangleRay } from './triangle.ts';
 
-export function intersectScene(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
-  // Two small functions rather than one big one: V8 optimises (and inlines
-  // the primitive tests into) each far better.
-  return scene.bvh === null ? intersectList(scene, ray, hit) : intersectBvh(scene, ray, hit);
+/** Ray record layout: origin, direction, far bound. */
+export const R_OX = 0;
+export const R_DX = 3;
+export const R_T = 6;
+export const RAY_RECORD_WORDS = 8;
+
+/** If sphere i lies on the ray before r[R_T], moves r[R_T] to the hit and returns true. */
+export function hitSphere(spheres: Float64Array, i: number, r: Float64Array): boolean {
+  const t = intersectSphere(spheres, i, r[0], r[1], r[2], r[3], r[4], r[5], r[6]);
+  if (t < r[6]) {
+    r[6] = t;
+    return true;
+  }
+  return false;
 }
 
-function intersectList(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
-  const ox = ray.ox,
-    oy = ray.oy,
-    oz = ray.oz;
-  const dx = ray.dx,
-    dy = ray.dy,
-    dz = ray.dz;
-  let tBest = ray.tMax;
+/** If quad i lies on the ray before r[R_T], moves r[R_T] to the hit and returns true. */
+export function hitQuad(quads: Float64Array, i: number, r: Float64Array): boolean {
+  const t = intersectQuad(quads, i, r[0], r[1], r[2], r[3], r[4], r[5], r[6]);
+  if (t < r[6]) {
+    r[6] = t;
+    return true;
+  }
+  return false;
+}
+
+function loadRay(r: Float64Array, ray: Ray): void {
+  r[0] = ray.ox;
+  r[1] = ray.oy;
+  r[2] = ray.oz;
+  r[3] = ray.dx;
+  r[4] = ray.dy;
+  r[5] = ray.dz;
+  r[6] = ray.tMax;
+}
+
+export function intersectScene(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
+  const r = scene.ray;
+  loadRay(r, ray);
+  // Two small functions rather than one big one: V8 optimises (and inlines
+  // the primitive tests into) each far better.
+  if (scene.triCount > 0) setTriangleRay(r[0], r[1], r[2], r[3], r[4], r[5], scene.triRay);
+  const found = scene.bvh === null ? intersectList(scene, r, hit) : intersectBvh(scene, r, hit);
+  if (found) {
+    hit.t = r[6];
+    if (hit.kind === SHAPE_TRIANGLE) triangleBarycentrics(scene, hit);
+  }
+  return found;
+}
+
+/** Barycentrics of the kept triangle hit, recomputed once with the same ray constants. */
+function triangleBarycentrics(scene: CompiledScene, hit: Hit): void {
+  const th = scene.triHit;
+  intersectTriangleBary(
+    scene.triPositions,
+    scene.triIndices,
+    hit.index,
+    scene.triRay,
+    Infinity,
+    th,
+  );
+  hit.b0 = th.b0;
+  hit.b1 = th.b1;
+  hit.b2 = th.b2;
+}
+
+/** Whether anything lies on the ray in (0, ray.tMax). */
+export function occluded(scene: CompiledScene, ray: Ray): boolean {
+  const r = scene.ray;
+  loadRay(r, ray);
+  if (scene.triCount > 0) setTriangleRay(r[0], r[1], r[2], r[3], r[4], r[5], scene.triRay);
+  return scene.bvh === null ? occludedList(scene, r) : occludedBvh(scene, r);
+}
+
+// The plain loops call the primitive tests with the ray in locals: each
+// call runs once per shape and query, so V8 always inlines it.
+function intersectList(scene: CompiledScene, r: Float64Array, hit: Hit): boolean {
+  const ox = r[0],
+    oy = r[1],
+    oz = r[2],
+    dx = r[3],
+    dy = r[4],
+    dz = r[5];
+  let tBest = r[6];
   let kind = -1;
   let index = -1;
   const spheres = scene.spheres;
@@ -53,68 +129,77 @@ function intersectList(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
       index = i;
     }
   }
+  r[6] = tBest;
   const triCount = scene.triCount;
   if (triCount > 0) {
-    const tr = scene.triRay;
-    setTriangleRay(ox, oy, oz, dx, dy, dz, tr);
     const pos = scene.triPositions;
     const idx = scene.triIndices;
-    const best = scene.stackT;
-    best[0] = tBest;
+    const tr = scene.triRay;
     for (let i = 0; i < triCount; i++) {
-      if (hitTriangle(pos, idx, i, tr, best)) {
+      if (hitTriangle(pos, idx, i, tr, r)) {
         kind = SHAPE_TRIANGLE;
         index = i;
       }
     }
-    tBest = best[0];
   }
   if (kind < 0) return false;
-  hit.t = tBest;
   hit.kind = kind;
   hit.index = index;
-  if (kind === SHAPE_TRIANGLE) triangleBarycentrics(scene, hit);
   return true;
 }
 
-/** Barycentrics of the kept triangle hit, recomputed once with the same ray constants. */
-function triangleBarycentrics(scene: CompiledScene, hit: Hit): void {
-  const th = scene.triHit;
-  intersectTriangleBary(
-    scene.triPositions,
-    scene.triIndices,
-    hit.index,
-    scene.triRay,
-    Infinity,
-    th,
-  );
-  hit.b0 = th.b0;
-  hit.b1 = th.b1;
-  hit.b2 = th.b2;
+function occludedList(scene: CompiledScene, r: Float64Array): boolean {
+  const ox = r[0],
+    oy = r[1],
+    oz = r[2],
+    dx = r[3],
+    dy = r[4],
+    dz = r[5],
+    tMax = r[6];
+  const spheres = scene.spheres;
+  for (let i = 0, n = scene.sphereCount; i < n; i++) {
+    if (intersectSphere(spheres, i, ox, oy, oz, dx, dy, dz, tMax) < tMax) return true;
+  }
+  const quads = scene.quads;
+  for (let i = 0, n = scene.quadCount; i < n; i++) {
+    if (intersectQuad(quads, i, ox, oy, oz, dx, dy, dz, tMax) < tMax) return true;
+  }
+  const triCount = scene.triCount;
+  if (triCount > 0) {
+    const pos = scene.triPositions;
+    const idx = scene.triIndices;
+    const tr = scene.triRay;
+    for (let i = 0; i < triCount; i++) if (hitTriangle(pos, idx, i, tr, r)) return true;
+  }
+  return false;
 }
 
 /**
  * Nearest hit through the BVH (layout in accel/bvh.ts). The loop visits
- * items: an interior node tests both children's boxes, enters the nearer
- * and pushes the other with its entry distance (skipped when popped if a
- * closer hit was found meanwhile); a leaf tests its primitives. Leaves are
- * handled in one place so V8 inlines every intersector exactly once: a call
- * that is not inlined would box its six double arguments on the heap.
+ * items: an interior node tests both children's boxes and, when both are
+ * hit, enters the nearer first and pushes the other with its entry
+ * distance (skipped when popped if a closer hit was found meanwhile); a
+ * leaf tests its primitives. Leaves are handled in one place so that each
+ * kind's test is inlined once.
+ *
+ * Boxes are tested in the pairwise form of the slab test (Williams et al.,
+ * "An Efficient and Robust Ray–Box Intersection Algorithm", JGT 2005, for
+ * the near/far planes chosen by the direction's signs): the interval
+ * [0, t] meets every slab iff each slab's entry lies before every other
+ * exit. The twelve comparisons are combined as bits, so a box costs one
+ * branch instead of twelve hard-to-predict ones (17 % faster on the Cornell
+ * box's rays; bench/inproc.ts). A comparison with NaN (0·∞ for a ray in
+ * the plane of a face) is false and skips the box, which is right because
+ * boxes are padded: such a ray cannot reach what is inside.
  */
-function intersectBvh(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
+function intersectBvh(scene: CompiledScene, r: Float64Array, hit: Hit): boolean {
   const bvh = scene.bvh!;
-  const ox = ray.ox,
-    oy = ray.oy,
-    oz = ray.oz;
-  const dx = ray.dx,
-    dy = ray.dy,
-    dz = ray.dz;
-  // The nearest distance so far lives in stackT[0] (the stack starts at 1):
-  // kept in a local, V8 gave it a tagged representation here and boxed a
-  // HeapNumber at every update (0.7 GB per 400k paths on the 10k-sphere
-  // scene; bench/inproc.ts with the heap sampler).
-  const tb = scene.stackT;
-  tb[0] = ray.tMax;
+  const ox = r[0],
+    oy = r[1],
+    oz = r[2];
+  const ix = 1 / r[3],
+    iy = 1 / r[4],
+    iz = 1 / r[5];
   let kind = -1;
   let index = -1;
   const nodes = bvh.nodes;
@@ -125,73 +210,87 @@ function intersectBvh(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
   const triPositions = scene.triPositions;
   const triIndices = scene.triIndices;
   const tr = scene.triRay;
-  if (scene.triCount > 0) setTriangleRay(ox, oy, oz, dx, dy, dz, tr);
   const stack = scene.stack;
   const stackT = scene.stackT;
-  // Slab test with the near/far planes chosen once per ray by the sign of
-  // the direction (Williams et al., "An Efficient and Robust Ray–Box
-  // Intersection Algorithm", JGT 2005). 1/0 = ±Infinity keeps axis-parallel
-  // rays correct; a NaN from 0·∞ fails every comparison and so narrows
-  // nothing: the box is kept.
-  const ix = 1 / dx,
-    iy = 1 / dy,
-    iz = 1 / dz;
   const nearX = ix < 0 ? 3 : 0,
     nearY = iy < 0 ? 4 : 1,
     nearZ = iz < 0 ? 5 : 2;
   const farX = 3 - nearX,
     farY = 5 - nearY,
     farZ = 7 - nearZ;
-  let sp = 1;
+  let sp = 0;
   let item = 0;
-  for (;;) {
+  traversal: for (;;) {
     if (item >= 0) {
       const b = item * BVH_NODE_WORDS;
-      let l0 = 0;
-      let l1 = tb[0];
-      let v = (nodes[b + nearX] - ox) * ix;
-      if (v > l0) l0 = v;
-      v = (nodes[b + nearY] - oy) * iy;
-      if (v > l0) l0 = v;
-      v = (nodes[b + nearZ] - oz) * iz;
-      if (v > l0) l0 = v;
-      v = (nodes[b + farX] - ox) * ix;
-      if (v < l1) l1 = v;
-      v = (nodes[b + farY] - oy) * iy;
-      if (v < l1) l1 = v;
-      v = (nodes[b + farZ] - oz) * iz;
-      if (v < l1) l1 = v;
+      const t = r[6];
+      let nx = (nodes[b + nearX] - ox) * ix;
+      let ny = (nodes[b + nearY] - oy) * iy;
+      let nz = (nodes[b + nearZ] - oz) * iz;
+      let fx = (nodes[b + farX] - ox) * ix;
+      let fy = (nodes[b + farY] - oy) * iy;
+      let fz = (nodes[b + farZ] - oz) * iz;
+      const hitL =
+        Number(nx <= fy) &
+        Number(nx <= fz) &
+        Number(ny <= fx) &
+        Number(ny <= fz) &
+        Number(nz <= fx) &
+        Number(nz <= fy) &
+        Number(nx <= t) &
+        Number(ny <= t) &
+        Number(nz <= t) &
+        Number(fx >= 0) &
+        Number(fy >= 0) &
+        Number(fz >= 0);
+      const lx = nx,
+        ly = ny,
+        lz = nz;
       const c = b + N_RIGHT_BOX;
-      let r0 = 0;
-      let r1 = tb[0];
-      v = (nodes[c + nearX] - ox) * ix;
-      if (v > r0) r0 = v;
-      v = (nodes[c + nearY] - oy) * iy;
-      if (v > r0) r0 = v;
-      v = (nodes[c + nearZ] - oz) * iz;
-      if (v > r0) r0 = v;
-      v = (nodes[c + farX] - ox) * ix;
-      if (v < r1) r1 = v;
-      v = (nodes[c + farY] - oy) * iy;
-      if (v < r1) r1 = v;
-      v = (nodes[c + farZ] - oz) * iz;
-      if (v < r1) r1 = v;
-      if (l0 <= l1) {
-        if (r0 <= r1) {
-          // Both: the nearer now, the other later.
-          if (r0 < l0) {
-            stack[sp] = words[b + N_LEFT];
-            stackT[sp++] = l0;
-            item = words[b + N_RIGHT];
-          } else {
-            stack[sp] = words[b + N_RIGHT];
-            stackT[sp++] = r0;
-            item = words[b + N_LEFT];
-          }
-        } else item = words[b + N_LEFT];
+      nx = (nodes[c + nearX] - ox) * ix;
+      ny = (nodes[c + nearY] - oy) * iy;
+      nz = (nodes[c + nearZ] - oz) * iz;
+      fx = (nodes[c + farX] - ox) * ix;
+      fy = (nodes[c + farY] - oy) * iy;
+      fz = (nodes[c + farZ] - oz) * iz;
+      const hitR =
+        Number(nx <= fy) &
+        Number(nx <= fz) &
+        Number(ny <= fx) &
+        Number(ny <= fz) &
+        Number(nz <= fx) &
+        Number(nz <= fy) &
+        Number(nx <= t) &
+        Number(ny <= t) &
+        Number(nz <= t) &
+        Number(fx >= 0) &
+        Number(fy >= 0) &
+        Number(fz >= 0);
+      if ((hitL & hitR) !== 0) {
+        // Both: the nearer first; the other is pushed with its entry
+        // distance, to be skipped if a closer hit is found meanwhile.
+        let eL = lx;
+        if (ly > eL) eL = ly;
+        if (lz > eL) eL = lz;
+        let eR = nx;
+        if (ny > eR) eR = ny;
+        if (nz > eR) eR = nz;
+        if (eR < eL) {
+          stack[sp] = words[b + N_LEFT];
+          stackT[sp++] = eL;
+          item = words[b + N_RIGHT];
+        } else {
+          stack[sp] = words[b + N_RIGHT];
+          stackT[sp++] = eR;
+          item = words[b + N_LEFT];
+        }
         continue;
       }
-      if (r0 <= r1) {
+      if (hitL !== 0) {
+        item = words[b + N_LEFT];
+        continue;
+      }
+      if (hitR !== 0) {
         item = words[b + N_RIGHT];
         continue;
       }
@@ -203,26 +302,20 @@ function intersectBvh(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
         const ref = refs[k];
         const i = ref >> PRIM_KIND_BITS;
         switch (ref & PRIM_KIND_MASK) {
-          case SHAPE_SPHERE: {
-            const t = intersectSphere(spheres, i, ox, oy, oz, dx, dy, dz, tb[0]);
-            if (t < tb[0]) {
-              tb[0] = t;
+          case SHAPE_SPHERE:
+            if (hitSphere(spheres, i, r)) {
               kind = SHAPE_SPHERE;
               index = i;
             }
             break;
-          }
-          case SHAPE_QUAD: {
-            const t = intersectQuad(quads, i, ox, oy, oz, dx, dy, dz, tb[0]);
-            if (t < tb[0]) {
-              tb[0] = t;
+          case SHAPE_QUAD:
+            if (hitQuad(quads, i, r)) {
               kind = SHAPE_QUAD;
               index = i;
             }
             break;
-          }
           case SHAPE_TRIANGLE:
-            if (hitTriangle(triPositions, triIndices, i, tr, tb)) {
+            if (hitTriangle(triPositions, triIndices, i, tr, r)) {
               kind = SHAPE_TRIANGLE;
               index = i;
             }
@@ -230,72 +323,29 @@ function intersectBvh(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
         }
       }
     }
-    // Next: the latest pending item that may still hold a closer hit
-    // (-1 is no item: a leaf's code is at most ~1).
-    item = -1;
-    while (sp > 1) {
+    // The latest pending child that may still hold a closer hit.
+    do {
+      if (sp === 0) break traversal;
       sp--;
-      if (stackT[sp] < tb[0]) {
-        item = stack[sp];
-        break;
-      }
-    }
-    if (item === -1) break;
+    } while (!(stackT[sp] < r[6]));
+    item = stack[sp];
   }
   if (kind < 0) return false;
-  hit.t = tb[0];
   hit.kind = kind;
   hit.index = index;
-  if (kind === SHAPE_TRIANGLE) triangleBarycentrics(scene, hit);
   return true;
 }
 
-/** Whether anything lies on the ray in (0, ray.tMax). */
-export function occluded(scene: CompiledScene, ray: Ray): boolean {
-  return scene.bvh === null ? occludedList(scene, ray) : occludedBvh(scene, ray);
-}
-
-function occludedList(scene: CompiledScene, ray: Ray): boolean {
-  const ox = ray.ox,
-    oy = ray.oy,
-    oz = ray.oz;
-  const dx = ray.dx,
-    dy = ray.dy,
-    dz = ray.dz;
-  const tMax = ray.tMax;
-  const spheres = scene.spheres;
-  for (let i = 0, n = scene.sphereCount; i < n; i++) {
-    if (intersectSphere(spheres, i, ox, oy, oz, dx, dy, dz, tMax) < tMax) return true;
-  }
-  const quads = scene.quads;
-  for (let i = 0, n = scene.quadCount; i < n; i++) {
-    if (intersectQuad(quads, i, ox, oy, oz, dx, dy, dz, tMax) < tMax) return true;
-  }
-  const triCount = scene.triCount;
-  if (triCount > 0) {
-    const tr = scene.triRay;
-    setTriangleRay(ox, oy, oz, dx, dy, dz, tr);
-    const pos = scene.triPositions;
-    const idx = scene.triIndices;
-    const best = scene.stackT;
-    for (let i = 0; i < triCount; i++) {
-      best[0] = tMax;
-      if (hitTriangle(pos, idx, i, tr, best)) return true;
-    }
-  }
-  return false;
-}
-
-/** Any hit through the BVH: children in stored order, the first hit ends the search. */
-function occludedBvh(scene: CompiledScene, ray: Ray): boolean {
+/** Any hit through the BVH: the box test of intersectBvh; the first hit ends the search. */
+function occludedBvh(scene: CompiledScene, r: Float64Array): boolean {
   const bvh = scene.bvh!;
-  const ox = ray.ox,
-    oy = ray.oy,
-    oz = ray.oz;
-  const dx = ray.dx,
-    dy = ray.dy,
-    dz = ray.dz;
-  const tMax = ray.tMax;
+  const ox = r[0],
+    oy = r[1],
+    oz = r[2];
+  const ix = 1 / r[3],
+    iy = 1 / r[4],
+    iz = 1 / r[5];
+  const tMax = r[6];
   const nodes = bvh.nodes;
   const words = bvh.words;
   const refs = bvh.refs;
@@ -304,13 +354,7 @@ function occludedBvh(scene: CompiledScene, ray: Ray): boolean {
   const triPositions = scene.triPositions;
   const triIndices = scene.triIndices;
   const tr = scene.triRay;
-  if (scene.triCount > 0) setTriangleRay(ox, oy, oz, dx, dy, dz, tr);
   const stack = scene.stack;
-  // Scratch for the triangle test's distance (occlusion keeps no nearest hit).
-  const stackT = scene.stackT;
-  const ix = 1 / dx,
-    iy = 1 / dy,
-    iz = 1 / dz;
   const nearX = ix < 0 ? 3 : 0,
     nearY = iy < 0 ? 4 : 1,
     nearZ = iz < 0 ? 5 : 2;
@@ -322,41 +366,51 @@ function occludedBvh(scene: CompiledScene, ray: Ray): boolean {
   for (;;) {
     if (item >= 0) {
       const b = item * BVH_NODE_WORDS;
-      let l0 = 0;
-      let l1 = tMax;
-      let v = (nodes[b + nearX] - ox) * ix;
-      if (v > l0) l0 = v;
-      v = (nodes[b + nearY] - oy) * iy;
-      if (v > l0) l0 = v;
-      v = (nodes[b + nearZ] - oz) * iz;
-      if (v > l0) l0 = v;
-      v = (nodes[b + farX] - ox) * ix;
-      if (v < l1) l1 = v;
-      v = (nodes[b + farY] - oy) * iy;
-      if (v < l1) l1 = v;
-      v = (nodes[b + farZ] - oz) * iz;
-      if (v < l1) l1 = v;
+      let nx = (nodes[b + nearX] - ox) * ix;
+      let ny = (nodes[b + nearY] - oy) * iy;
+      let nz = (nodes[b + nearZ] - oz) * iz;
+      let fx = (nodes[b + farX] - ox) * ix;
+      let fy = (nodes[b + farY] - oy) * iy;
+      let fz = (nodes[b + farZ] - oz) * iz;
+      const hitL =
+        Number(nx <= fy) &
+        Number(nx <= fz) &
+        Number(ny <= fx) &
+        Number(ny <= fz) &
+        Number(nz <= fx) &
+        Number(nz <= fy) &
+        Number(nx <= tMax) &
+        Number(ny <= tMax) &
+        Number(nz <= tMax) &
+        Number(fx >= 0) &
+        Number(fy >= 0) &
+        Number(fz >= 0);
       const c = b + N_RIGHT_BOX;
-      let r0 = 0;
-      let r1 = tMax;
-      v = (nodes[c + nearX] - ox) * ix;
-      if (v > r0) r0 = v;
-      v = (nodes[c + nearY] - oy) * iy;
-      if (v > r0) r0 = v;
-      v = (nodes[c + nearZ] - oz) * iz;
-      if (v > r0) r0 = v;
-      v = (nodes[c + farX] - ox) * ix;
-      if (v < r1) r1 = v;
-      v = (nodes[c + farY] - oy) * iy;
-      if (v < r1) r1 = v;
-      v = (nodes[c + farZ] - oz) * iz;
-      if (v < r1) r1 = v;
-      if (l0 <= l1) {
-        if (r0 <= r1) stack[sp++] = words[b + N_RIGHT];
+      nx = (nodes[c + nearX] - ox) * ix;
+      ny = (nodes[c + nearY] - oy) * iy;
+      nz = (nodes[c + nearZ] - oz) * iz;
+      fx = (nodes[c + farX] - ox) * ix;
+      fy = (nodes[c + farY] - oy) * iy;
+      fz = (nodes[c + farZ] - oz) * iz;
+      const hitR =
+        Number(nx <= fy) &
+        Number(nx <= fz) &
+        Number(ny <= fx) &
+        Number(ny <= fz) &
+        Number(nz <= fx) &
+        Number(nz <= fy) &
+        Number(nx <= tMax) &
+        Number(ny <= tMax) &
+        Number(nz <= tMax) &
+        Number(fx >= 0) &
+        Number(fy >= 0) &
+        Number(fz >= 0);
+      if (hitL !== 0) {
+        if (hitR !== 0) stack[sp++] = words[b + N_RIGHT];
         item = words[b + N_LEFT];
         continue;
       }
-      if (r0 <= r1) {
+      if (hitR !== 0) {
         item = words[b + N_RIGHT];
         continue;
       }
@@ -368,14 +422,13 @@ function occludedBvh(scene: CompiledScene, ray: Ray): boolean {
         const i = ref >> PRIM_KIND_BITS;
         switch (ref & PRIM_KIND_MASK) {
           case SHAPE_SPHERE:
-            if (intersectSphere(spheres, i, ox, oy, oz, dx, dy, dz, tMax) < tMax) return true;
+            if (hitSphere(spheres, i, r)) return true;
             break;
           case SHAPE_QUAD:
-            if (intersectQuad(quads, i, ox, oy, oz, dx, dy, dz, tMax) < tMax) return true;
+            if (hitQuad(quads, i, r)) return true;
             break;
           case SHAPE_TRIANGLE:
-            stackT[0] = tMax;
-            if (hitTriangle(triPositions, triIndices, i, tr, stackT)) return true;
+            if (hitTriangle(triPositions, triIndices, i, tr, r)) return true;
             break;
         }
       }

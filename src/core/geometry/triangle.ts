@@ -79,41 +79,43 @@ export class TriangleHit {
   b2 = 0;
 }
 
+/** Index of the far bound in the scene's ray record (geometry/trace.ts R_T). */
+const R_T = 6;
+
 /**
- * Whether the ray hits triangle `tri` closer than best[0], the nearest distance so far
- * (Infinity, or tMax); if so, writes the distance to best[0]. `positions` holds x, y, z
+ * Whether the ray hits triangle `tri` closer than r[R_T], the far bound of the scene's
+ * ray record (tMax, or the nearest hit so far); if so, moves r[R_T] to the hit. `positions` holds x, y, z
  * per vertex and `indices` three vertex indices per triangle. The ray enters only
  * through `r` (setTriangleRay); its direction need not be unit length.
  *
- * The distance travels through a Float64Array rather than as a number argument and
- * result: where V8 does not inline a call (the traversal loops hold three
- * intersectors), a double passed or returned is boxed on the heap, one allocation per
- * triangle test.
+ * The distance travels through the ray record rather than as a number argument and
+ * result: where V8 does not inline a call (this test is too long for V8's inlining
+ * budget), a double passed or returned is boxed on the heap, one allocation per test.
  */
 export function hitTriangle(
   positions: Float64Array,
-  indices: Uint32Array,
+  indices: Uint32Array | Int32Array,
   tri: number,
-  r: TriangleRay,
-  best: Float64Array,
+  tr: TriangleRay,
+  record: Float64Array,
 ): boolean {
   // The common case, kept small so that V8 inlines it into the traversal loops: every
   // edge function clearly non-zero. Anything closer to an edge takes the careful path
   // (exact signs, the tie rule), which gives the same answer wherever both apply.
-  const kx = r.kx,
-    ky = r.ky,
-    kz = r.kz;
+  const kx = tr.kx,
+    ky = tr.ky,
+    kz = tr.kz;
   const ia = indices[3 * tri] * 3,
     ib = indices[3 * tri + 1] * 3,
     ic = indices[3 * tri + 2] * 3;
-  const o0 = r.o0,
-    o1 = r.o1,
-    o2 = r.o2;
+  const o0 = tr.o0,
+    o1 = tr.o1,
+    o2 = tr.o2;
   const az = positions[ia + kz] - o2,
     bz = positions[ib + kz] - o2,
     cz = positions[ic + kz] - o2;
-  const sx = r.sx,
-    sy = r.sy;
+  const sx = tr.sx,
+    sy = tr.sy;
   const ax = positions[ia + kx] - o0 - sx * az,
     ay = positions[ia + ky] - o1 - sy * az;
   const bx = positions[ib + kx] - o0 - sx * bz,
@@ -134,22 +136,22 @@ export function hitTriangle(
     w2 = by * ax;
   const w = w1 - w2;
   const ew = DIFF_OF_PRODUCTS_ERROR * (Math.abs(w1) + Math.abs(w2));
-  const tMax = best[0];
+  const tMax = record[R_T];
   if (!(Math.abs(u) > eu && Math.abs(v) > ev && Math.abs(w) > ew)) {
-    const t = intersectTriangleBary(positions, indices, tri, r, tMax, null);
+    const t = intersectTriangleBary(positions, indices, tri, tr, tMax, null);
     if (!(t < tMax)) return false;
-    best[0] = t;
+    record[R_T] = t;
     return true;
   }
   if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return false;
   const det = u + v + w;
-  const tScaled = r.sz * (u * az + v * bz + w * cz);
+  const tScaled = tr.sz * (u * az + v * bz + w * cz);
   if (det > 0 ? tScaled <= 0 || tScaled >= tMax * det : tScaled >= 0 || tScaled <= tMax * det) {
     return false;
   }
   const t = tScaled / det;
   if (!(t > 0 && t < tMax)) return false;
-  best[0] = t;
+  record[R_T] = t;
   return true;
 }
 
@@ -160,7 +162,7 @@ export function hitTriangle(
  */
 export function intersectTriangleBary(
   positions: Float64Array,
-  indices: Uint32Array,
+  indices: Uint32Array | Int32Array,
   tri: number,
   r: TriangleRay,
   tMax: number,

@@ -27,14 +27,7 @@ import { BsdfQuery, BsdfSample, BsdfValue } from '../bsdf/records.ts';
 import { Camera } from '../camera/camera.ts';
 import type { Film } from '../film/film.ts';
 import { Hit, LIGHT_ENVIRONMENT, Ray, SHAPE_SPHERE, SHAPE_TRIANGLE } from '../geometry/ray.ts';
-import {
-  OFFSET_SCALE,
-  QUAD_STRIDE,
-  Q_NORMAL,
-  Q_PLANE,
-  quadScale,
-  SPHERE_STRIDE,
-} from '../geometry/shapes.ts';
+import { OFFSET_SCALE, QUAD_STRIDE, Q_NORMAL, Q_PLANE, SPHERE_STRIDE } from '../geometry/shapes.ts';
 import { intersectScene, occluded } from '../geometry/trace.ts';
 import { EnvironmentSample } from '../lights/environment-map.ts';
 import { LightSample, environmentLightPdf, lightPdf, sampleLight } from '../lights/lights.ts';
@@ -171,11 +164,11 @@ export class PathTracer {
     const maxBounces = this.maxBounces;
 
     const u = this.u;
-    sampler.startPixelSample(py * this.width + px, sampleIndex);
+    sampler.startPixelSample(py * this.width + px, sampleIndex, this.camera.aperture > 0);
     // Film and lens dimensions are adjacent: one fill draws both pairs.
     sampler.fill(DIM_FILM, DIM_LENS + 2 - DIM_FILM, u);
     const lens = DIM_LENS - DIM_FILM;
-    this.camera.generateRay(px + u[0], py + u[1], u[lens], u[lens + 1], ray);
+    this.camera.generateRayFromSamples(px, py, u, lens, ray);
     let segments = 1;
     let lr = 0,
       lg = 0,
@@ -246,7 +239,7 @@ export class PathTracer {
         z = cz + r * nz;
         m = scene.sphereMaterial[index];
         light = scene.sphereLight[index];
-        shapeScale = Math.max(Math.abs(cx), Math.abs(cy), Math.abs(cz)) + r;
+        shapeScale = scene.sphereScale[index];
       } else if (hit.kind === SHAPE_TRIANGLE) {
         const ts = this.ts;
         completeTriangleHit(scene, hit, ts);
@@ -274,7 +267,7 @@ export class PathTracer {
         z -= off * nz;
         m = scene.quadMaterial[index];
         light = scene.quadLight[index];
-        shapeScale = quadScale(quads, index);
+        shapeScale = scene.quadScale[index];
       }
       if (hit.kind !== SHAPE_TRIANGLE) {
         snx = nx;
@@ -312,13 +305,21 @@ export class PathTracer {
         sy = -ny;
         sz = -nz;
       }
-      frame.setFromNormal(sx, sy, sz);
+      frame.nx = sx;
+      frame.ny = sy;
+      frame.nz = sz;
+      frame.setFromN();
       const bq = this.bq;
       bq.wox = wox * frame.sx + woy * frame.sy + woz * frame.sz;
       bq.woy = wox * frame.tx + woy * frame.ty + woz * frame.tz;
       bq.woz = wox * sx + woy * sy + woz * sz;
       const scale = Math.max(Math.abs(x), Math.abs(y), Math.abs(z), shapeScale) * OFFSET_SCALE;
-      sampler.fill(DIM_BOUNCE + depth * DIM_PER_BOUNCE, DIM_PER_BOUNCE, u);
+      // The roulette number only from the bounce where roulette starts.
+      sampler.fill(
+        DIM_BOUNCE + depth * DIM_PER_BOUNCE,
+        depth + 1 >= ROULETTE_DEPTH ? DIM_ROULETTE + 1 : DIM_ROULETTE,
+        u,
+      );
 
       // Next-event estimation.
       if (nee && materials[mo + M_DELTA] === 0) {

@@ -341,7 +341,12 @@ function finishAreaSample(
   out.px = px + lift * nx;
   out.py = py + lift * ny;
   out.pz = pz + lift * nz;
-  out.pdf = (choose * d2) / (area * cosLight);
+  const pdf = (choose * d2) / (area * cosLight);
+  // A light of tiny area (a quad of area 1e-320, say: valid, but area·cos underflows) has
+  // a pdf that overflows; its sample's contribution, proportional to 1/pdf, is 0. Without
+  // this, Inf/Inf turns it into a NaN sample (then rejected by the film, but lost).
+  if (!(pdf < Infinity)) return false;
+  out.pdf = pdf;
   return true;
 }
 

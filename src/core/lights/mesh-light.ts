@@ -29,14 +29,19 @@ export class MeshLightSample {
 
 export class MeshLight {
   readonly positions: Float64Array;
-  readonly indices: Uint32Array;
+  readonly indices: Uint32Array | Int32Array;
   /** The mesh's triangles are first … first + count − 1 of `indices`. */
   readonly first: number;
   readonly count: number;
   readonly area: number;
   readonly distribution: Distribution1D;
 
-  constructor(positions: Float64Array, indices: Uint32Array, first: number, count: number) {
+  constructor(
+    positions: Float64Array,
+    indices: Uint32Array | Int32Array,
+    first: number,
+    count: number,
+  ) {
     this.positions = positions;
     this.indices = indices;
     this.first = first;
@@ -89,7 +94,11 @@ const BARY: Vec2Out = { x: 0, y: 0 };
  * Area of triangle t. The edges are scaled to a largest component of 1 before the cross
  * product, so a tiny triangle's area does not underflow to 0 on the way.
  */
-export function triangleArea(p: Float64Array, indices: Uint32Array, t: number): number {
+export function triangleArea(
+  p: Float64Array,
+  indices: Uint32Array | Int32Array,
+  t: number,
+): number {
   const a = indices[3 * t] * 3,
     b = indices[3 * t + 1] * 3,
     c = indices[3 * t + 2] * 3;

@@ -17,6 +17,21 @@ export class Frame {
 
   /** Sets the frame around the unit vector (x, y, z). */
   setFromNormal(x: number, y: number, z: number): void {
+    this.nx = x;
+    this.ny = y;
+    this.nz = z;
+    this.setFromN();
+  }
+
+  /**
+   * Sets s and t around the unit normal already in (nx, ny, nz). Hot code
+   * writes the normal and calls this: a call V8 does not inline would box
+   * three double arguments on the heap.
+   */
+  setFromN(): void {
+    const x = this.nx,
+      y = this.ny,
+      z = this.nz;
     const sign = z >= 0 ? 1 : -1;
     const a = -1 / (sign + z);
     const b = x * y * a;
@@ -26,8 +41,5 @@ export class Frame {
     this.tx = b;
     this.ty = sign + y * y * a;
     this.tz = -y;
-    this.nx = x;
-    this.ny = y;
-    this.nz = z;
   }
 }

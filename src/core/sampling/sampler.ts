@@ -11,8 +11,14 @@
  *   per bounce b, from DIM_BOUNCE + b·DIM_PER_BOUNCE: light choice, light
  *   point (2), BSDF direction (2), BSDF lobe, Russian roulette.
  */
-import { INV_2_32, hashToUnit, pcgHash, sampleKey } from '../rng/pcg.ts';
-import { SOBOL_DIMENSIONS, pixelKey, sobolFill } from './sobol.ts';
+import { INV_2_32, hashToUnit, sampleKeyBits } from '../rng/pcg.ts';
+import {
+  SOBOL_DIMENSIONS,
+  SOBOL_GROUP_OF,
+  SOBOL_NO_LENS,
+  pixelKeyBits,
+  sobolFill,
+} from './sobol.ts';
 
 export const DIM_FILM = 0;
 export const DIM_LENS = 2;
@@ -54,12 +60,22 @@ export class Sampler {
     this.lowDiscrepancy = kind === 'sobol';
   }
 
-  startPixelSample(pixelIndex: number, sampleIndex: number): void {
-    this.key = sampleKey(this.seed, pixelIndex, sampleIndex);
-    // Computing all leading dimensions here keeps get1D a bounds check and
-    // a load: it runs ~20 times per path, this once.
+  /**
+   * Starts sample `sampleIndex` of pixel `pixelIndex`. `lens` false skips
+   * the lens dimensions (a pinhole camera never reads them); every other
+   * number is the same either way.
+   */
+  startPixelSample(pixelIndex: number, sampleIndex: number, lens = true): void {
+    this.key = sampleKeyBits(this.seed, pixelIndex, sampleIndex);
+    // The low-discrepancy groups are computed here, once per path: fill()
+    // then reads them, and hashes the dimensions no group covers.
     if (this.lowDiscrepancy) {
-      sobolFill(pixelKey(this.seed, pixelIndex), sampleIndex, this.key, this.ld);
+      sobolFill(
+        pixelKeyBits(this.seed, pixelIndex),
+        sampleIndex,
+        this.ld,
+        lens ? 0 : SOBOL_NO_LENS,
+      );
     }
   }
 
@@ -73,19 +89,22 @@ export class Sampler {
     const key = this.key;
     for (let k = 0; k < count; k++) {
       const d = dimension + k;
-      if (this.lowDiscrepancy && d < SOBOL_DIMENSIONS) {
+      if (this.lowDiscrepancy && d < SOBOL_DIMENSIONS && SOBOL_GROUP_OF[d] >= 0) {
         out[k] = this.ld[d];
       } else {
-        // hashToUnit, inlined by hand.
-        out[k] = pcgHash((key + Math.imul(d, 0x9e3779b9)) >>> 0) * INV_2_32;
+        // hashToUnit with the PCG hash inlined by hand, in int32 arithmetic.
+        const input = (key + Math.imul(d, 0x9e3779b9)) | 0;
+        const state = (Math.imul(input, 747796405) + 2891336453) | 0;
+        const word = Math.imul((state >>> ((state >>> 28) + 4)) ^ state, 277803737);
+        out[k] = (((word >>> 22) ^ word) >>> 0) * INV_2_32;
       }
     }
   }
 
   get1D(dimension: number): number {
-    if (this.lowDiscrepancy && dimension < SOBOL_DIMENSIONS) {
+    if (this.lowDiscrepancy && dimension < SOBOL_DIMENSIONS && SOBOL_GROUP_OF[dimension] >= 0) {
       return this.ld[dimension];
     }
-    return hashToUnit(this.key, dimension);
+    return hashToUnit(this.key >>> 0, dimension);
   }
 }

@@ -23,7 +23,7 @@
  * the PCG hash sampler, so the image does not depend on thread count or
  * stripe layout.
  */
-import { INV_2_32, hashToUnit, pcgHash, sampleKey } from '../rng/pcg.ts';
+import { INV_2_32, hashToUnit, pcgHashBits, sampleKey } from '../rng/pcg.ts';
 
 /**
  * Dimensions [0, SOBOL_DIMENSIONS) come from this module: the camera (film
@@ -125,7 +125,12 @@ export function sobol1(i: number): number {
 
 /** Key of one (seed, pixel) pair; the group keys derive from it. */
 export function pixelKey(seed: number, pixel: number): number {
-  return pcgHash((seed + pcgHash(pixel >>> 0)) >>> 0);
+  return pixelKeyBits(seed, pixel) >>> 0;
+}
+
+/** pixelKey as a signed 32-bit integer (see pcgHashBits). */
+export function pixelKeyBits(seed: number, pixel: number): number {
+  return pcgHashBits((seed + pcgHashBits(pixel | 0)) | 0);
 }
 
 /** SOBOL_GROUPS as flat typed arrays for the fill loop. */
@@ -133,10 +138,19 @@ const GROUP_FIRST = Int32Array.from(SOBOL_GROUPS, (g) => g[0]);
 const GROUP_SIZE = Int32Array.from(SOBOL_GROUPS, (g) => g[1]);
 const GROUP_COUNT = SOBOL_GROUPS.length;
 
+/** Per dimension < SOBOL_DIMENSIONS: its group, or −1 for a hashed one. */
+export const SOBOL_GROUP_OF = new Int8Array(SOBOL_DIMENSIONS).fill(-1);
+SOBOL_GROUPS.forEach(([first, size], g) => SOBOL_GROUP_OF.fill(g, first, first + size));
+
+/** sobolFill's `skip` mask for the lens group (dimensions 2–3). */
+export const SOBOL_NO_LENS = 1 << SOBOL_GROUP_OF[2];
+
 /**
- * Fills out[0 .. SOBOL_DIMENSIONS) with the low-discrepancy numbers of one
- * (pixel, sample); `key` is pixelKey(seed, pixel), and `sampleKeyValue` is
- * the PCG sample key, used for the dimensions no group covers.
+ * Fills the dimensions of every group of out[0 .. SOBOL_DIMENSIONS) with the
+ * low-discrepancy numbers of one (pixel, sample), but the groups whose bit
+ * is set in `skip`; `key` is pixelKey(seed, pixel) (either form: only its
+ * bits count). Dimensions in no group are left alone: the sampler hashes
+ * them, as sobolSample does.
  *
  * For group g with key gk = pcgHash(key + g·φ):
  *   index = owenScramble(sample, gk)                      (the shuffle)
@@ -150,12 +164,7 @@ const GROUP_COUNT = SOBOL_GROUPS.length;
  * helper calls (not inlined by V8 at this size) costing as much as the
  * arithmetic.
  */
-export function sobolFill(
-  key: number,
-  sample: number,
-  sampleKeyValue: number,
-  out: Float64Array,
-): void {
+export function sobolFill(key: number, sample: number, out: Float64Array, skip = 0): void {
   const t = SOBOL1_REV_TABLE;
   let rs = sample >>> 0;
   rs = ((rs >>> 1) & 0x55555555) | ((rs & 0x55555555) << 1);
@@ -164,6 +173,7 @@ export function sobolFill(
   rs = ((rs >>> 8) & 0x00ff00ff) | ((rs & 0x00ff00ff) << 8);
   rs = (rs >>> 16) | (rs << 16);
   for (let g = 0; g < GROUP_COUNT; g++) {
+    if ((skip >> g) & 1) continue;
     // gk = pcgHash(key + (g + 1)·φ); the odd multiplier spreads small g.
     let h = (key + Math.imul(g + 1, 0x9e3779b9)) | 0;
     h = (Math.imul(h, 747796405) + 2891336453) | 0;
@@ -182,28 +192,25 @@ export function sobolFill(
     x = ((x >>> 8) & 0x00ff00ff) | ((x & 0x00ff00ff) << 8);
     const index = ((x >>> 16) | (x << 16)) >>> 0;
     const first = GROUP_FIRST[g];
-    out[first] = scrambledValue(index, gk ^ 0x68e31da4);
+    scrambleInto(index, gk ^ 0x68e31da4, out, first);
     if (GROUP_SIZE[g] === 2) {
       const v1 =
         t[index & 255] ^
         t[256 + ((index >>> 8) & 255)] ^
         t[512 + ((index >>> 16) & 255)] ^
         t[768 + (index >>> 24)];
-      out[first + 1] = scrambledValue(v1, gk ^ 0xb5297a4d);
+      scrambleInto(v1, gk ^ 0xb5297a4d, out, first + 1);
     }
   }
-  // The leading dimensions in no group.
-  out[4] = hashToUnit(sampleKeyValue, 4);
-  out[9] = hashToUnit(sampleKeyValue, 9);
-  out[10] = hashToUnit(sampleKeyValue, 10);
-  out[11] = hashToUnit(sampleKeyValue, 11);
 }
 
 /**
- * rev(LK_k(y)) · 2^-32 with k = pcgHash(seedInput): the Owen-scrambled
- * coordinate whose bit-reversed digits are y, as a number in [0, 1).
+ * out[at] = rev(LK_k(y)) · 2^-32 with k = pcgHash(seedInput): the
+ * Owen-scrambled coordinate whose bit-reversed digits are y, in [0, 1).
+ * Written to the array rather than returned: a returned double is boxed
+ * when the call is not inlined.
  */
-function scrambledValue(y: number, seedInput: number): number {
+function scrambleInto(y: number, seedInput: number, out: Float64Array, at: number): void {
   let h = (Math.imul(seedInput, 747796405) + 2891336453) | 0;
   h = Math.imul((h >>> ((h >>> 28) + 4)) ^ h, 277803737);
   const k = (h >>> 22) ^ h;
@@ -216,7 +223,7 @@ function scrambledValue(y: number, seedInput: number): number {
   y = ((y >>> 2) & 0x33333333) | ((y & 0x33333333) << 2);
   y = ((y >>> 4) & 0x0f0f0f0f) | ((y & 0x0f0f0f0f) << 4);
   y = ((y >>> 8) & 0x00ff00ff) | ((y & 0x00ff00ff) << 8);
-  return (((y >>> 16) | (y << 16)) >>> 0) * INV_2_32;
+  out[at] = (((y >>> 16) | (y << 16)) >>> 0) * INV_2_32;
 }
 
 /**
@@ -233,9 +240,10 @@ export function sobolSample(
   if (dimension < 0 || dimension >= SOBOL_DIMENSIONS || !Number.isInteger(dimension)) {
     throw new RangeError(`sobol dimension ${dimension} outside [0, ${SOBOL_DIMENSIONS})`);
   }
-  const out = new Float64Array(SOBOL_DIMENSIONS);
   const seedU = seed >>> 0;
-  // The fallback dimension uses the same sample key as the hash sampler.
-  sobolFill(pixelKey(seedU, pixel), sample, sampleKey(seedU, pixel, sample), out);
+  // Dimensions in no group use the same sample key as the hash sampler.
+  if (SOBOL_GROUP_OF[dimension] < 0) return hashToUnit(sampleKey(seedU, pixel, sample), dimension);
+  const out = new Float64Array(SOBOL_DIMENSIONS);
+  sobolFill(pixelKey(seedU, pixel), sample, out);
   return out[dimension];
 }

@@ -5,70 +5,109 @@
  * A scene with a single mesh uses that mesh's arrays as they are (no copy), which keeps
  * a million-triangle mesh at 24 bytes per vertex and 12 per triangle.
  *
+ * The arrays are part of the compiled scene's SceneData (compile.ts), so they travel to
+ * the workers in the packed scene (pack.ts) like every other kind's.
+ *
  * No per-triangle record of the mesh it belongs to is kept: `meshOf` finds it by binary
  * search over the meshes' first triangles, once per hit, which costs nothing next to
  * the 4 bytes per triangle a table would take.
  */
 import type { MeshDesc } from './types.ts';
 
+/** The mesh arrays of SceneData. */
+export interface MeshArrays {
+  triPositions: Float64Array;
+  /** Three vertex indices per triangle (below 2^31; a view of the mesh's Uint32Array). */
+  triIndices: Int32Array;
+  /** Unit shading normals per vertex, (0, 0, 0) where none; empty when no mesh has any. */
+  triNormals: Float32Array;
+  /** First triangle of each mesh, and the total at the end (meshes + 1 entries). */
+  meshFirstTriangle: Int32Array;
+  meshMaterial: Int32Array;
+  /** 1 where the mesh has shading normals. */
+  meshHasNormals: Int32Array;
+  /** Largest coordinate magnitude of each mesh (for OFFSET_SCALE, geometry/shapes.ts). */
+  meshScale: Float64Array;
+}
+
+export function compileMeshArrays(
+  meshes: MeshDesc[],
+  materialIndex: (name: string) => number,
+): MeshArrays {
+  const used = meshes.filter((m) => m.data!.indices.length > 0);
+  const meshFirstTriangle = new Int32Array(used.length + 1);
+  let vertices = 0;
+  let triangles = 0;
+  used.forEach((m, k) => {
+    meshFirstTriangle[k] = triangles;
+    vertices += m.data!.positions.length / 3;
+    triangles += m.data!.indices.length / 3;
+  });
+  meshFirstTriangle[used.length] = triangles;
+  const meshHasNormals = Int32Array.from(used, (m) => (m.data!.normals === null ? 0 : 1));
+  const anyNormals = meshHasNormals.some((h) => h === 1);
+  let triPositions: Float64Array;
+  let triIndices: Int32Array;
+  let triNormals: Float32Array;
+  if (used.length === 1) {
+    const d = used[0].data!;
+    triPositions = d.positions;
+    triIndices = new Int32Array(d.indices.buffer, d.indices.byteOffset, d.indices.length);
+    triNormals = d.normals ?? new Float32Array(0);
+  } else {
+    triPositions = new Float64Array(vertices * 3);
+    triIndices = new Int32Array(triangles * 3);
+    triNormals = new Float32Array(anyNormals ? vertices * 3 : 0);
+    let v = 0;
+    used.forEach((m, k) => {
+      const d = m.data!;
+      triPositions.set(d.positions, v * 3);
+      if (d.normals !== null) triNormals.set(d.normals, v * 3);
+      const base = meshFirstTriangle[k] * 3;
+      for (let i = 0; i < d.indices.length; i++) triIndices[base + i] = d.indices[i] + v;
+      v += d.positions.length / 3;
+    });
+  }
+  const meshScale = Float64Array.from(used, (m) => {
+    const p = m.data!.positions;
+    let s = 0;
+    for (let i = 0; i < p.length; i++) s = Math.max(s, Math.abs(p[i]));
+    return s;
+  });
+  return {
+    triPositions,
+    triIndices,
+    triNormals,
+    meshFirstTriangle,
+    meshMaterial: Int32Array.from(used, (m) => materialIndex(m.material)),
+    meshHasNormals,
+    meshScale,
+  };
+}
+
 export class CompiledMeshes {
   /** Number of meshes (with at least one triangle). */
   readonly count: number;
   readonly triangleCount: number;
   readonly positions: Float64Array;
-  readonly indices: Uint32Array;
-  /** Unit shading normals per vertex, (0, 0, 0) where none; null when no mesh has any. */
+  readonly indices: Int32Array;
+  /** Shading normals, or null when no mesh has any. */
   readonly normals: Float32Array | null;
-  /** First triangle of each mesh, and the total at the end (count + 1 entries). */
   readonly firstTriangle: Int32Array;
   readonly material: Int32Array;
-  /** Whether each mesh has shading normals. */
-  readonly hasNormals: Uint8Array;
-  /** Largest coordinate magnitude of each mesh, for ray offsets (geometry/shapes.ts OFFSET_SCALE). */
+  readonly hasNormals: Int32Array;
   readonly scale: Float64Array;
 
-  constructor(meshes: MeshDesc[], materialIndex: (name: string) => number) {
-    const used = meshes.filter((m) => m.data!.indices.length > 0);
-    this.count = used.length;
-    this.firstTriangle = new Int32Array(used.length + 1);
-    this.material = Int32Array.from(used, (m) => materialIndex(m.material));
-    this.hasNormals = Uint8Array.from(used, (m) => (m.data!.normals === null ? 0 : 1));
-    this.scale = new Float64Array(used.length);
-    let vertices = 0;
-    let triangles = 0;
-    used.forEach((m, k) => {
-      this.firstTriangle[k] = triangles;
-      vertices += m.data!.positions.length / 3;
-      triangles += m.data!.indices.length / 3;
-    });
-    this.firstTriangle[used.length] = triangles;
-    this.triangleCount = triangles;
-    const anyNormals = this.hasNormals.some((h) => h === 1);
-    if (used.length === 1) {
-      const d = used[0].data!;
-      this.positions = d.positions;
-      this.indices = d.indices;
-      this.normals = d.normals;
-    } else {
-      this.positions = new Float64Array(vertices * 3);
-      this.indices = new Uint32Array(triangles * 3);
-      this.normals = anyNormals ? new Float32Array(vertices * 3) : null;
-      let v = 0;
-      used.forEach((m, k) => {
-        const d = m.data!;
-        this.positions.set(d.positions, v * 3);
-        if (d.normals !== null) this.normals!.set(d.normals, v * 3);
-        const base = this.firstTriangle[k] * 3;
-        for (let i = 0; i < d.indices.length; i++) this.indices[base + i] = d.indices[i] + v;
-        v += d.positions.length / 3;
-      });
-    }
-    used.forEach((m, k) => {
-      const p = m.data!.positions;
-      let s = 0;
-      for (let i = 0; i < p.length; i++) s = Math.max(s, Math.abs(p[i]));
-      this.scale[k] = s;
-    });
+  constructor(a: MeshArrays) {
+    this.count = a.meshMaterial.length;
+    this.triangleCount = a.triIndices.length / 3;
+    this.positions = a.triPositions;
+    this.indices = a.triIndices;
+    this.normals = a.triNormals.length > 0 ? a.triNormals : null;
+    this.firstTriangle = a.meshFirstTriangle;
+    this.material = a.meshMaterial;
+    this.hasNormals = a.meshHasNormals;
+    this.scale = a.meshScale;
   }
 
   /** The mesh that triangle t belongs to. */

@@ -4,25 +4,26 @@
  * light list without emitters, no BVH below the measured crossover (see
  * BVH_THRESHOLD), so the hot loops never pay for kinds that are absent.
  */
-import { buildBvh, type Bvh } from '../accel/bvh.ts';
+import { BVH_NODE_WORDS, Bvh, buildBvh } from '../accel/bvh.ts';
 import { PrimitiveBoxes, quadBoxes, sphereBoxes, triangleBoxes } from '../accel/primitives.ts';
 import { compileMaterials, MATERIAL_STRIDE, M_EMISSION, M_EMISSIVE } from '../bsdf/materials.ts';
 import { LIGHT_ENVIRONMENT, SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE } from '../geometry/ray.ts';
+import { RAY_RECORD_WORDS } from '../geometry/trace.ts';
 import { TriangleHit, TriangleRay } from '../geometry/triangle.ts';
 import {
   compileQuads,
   compileSpheres,
   QUAD_STRIDE,
   Q_AREA,
-  quadScale,
+  quadScale as quadScaleOf,
   SPHERE_STRIDE,
-  sphereScale,
+  sphereScale as sphereScaleOf,
 } from '../geometry/shapes.ts';
 import { EnvironmentMap } from '../lights/environment-map.ts';
 import { LightList } from '../lights/lights.ts';
 import { MeshLight } from '../lights/mesh-light.ts';
 import { sceneRadius } from './bounds.ts';
-import { CompiledMeshes } from './compile-meshes.ts';
+import { CompiledMeshes, compileMeshArrays, type MeshArrays } from './compile-meshes.ts';
 import type { MeshDesc, QuadDesc, Scene, SphereDesc } from './types.ts';
 
 /**
@@ -39,7 +40,88 @@ export interface CompileOptions {
   bvh?: boolean;
 }
 
+/**
+ * Everything the tracer reads of a scene: typed arrays and a few numbers,
+ * nothing else, so that it can be packed into one buffer and shared with
+ * every worker (pack.ts) instead of being parsed and compiled again there.
+ * A new primitive kind adds its arrays here and in SCENE_ARRAYS.
+ */
+export interface SceneData extends MeshArrays {
+  materials: Float64Array;
+  spheres: Float64Array;
+  sphereMaterial: Int32Array;
+  /** Light index of each sphere, −1 when it does not emit. */
+  sphereLight: Int32Array;
+  /**
+   * Per shape, the magnitude its hit points' rounding error scales with
+   * (largest |coordinate| of the centre plus the radius; of a quad, of the
+   * corner plus those of its two edges): the integrator's ray offsets read
+   * it rather than recomputing it at every hit.
+   */
+  sphereScale: Float64Array;
+  quads: Float64Array;
+  quadMaterial: Int32Array;
+  quadLight: Int32Array;
+  quadScale: Float64Array;
+  /** Light index of each mesh, −1 when it does not emit (the mesh arrays: compile-meshes.ts). */
+  meshLight: Int32Array;
+  /**
+   * Emitters: kind (SHAPE_* or LIGHT_ENVIRONMENT), shape index, selection weight, offset
+   * scale and material (−1 for the environment map) (LightList).
+   */
+  lightKind: Int32Array;
+  lightShape: Int32Array;
+  lightPower: Float64Array;
+  lightScale: Float64Array;
+  lightMaterial: Int32Array;
+  /** Constant environment radiance, RGB. */
+  environment: Float64Array;
+  /**
+   * The environment map: its texels (RGB, row 0 at the top, without the scale) and
+   * [width, height, scale r, g, b, rotationY]; both empty without a map.
+   */
+  envTexels: Float32Array;
+  envParams: Float64Array;
+  /** The BVH's nodes (as 32-bit words) and references; empty without a BVH. */
+  bvhNodes: Int32Array;
+  bvhRefs: Int32Array;
+  bvhDepth: number;
+}
+
+/** The typed arrays of SceneData, in packing order (pack.ts). */
+export const SCENE_ARRAYS = [
+  'materials',
+  'spheres',
+  'sphereMaterial',
+  'sphereLight',
+  'sphereScale',
+  'quads',
+  'quadMaterial',
+  'quadLight',
+  'quadScale',
+  'lightKind',
+  'lightShape',
+  'lightPower',
+  'lightScale',
+  'lightMaterial',
+  'environment',
+  'envTexels',
+  'envParams',
+  'triPositions',
+  'triIndices',
+  'triNormals',
+  'meshFirstTriangle',
+  'meshMaterial',
+  'meshHasNormals',
+  'meshScale',
+  'meshLight',
+  'bvhNodes',
+  'bvhRefs',
+] as const satisfies readonly (keyof SceneData)[];
+
 export class CompiledScene {
+  /** The arrays this scene was made from (what pack.ts ships). */
+  readonly data: SceneData;
   readonly materials: Float64Array;
   readonly sphereCount: number;
   readonly spheres: Float64Array;
@@ -50,11 +132,14 @@ export class CompiledScene {
   readonly quads: Float64Array;
   readonly quadMaterial: Int32Array;
   readonly quadLight: Int32Array;
+  /** See SceneData.sphereScale. */
+  readonly sphereScale: Float64Array;
+  readonly quadScale: Float64Array;
   /** The triangles of all meshes (compile-meshes.ts), or null without meshes. */
   readonly meshes: CompiledMeshes | null;
   readonly triCount: number;
   readonly triPositions: Float64Array;
-  readonly triIndices: Uint32Array;
+  readonly triIndices: Int32Array;
   /** Light index of each mesh, −1 when it does not emit. */
   readonly meshLight: Int32Array;
   /** Per-ray constants of the triangle test and the barycentrics of the kept hit (trace.ts). */
@@ -69,150 +154,225 @@ export class CompiledScene {
   readonly hasEnvironment: boolean;
   readonly bvh: Bvh | null;
   /**
-   * Traversal stacks (node indices and entry distances), sized for the
-   * BVH's depth plus one (stackT[0] holds the nearest hit so far). Per
-   * scene object, never shared between threads.
+   * Scratch of the ray queries (geometry/trace.ts): the traversal stack,
+   * sized for the BVH's depth, and the ray record. Per scene object, never
+   * shared between threads.
    */
   readonly stack: Int32Array;
   readonly stackT: Float64Array;
+  readonly ray = new Float64Array(RAY_RECORD_WORDS);
 
-  constructor(scene: Scene, options: CompileOptions = {}) {
-    const meshDescs = scene.shapes.filter((s): s is MeshDesc => s.type === 'mesh');
-    if (meshDescs.some((m) => m.data === null) || scene.environmentMap?.image === null) {
-      throw new Error(
-        'the scene names files that were not read: load it with loadScene or resolveSceneFiles',
-      );
-    }
-    const names = Object.keys(scene.materials);
-    const materialIndex = new Map(names.map((n, i) => [n, i]));
-    this.materials = compileMaterials(names.map((n) => scene.materials[n]));
-    const spheres = scene.shapes.filter((s): s is SphereDesc => s.type === 'sphere');
-    const quads = scene.shapes.filter((s): s is QuadDesc => s.type === 'quad');
-    this.sphereCount = spheres.length;
-    this.quadCount = quads.length;
-    this.spheres = compileSpheres(spheres);
-    this.quads = compileQuads(quads);
-    this.sphereMaterial = Int32Array.from(spheres, (s) => materialIndex.get(s.material)!);
-    this.quadMaterial = Int32Array.from(quads, (s) => materialIndex.get(s.material)!);
-    this.sphereLight = new Int32Array(this.sphereCount).fill(-1);
-    this.quadLight = new Int32Array(this.quadCount).fill(-1);
-    const meshes =
-      meshDescs.length > 0 ? new CompiledMeshes(meshDescs, (n) => materialIndex.get(n)!) : null;
+  /** From compiled arrays, which it keeps (views, not copies): see compileScene and unpackScene. */
+  constructor(data: SceneData) {
+    this.data = data;
+    this.materials = data.materials;
+    this.spheres = data.spheres;
+    this.sphereCount = data.spheres.length / SPHERE_STRIDE;
+    this.sphereMaterial = data.sphereMaterial;
+    this.sphereLight = data.sphereLight;
+    this.sphereScale = data.sphereScale;
+    this.quads = data.quads;
+    this.quadCount = data.quads.length / QUAD_STRIDE;
+    this.quadMaterial = data.quadMaterial;
+    this.quadLight = data.quadLight;
+    this.quadScale = data.quadScale;
+    const meshes = data.meshMaterial.length > 0 ? new CompiledMeshes(data) : null;
     this.meshes = meshes;
     this.triCount = meshes?.triangleCount ?? 0;
-    this.triPositions = meshes?.positions ?? new Float64Array(0);
-    this.triIndices = meshes?.indices ?? new Uint32Array(0);
-    this.meshLight = new Int32Array(meshes?.count ?? 0).fill(-1);
-
-    const kinds: number[] = [];
-    const shapes: number[] = [];
-    const power: number[] = [];
-    const scale: number[] = [];
-    const material: number[] = [];
+    this.triPositions = data.triPositions;
+    this.triIndices = data.triIndices;
+    this.meshLight = data.meshLight;
+    const p = data.envParams;
+    this.envMap =
+      p.length > 0
+        ? new EnvironmentMap({
+            type: 'map',
+            file: '',
+            scale: [p[2], p[3], p[4]],
+            rotationY: p[5],
+            image: { width: p[0], height: p[1], rgb: data.envTexels },
+          })
+        : null;
+    // The same arithmetic on the same numbers: a scene unpacked in a worker
+    // gets bit-identical light probabilities (and mesh and map distributions).
     const meshLights: (MeshLight | null)[] = [];
-    const emitted = (m: number): number => {
-      const o = m * MATERIAL_STRIDE;
-      if (this.materials[o + M_EMISSIVE] === 0) return 0;
-      const e = this.materials;
-      // Selection weight: luminance, floored so a pure-blue emitter is still chosen.
-      const lum =
-        0.2126 * e[o + M_EMISSION] +
-        0.7152 * e[o + M_EMISSION + 1] +
-        0.0722 * e[o + M_EMISSION + 2];
-      return Math.max(
-        lum,
-        1e-6 * Math.max(e[o + M_EMISSION], e[o + M_EMISSION + 1], e[o + M_EMISSION + 2]),
-      );
-    };
-    for (let i = 0; i < this.sphereCount; i++) {
-      const lum = emitted(this.sphereMaterial[i]);
-      if (lum === 0) continue;
-      const r = this.spheres[i * SPHERE_STRIDE + 3];
-      this.sphereLight[i] = kinds.length;
-      kinds.push(SHAPE_SPHERE);
-      shapes.push(i);
-      power.push(lum * 4 * Math.PI * r * r);
-      scale.push(sphereScale(this.spheres, i));
-      material.push(this.sphereMaterial[i]);
-    }
-    for (let i = 0; i < this.quadCount; i++) {
-      const lum = emitted(this.quadMaterial[i]);
-      if (lum === 0) continue;
-      this.quadLight[i] = kinds.length;
-      kinds.push(SHAPE_QUAD);
-      shapes.push(i);
-      power.push(lum * this.quads[i * QUAD_STRIDE + Q_AREA]);
-      scale.push(quadScale(this.quads, i));
-      material.push(this.quadMaterial[i]);
-    }
-    for (let k = 0; k < (meshes?.count ?? 0); k++) {
-      // An emissive mesh is one light, sampled by area over its triangles.
-      const lum = emitted(meshes!.material[k]);
-      if (lum === 0) continue;
-      const first = meshes!.firstTriangle[k];
-      const light = new MeshLight(
-        meshes!.positions,
-        meshes!.indices,
+    for (let l = 0; l < data.lightKind.length; l++) {
+      if (data.lightKind[l] !== SHAPE_TRIANGLE) continue;
+      const k = data.lightShape[l];
+      const first = data.meshFirstTriangle[k];
+      meshLights[k] = new MeshLight(
+        data.triPositions,
+        data.triIndices,
         first,
-        meshes!.firstTriangle[k + 1] - first,
+        data.meshFirstTriangle[k + 1] - first,
       );
-      this.meshLight[k] = kinds.length;
-      meshLights[k] = light;
-      kinds.push(SHAPE_TRIANGLE);
-      shapes.push(k);
-      power.push(lum * light.area);
-      scale.push(meshes!.scale[k]);
-      material.push(meshes!.material[k]);
-    }
-    const map = scene.environmentMap;
-    this.envMap = map != null ? new EnvironmentMap(map) : null;
-    if (this.envMap !== null && this.envMap.integral > 0) {
-      // Power of the map through the scene's bounding disc, in the units of the area
-      // lights' luminance × area: ∫ L dω × r² (the π of both cancels).
-      const r = sceneRadius(
-        this.spheres,
-        this.sphereCount,
-        this.quads,
-        this.quadCount,
-        this.triPositions,
-      );
-      kinds.push(LIGHT_ENVIRONMENT);
-      shapes.push(0);
-      power.push(this.envMap.integral * r * r);
-      scale.push(0);
-      material.push(-1);
     }
     this.lights =
-      kinds.length > 0
+      data.lightKind.length > 0
         ? new LightList({
-            kind: kinds,
-            shape: shapes,
-            power,
-            scale,
-            material,
+            kind: Array.from(data.lightKind),
+            shape: Array.from(data.lightShape),
+            power: Array.from(data.lightPower),
+            scale: Array.from(data.lightScale),
+            material: Array.from(data.lightMaterial),
             meshLights,
             environment: this.envMap,
           })
         : null;
-    [this.envR, this.envG, this.envB] = scene.environment;
+    this.envR = data.environment[0];
+    this.envG = data.environment[1];
+    this.envB = data.environment[2];
     this.hasEnvironment = this.envR > 0 || this.envG > 0 || this.envB > 0;
-    const total = this.sphereCount + this.quadCount + this.triCount;
-    const useBvh = options.bvh ?? total >= BVH_THRESHOLD;
-    let bvh: Bvh | null = null;
-    if (useBvh && total > 0) {
-      // One hierarchy over every primitive, whatever its kind.
-      const prims = new PrimitiveBoxes(total);
-      sphereBoxes(this.spheres, this.sphereCount, prims);
-      quadBoxes(this.quads, this.quadCount, prims);
-      triangleBoxes(this.triPositions, this.triIndices, this.triCount, prims);
-      bvh = buildBvh(prims.boxes, prims.refs, total);
-    }
-    this.bvh = bvh;
-    this.stack = new Int32Array((bvh?.depth ?? 0) + 2);
+    const nodes = data.bvhNodes;
+    this.bvh =
+      nodes.length > 0
+        ? new Bvh(
+            nodes.buffer,
+            nodes.byteOffset,
+            nodes.length / BVH_NODE_WORDS,
+            data.bvhRefs,
+            data.bvhDepth,
+          )
+        : null;
+    this.stack = new Int32Array(data.bvhDepth + 2);
     this.stackT = new Float64Array(this.stack.length);
   }
 }
 
-export function compileScene(scene: Scene, options?: CompileOptions): CompiledScene {
-  return new CompiledScene(scene, options);
+export function compileScene(scene: Scene, options: CompileOptions = {}): CompiledScene {
+  const meshDescs = scene.shapes.filter((s): s is MeshDesc => s.type === 'mesh');
+  const map = scene.environmentMap ?? null;
+  if (meshDescs.some((m) => m.data === null) || (map !== null && map.image === null)) {
+    throw new Error(
+      'the scene names files that were not read: load it with loadScene or resolveSceneFiles',
+    );
+  }
+  const names = Object.keys(scene.materials);
+  const materialIndex = new Map(names.map((n, i) => [n, i]));
+  const materials = compileMaterials(names.map((n) => scene.materials[n]));
+  const sphereDescs = scene.shapes.filter((s): s is SphereDesc => s.type === 'sphere');
+  const quadDescs = scene.shapes.filter((s): s is QuadDesc => s.type === 'quad');
+  const sphereCount = sphereDescs.length;
+  const quadCount = quadDescs.length;
+  const spheres = compileSpheres(sphereDescs);
+  const quads = compileQuads(quadDescs);
+  const sphereMaterial = Int32Array.from(sphereDescs, (s) => materialIndex.get(s.material)!);
+  const quadMaterial = Int32Array.from(quadDescs, (s) => materialIndex.get(s.material)!);
+  const sphereLight = new Int32Array(sphereCount).fill(-1);
+  const quadLight = new Int32Array(quadCount).fill(-1);
+  const sphereScale = new Float64Array(sphereCount);
+  for (let i = 0; i < sphereCount; i++) sphereScale[i] = sphereScaleOf(spheres, i);
+  const quadScale = new Float64Array(quadCount);
+  for (let i = 0; i < quadCount; i++) quadScale[i] = quadScaleOf(quads, i);
+
+  const mesh = compileMeshArrays(meshDescs, (n) => materialIndex.get(n)!);
+  const meshCount = mesh.meshMaterial.length;
+  const triCount = mesh.triIndices.length / 3;
+  const meshLight = new Int32Array(meshCount).fill(-1);
+
+  const kinds: number[] = [];
+  const shapes: number[] = [];
+  const power: number[] = [];
+  const scale: number[] = [];
+  const material: number[] = [];
+  const emitted = (m: number): number => {
+    const o = m * MATERIAL_STRIDE;
+    if (materials[o + M_EMISSIVE] === 0) return 0;
+    const e = materials;
+    // Selection weight: luminance, floored so a pure-blue emitter is still chosen.
+    const lum =
+      0.2126 * e[o + M_EMISSION] + 0.7152 * e[o + M_EMISSION + 1] + 0.0722 * e[o + M_EMISSION + 2];
+    return Math.max(
+      lum,
+      1e-6 * Math.max(e[o + M_EMISSION], e[o + M_EMISSION + 1], e[o + M_EMISSION + 2]),
+    );
+  };
+  for (let i = 0; i < sphereCount; i++) {
+    const lum = emitted(sphereMaterial[i]);
+    if (lum === 0) continue;
+    const r = spheres[i * SPHERE_STRIDE + 3];
+    sphereLight[i] = kinds.length;
+    kinds.push(SHAPE_SPHERE);
+    shapes.push(i);
+    power.push(lum * 4 * Math.PI * r * r);
+    scale.push(sphereScale[i]);
+    material.push(sphereMaterial[i]);
+  }
+  for (let i = 0; i < quadCount; i++) {
+    const lum = emitted(quadMaterial[i]);
+    if (lum === 0) continue;
+    quadLight[i] = kinds.length;
+    kinds.push(SHAPE_QUAD);
+    shapes.push(i);
+    power.push(lum * quads[i * QUAD_STRIDE + Q_AREA]);
+    scale.push(quadScale[i]);
+    material.push(quadMaterial[i]);
+  }
+  for (let k = 0; k < meshCount; k++) {
+    // An emissive mesh is one light, sampled by area over its triangles.
+    const lum = emitted(mesh.meshMaterial[k]);
+    if (lum === 0) continue;
+    const first = mesh.meshFirstTriangle[k];
+    const count = mesh.meshFirstTriangle[k + 1] - first;
+    const area = new MeshLight(mesh.triPositions, mesh.triIndices, first, count).area;
+    meshLight[k] = kinds.length;
+    kinds.push(SHAPE_TRIANGLE);
+    shapes.push(k);
+    power.push(lum * area);
+    scale.push(mesh.meshScale[k]);
+    material.push(mesh.meshMaterial[k]);
+  }
+  let envTexels: Float32Array = new Float32Array(0);
+  let envParams: Float64Array = new Float64Array(0);
+  if (map !== null) {
+    const image = map.image!;
+    envTexels = image.rgb;
+    envParams = Float64Array.from([image.width, image.height, ...map.scale, map.rotationY]);
+    const integral = new EnvironmentMap(map).integral;
+    if (integral > 0) {
+      // The map's power through the scene's bounding disc, in the units of the area
+      // lights' luminance × area: ∫ L dω × r² (the π of both cancels).
+      const r = sceneRadius(spheres, sphereCount, quads, quadCount, mesh.triPositions);
+      kinds.push(LIGHT_ENVIRONMENT);
+      shapes.push(0);
+      power.push(integral * r * r);
+      scale.push(0);
+      material.push(-1);
+    }
+  }
+  const total = sphereCount + quadCount + triCount;
+  const useBvh = options.bvh ?? total >= BVH_THRESHOLD;
+  let bvh: Bvh | null = null;
+  if (useBvh && total > 0) {
+    // One hierarchy over every primitive, whatever its kind.
+    const prims = new PrimitiveBoxes(total);
+    sphereBoxes(spheres, sphereCount, prims);
+    quadBoxes(quads, quadCount, prims);
+    triangleBoxes(mesh.triPositions, mesh.triIndices, triCount, prims);
+    bvh = buildBvh(prims.boxes, prims.refs, total);
+  }
+  return new CompiledScene({
+    materials,
+    spheres,
+    sphereMaterial,
+    sphereLight,
+    sphereScale,
+    quads,
+    quadMaterial,
+    quadLight,
+    quadScale,
+    lightKind: Int32Array.from(kinds),
+    lightShape: Int32Array.from(shapes),
+    lightPower: Float64Array.from(power),
+    lightScale: Float64Array.from(scale),
+    lightMaterial: Int32Array.from(material),
+    environment: Float64Array.from(scene.environment),
+    envTexels,
+    envParams,
+    ...mesh,
+    meshLight,
+    bvhNodes: bvh ? bvh.words : new Int32Array(0),
+    bvhRefs: bvh ? bvh.refs : new Int32Array(0),
+    bvhDepth: bvh ? bvh.depth : 0,
+  });
 }

@@ -142,7 +142,9 @@ export function decodeEnvironmentImage(
 ): EnvironmentImage {
   const limits = { maxWidth: LIMITS.envMapWidth, maxHeight: LIMITS.envMapHeight };
   const image = decode(where, () =>
-    envMapFileKind(map.file) === 'pfm' ? decodePfm(bytes, limits) : decodeHdr(bytes, limits),
+    envMapFileKind(map.file) === 'pfm'
+      ? decodePfm(bytes, { ...limits, allowNonFinite: true })
+      : decodeHdr(bytes, limits),
   );
   const problems: string[] = [];
   if (!checkTexelRadiance(image.rgb, image.width, map.scale, where, problems)) {
