@@ -70,7 +70,7 @@ describe('pathwise render with mesh and map files', () => {
     const bad = run(['render', 'bad.json', '--spp', '1', '--out', 'b.pfm']);
     expect(bad.status).toBe(2);
     expect(bad.stderr.trim()).toBe(
-      'pathwise: bad.json: shapes[0].file "m/bad.obj": line 3: vertex index 7 is out of range: ' +
+      'pathwise: bad.json: shapes[0].file "m/bad.obj": OBJ: line 3: vertex index 7 is out of range: ' +
         'the file has 2 vertices',
     );
     writeFileSync(join(dir, 'missing.json'), scene('m/none.obj'));

@@ -93,21 +93,21 @@ describe('Radiance HDR', () => {
       Float32Array.from({ length: 16 * 4 * 3 }, (_, i) => (i % 7) + 1),
     );
     expect(() => decodeHdr(good.subarray(0, good.length - 3), LIMITS)).toThrow(
-      /^the file ends in scanline 3 of 4$/,
+      /^HDR: the file ends in scanline 3 of 4$/,
     );
     // 16384 × 8192 declared, a few bytes present: refused before allocating 1.6 GB.
     expect(() => decodeHdr(ascii('#?RADIANCE\n\n-Y 8192 +X 16384\n\x02\x02'), LIMITS)).toThrow(
-      /^the header declares 16384 × 8192 texels, which need at least \d+ bytes, but only 2 follow it$/,
+      /^HDR: the header declares 16384 × 8192 texels, which need at least \d+ bytes, but only 2 follow it$/,
     );
     expect(() => decodeHdr(ascii('#?RADIANCE\n\n-Y 8193 +X 16\n'), LIMITS)).toThrow(
-      /^the image is 16 × 8193, more than the limit of 16384 × 8192$/,
+      /^HDR: the image is 16 × 8193, more than the limit of 16384 × 8192$/,
     );
     expect(() => decodeHdr(ascii('#?RADIANCE\n\n-Y 0 +X 16\n'), LIMITS)).toThrow(/at least 1 × 1/);
     expect(() => decodeHdr(ascii('#?RADIANCE\n\n+X 16 -Y 4\n'), LIMITS)).toThrow(
-      /^line 3: the resolution line must be like "-Y 512 \+X 1024", got "\+X 16 -Y 4"$/,
+      /^HDR: line 3: the resolution line must be like "-Y 512 \+X 1024", got "\+X 16 -Y 4"$/,
     );
     expect(() => decodeHdr(ascii('#?RADIANCE\nFORMAT=32-bit_rle_xyze\n\n'), LIMITS)).toThrow(
-      /^header line 2: unsupported "FORMAT=32-bit_rle_xyze"/,
+      /^HDR: header line 2: unsupported "FORMAT=32-bit_rle_xyze"/,
     );
     expect(() => decodeHdr(ascii('P6\n'), LIMITS)).toThrow(/not a Radiance HDR file/);
     expect(() => decodeHdr(ascii('#?RADIANCE\nGAMMA=1\n'), LIMITS)).toThrow(
@@ -118,14 +118,14 @@ describe('Radiance HDR', () => {
         concat(ascii('#?RADIANCE\n\n-Y 1 +X 8\n'), [2, 2, 0, 8], body, new Array(64).fill(0)),
         LIMITS,
       );
-    expect(() => rle([128 + 9, 1])).toThrow(/^scanline 0: a run of 9 overruns the scanline$/);
-    expect(() => rle([0])).toThrow(/^scanline 0: a run of length 0$/);
+    expect(() => rle([128 + 9, 1])).toThrow(/^HDR: scanline 0: a run of 9 overruns the scanline$/);
+    expect(() => rle([0])).toThrow(/^HDR: scanline 0: a run of length 0$/);
     expect(() =>
       decodeHdr(
         concat(ascii('#?RADIANCE\n\n-Y 1 +X 8\n'), [2, 2, 0, 9], new Array(64).fill(0)),
         LIMITS,
       ),
-    ).toThrow(/^scanline 0: its run-length header says 9 texels, the image is 8 wide$/);
+    ).toThrow(/^HDR: scanline 0: its run-length header says 9 texels, the image is 8 wide$/);
   });
 });
 
@@ -204,7 +204,7 @@ describe('environment maps in scenes', () => {
         ),
       ),
     ).toEqual([
-      'environment.file "a.hdr": the header declares 16384 × 8192 texels, which need at least ' +
+      'environment.file "a.hdr": HDR: the header declares 16384 × 8192 texels, which need at least ' +
         '8552448 bytes, but only 0 follow it',
     ]);
   });

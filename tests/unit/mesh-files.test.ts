@@ -104,31 +104,34 @@ describe('OBJ', () => {
 
   it('names the line of every problem', () => {
     const bad: [string, RegExp][] = [
-      ['v 0 0 0\nv 1 0 0\nf 1 2', /^line 3: a face needs at least 3 vertices, got 2$/],
-      ['v 0 0 0\nv 1 0\nf 1 1 1', /^line 2: v needs 3 numbers, got 2$/],
-      ['v 0 0 0\nv 1 zero 0\nf 1 2 1', /^line 2: v needs 3 finite numbers, got "zero"$/],
-      ['v 0 0 1e999\nf 1 1 1', /^line 1: v needs 3 finite numbers, got "1e999"$/],
+      ['v 0 0 0\nv 1 0 0\nf 1 2', /^OBJ: line 3: a face needs at least 3 vertices, got 2$/],
+      ['v 0 0 0\nv 1 0\nf 1 1 1', /^OBJ: line 2: v needs 3 numbers, got 2$/],
+      ['v 0 0 0\nv 1 zero 0\nf 1 2 1', /^OBJ: line 2: v needs 3 finite numbers, got "zero"$/],
+      ['v 0 0 1e999\nf 1 1 1', /^OBJ: line 1: v needs 3 finite numbers, got "1e999"$/],
       [
         'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4',
-        /^line 4: vertex index 4 is out of range: the file has 3 vertices$/,
+        /^OBJ: line 4: vertex index 4 is out of range: the file has 3 vertices$/,
       ],
       [
         'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0',
-        /^line 4: a face needs vertex indices \(1-based integers\), got "0"$/,
+        /^OBJ: line 4: a face needs vertex indices \(1-based integers\), got "0"$/,
       ],
       [
         'v 0 0 0\nf -2 1 1\nv 1 0 0',
         /out of range: the file has 2 vertices, 1 of them before this line/,
       ],
-      ['v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 0\nf 1//1 2//1 3//1', /^line 4: vn has zero length$/],
+      [
+        'v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 0\nf 1//1 2//1 3//1',
+        /^OBJ: line 4: vn has zero length$/,
+      ],
       [
         'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1//2 2//2 3//2',
-        /^line 4: normal index 2 is out of range: the file has 0 normals$/,
+        /^OBJ: line 4: normal index 2 is out of range: the file has 0 normals$/,
       ],
       ['v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1/1/1 2 3', /line 4: a face vertex has more than 3 fields/],
       ['v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\x00', /line 4: .*"3\\x00"/],
-      ['v 0 0 0\n', /^the file has no faces \(f\)$/],
-      ['', /^the file has no faces/],
+      ['v 0 0 0\n', /^OBJ: the file has no faces \(f\)$/],
+      ['', /^OBJ: the file has no faces/],
     ];
     for (const [text, message] of bad) expect(() => obj(text), text).toThrow(message);
   });
@@ -137,7 +140,7 @@ describe('OBJ', () => {
     const text = 'v 0 0 0\nv 1 0 0\nv 0 1 0\n' + 'f 1 2 3\n'.repeat(11);
     expect(obj(text, { maxTriangles: 11, sceneTriangles: 20 }).indices.length).toBe(33);
     expect(() => obj(text, { maxTriangles: 10, sceneTriangles: 20 })).toThrow(
-      'the faces up to line 14 hold 11 triangles, more than the 10 left of the limit of 20 per scene',
+      'OBJ: the faces up to line 14 hold 11 triangles, more than the 10 left of the limit of 20 per scene',
     );
     // A polygon of many vertices counts as many triangles.
     const fan =
@@ -232,29 +235,29 @@ describe('PLY', () => {
 
   it('names the element (and the line, in ASCII) of every problem', () => {
     expect(() => ply(binaryPly(true, { truncate: 3 }))).toThrow(
-      /^the file ends in face 1 of the 2 the header declares$/,
+      /^PLY: the file ends in face 1 of the 2 the header declares$/,
     );
     expect(() => ply(binaryPly(false, { index: 4 }))).toThrow(
-      /^face 0: vertex index 4 is out of range \(the file has 4 vertices\)$/,
+      /^PLY: face 0: vertex index 4 is out of range \(the file has 4 vertices\)$/,
     );
     // A header that declares far more than the file holds, refused before allocating.
     expect(() => ply(binaryPly(true, { faces: 2_000_000_000 }))).toThrow(
-      /declares 4 vertices and 2000000000 faces, which need at least \d+ bytes, but the body has \d+/,
+      /^PLY: the header declares 4 vertices and 2000000000 faces, which need at least \d+ bytes, but the body has \d+/,
     );
     const ascii = (body: string) => PLY_ASCII.replace(/end_header\n[^]*$/, 'end_header\n' + body);
     expect(() =>
       ply(ascii('0 0 0 255\n1 0 0 0\n1 x 0 0\n0 1 0 7\n3 0 1 2 9\n4 0 1 2 3 0\n0 1\n')),
-    ).toThrow(/^vertex 2 \(line 18\): expected a number, got "x"$/);
+    ).toThrow(/^PLY: vertex 2 \(line 18\): expected a number, got "x"$/);
     expect(() =>
       ply(ascii('0 0 0 1\n1 0 0 1\n1 1 0 1\n0 1 0 1\n2 0 1 9\n4 0 1 2 3 0\n0 1\n')),
-    ).toThrow(/^face 0 \(line 20\): needs at least 3 vertices, got 2$/);
+    ).toThrow(/^PLY: face 0 \(line 20\): needs at least 3 vertices, got 2$/);
     expect(() =>
       ply(ascii('0 0 0 1\n1 0 0 1\n1 1 0 1\n0 1 0 1\n3 0 1 2.5 0\n4 0 1 2 3 0\n0 1\n')),
-    ).toThrow(/^face 0 \(line 20\): expected an integer, got "2.5"$/);
+    ).toThrow(/^PLY: face 0 \(line 20\): expected an integer, got "2.5"$/);
     expect(() => ply(ascii('0 0 0 1\n1 0 0 1\n'))).toThrow(/body has/);
     expect(() =>
       ply(ascii('0 0 0 1\n1 0 0 1\n1 1 0 1\n0 1 0 1\n3 0 1 2 0\n4 0 1 2 3 0\n0        \n')),
-    ).toThrow(/^the file ends in edge 0 of the 1 the header declares$/);
+    ).toThrow(/^PLY: the file ends in edge 0 of the 1 the header declares$/);
     const header = (h: string) => ply(h + '\nend_header\n');
     expect(() => header('ply\nformat ascii 2.0')).toThrow(
       /header line 2: unsupported PLY version "2.0"/,
@@ -296,7 +299,7 @@ describe('PLY', () => {
 
   it('refuses more triangles than the scene has left', () => {
     expect(() => ply(PLY_ASCII, { maxTriangles: 2, sceneTriangles: 5 })).toThrow(
-      /^faces 0 to 1 hold 3 triangles, more than the 2 left of the limit of 5 per scene$/,
+      /^PLY: faces 0 to 1 hold 3 triangles, more than the 2 left of the limit of 5 per scene$/,
     );
   });
 
@@ -307,11 +310,11 @@ describe('PLY', () => {
       `property list uchar int vertex_indices\nend_header\n${p} 0 0 1\n1 0 0 ${n}\n0 1 0 0 0 1\n3 0 1 2\n`;
     expect(ply(withNormals('0 0 1')).normals).not.toBeNull();
     expect(() => ply(withNormals('0 0 0'))).toThrow(
-      /^vertex 1 \(line 14\): its normal has zero length$/,
+      /^PLY: vertex 1 \(line 14\): its normal has zero length$/,
     );
     expect(() => ply(withNormals('0 0 1e39'))).not.toThrow(); // a float64 in ASCII is fine
     expect(() => ply(withNormals('0 0 1', '0 0 1e999'))).toThrow(
-      /^vertex 0 \(line 13\): coordinate z is not finite$/,
+      /^PLY: vertex 0 \(line 13\): coordinate z is not finite$/,
     );
   });
 });

@@ -274,10 +274,10 @@ describe('mesh files', () => {
       'flat.obj': 'v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n',
     });
     expect(await asyncProblems(loadScene(scene('bad.obj'), files))).toEqual([
-      'shapes[1].file "bad.obj": line 3: vertex index 3 is out of range: the file has 2 vertices',
+      'shapes[1].file "bad.obj": OBJ: line 3: vertex index 3 is out of range: the file has 2 vertices',
     ]);
     expect(await asyncProblems(loadScene(scene('bad.ply'), files))).toEqual([
-      'shapes[1].file "bad.ply": face 0 (line 11): vertex index 7 is out of range (the file has 1 vertices)',
+      'shapes[1].file "bad.ply": PLY: face 0 (line 11): vertex index 7 is out of range (the file has 1 vertices)',
     ]);
     expect(await asyncProblems(loadScene(scene('missing.obj'), files))).toEqual([
       'shapes[1].file "missing.obj": no such file',
@@ -312,7 +312,7 @@ describe('mesh files', () => {
       ],
     };
     expect(await asyncProblems(resolveSceneFiles(heavy, files))).toEqual([
-      'shapes[1].file "q.obj": the faces up to line 5 hold 2 triangles, more than the 0 left of ' +
+      'shapes[1].file "q.obj": OBJ: the faces up to line 5 hold 2 triangles, more than the 0 left of ' +
         'the limit of 10000000 per scene',
     ]);
   });

@@ -10,7 +10,8 @@
  * Orientation: the standard `-Y H +X W` (rows top to bottom, columns left to right)
  * and the flipped variants `+Y` / `-X` are read; transposed layouts are rejected.
  */
-import { FileFormatError, bytesToString, lineEnd, skipBlanks, tokenEnd } from './text-bytes.ts';
+import { FormatError } from './format-error.ts';
+import { bytesToString, lineEnd, skipBlanks, tokenEnd } from './text-bytes.ts';
 
 export interface ImageLimits {
   maxWidth: number;
@@ -38,7 +39,8 @@ export function decodeHdr(bytes: Uint8Array, limits: ImageLimits): RgbImage {
   const minScanline = rle ? 4 + 4 * 2 * Math.ceil(width / 127) : 4 * width;
   const available = bytes.length - data;
   if (available < minScanline * height) {
-    throw new FileFormatError(
+    throw new FormatError(
+      'HDR',
       `the header declares ${width} × ${height} texels, which need at least ` +
         `${minScanline * height} bytes, but only ${available} follow it`,
     );
@@ -72,14 +74,15 @@ interface Header {
 
 function readHeader(bytes: Uint8Array, limits: ImageLimits): Header {
   if (bytes.length < 2 || bytes[0] !== 0x23 || bytes[1] !== 0x3f) {
-    throw new FileFormatError('not a Radiance HDR file: it must start with "#?"');
+    throw new FormatError('HDR', 'not a Radiance HDR file: it must start with "#?"');
   }
   let start = lineEnd(bytes, 0) + 1;
   let line = 1;
   // Variables, up to an empty line.
   for (;;) {
     if (start >= bytes.length || start > MAX_HEADER) {
-      throw new FileFormatError(
+      throw new FormatError(
+        'HDR',
         start > MAX_HEADER
           ? 'the header has no empty line within its first 64 KiB'
           : 'the file ends inside its header',
@@ -91,7 +94,8 @@ function readHeader(bytes: Uint8Array, limits: ImageLimits): Header {
     start = end + 1;
     if (text === '') break;
     if (text.startsWith('FORMAT=') && text !== 'FORMAT=32-bit_rle_rgbe') {
-      throw new FileFormatError(
+      throw new FormatError(
+        'HDR',
         `header line ${line}: unsupported ${JSON.stringify(text.slice(0, 60))} ` +
           '(only 32-bit_rle_rgbe is read)',
       );
@@ -116,7 +120,8 @@ function readHeader(bytes: Uint8Array, limits: ImageLimits): Header {
     !/^\d+$/.test(hs) ||
     !/^\d+$/.test(ws)
   ) {
-    throw new FileFormatError(
+    throw new FormatError(
+      'HDR',
       `line ${line}: the resolution line must be like "-Y 512 +X 1024", got ` +
         JSON.stringify(words.join(' ').slice(0, 60)),
     );
@@ -127,10 +132,11 @@ function readHeader(bytes: Uint8Array, limits: ImageLimits): Header {
 
 export function checkSize(width: number, height: number, limits: ImageLimits): void {
   if (!(width >= 1 && height >= 1)) {
-    throw new FileFormatError(`the image must be at least 1 × 1, got ${width} × ${height}`);
+    throw new FormatError('HDR', `the image must be at least 1 × 1, got ${width} × ${height}`);
   }
   if (width > limits.maxWidth || height > limits.maxHeight) {
-    throw new FileFormatError(
+    throw new FormatError(
+      'HDR',
       `the image is ${width} × ${height}, more than the limit of ` +
         `${limits.maxWidth} × ${limits.maxHeight}`,
     );
@@ -138,7 +144,7 @@ export function checkSize(width: number, height: number, limits: ImageLimits): v
 }
 
 function truncated(y: number, height: number): never {
-  throw new FileFormatError(`the file ends in scanline ${y} of ${height}`);
+  throw new FormatError('HDR', `the file ends in scanline ${y} of ${height}`);
 }
 
 /** Decodes scanline y into `line` (r, g, b, e per texel); returns the next offset. */
@@ -165,7 +171,8 @@ function readScanline(
   }
   const declared = (bytes[pos + 2] << 8) | bytes[pos + 3];
   if (declared !== width) {
-    throw new FileFormatError(
+    throw new FormatError(
+      'HDR',
       `scanline ${y}: its run-length header says ${declared} texels, the image is ${width} wide`,
     );
   }
@@ -178,16 +185,16 @@ function readScanline(
       if (count > 128) {
         count -= 128;
         if (x + count > width) {
-          throw new FileFormatError(`scanline ${y}: a run of ${count} overruns the scanline`);
+          throw new FormatError('HDR', `scanline ${y}: a run of ${count} overruns the scanline`);
         }
         if (pos >= n) truncated(y, height);
         const value = bytes[pos++];
         for (let k = 0; k < count; k++) line[4 * (x + k) + c] = value;
         x += count;
       } else {
-        if (count === 0) throw new FileFormatError(`scanline ${y}: a run of length 0`);
+        if (count === 0) throw new FormatError('HDR', `scanline ${y}: a run of length 0`);
         if (x + count > width) {
-          throw new FileFormatError(`scanline ${y}: a run of ${count} overruns the scanline`);
+          throw new FormatError('HDR', `scanline ${y}: a run of ${count} overruns the scanline`);
         }
         if (pos + count > n) truncated(y, height);
         for (let k = 0; k < count; k++) line[4 * (x + k) + c] = bytes[pos + k];

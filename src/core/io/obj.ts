@@ -15,9 +15,9 @@
  * checked and every array is allocated once at its final size; the second fills them.
  */
 import type { RawMesh } from '../geometry/mesh-data.ts';
+import { FormatError } from './format-error.ts';
 import {
   Byte,
-  FileFormatError,
   bytesEqual,
   lineEnd,
   parseDecimal,
@@ -49,7 +49,7 @@ export function parseObj(bytes: Uint8Array, limits: MeshLimits): RawMesh {
 }
 
 function fail(line: number, message: string): never {
-  throw new FileFormatError(`line ${line}: ${message}`);
+  throw new FormatError('OBJ', `line ${line}: ${message}`);
 }
 
 function countObj(bytes: Uint8Array, limits: MeshLimits): Counts {
@@ -84,7 +84,8 @@ function countObj(bytes: Uint8Array, limits: MeshLimits): Counts {
       c.triangles += n - 2;
       if (n > c.maxPolygon) c.maxPolygon = n;
       if (c.triangles > limits.maxTriangles) {
-        throw new FileFormatError(
+        throw new FormatError(
+          'OBJ',
           `the faces up to line ${line} hold ${c.triangles} triangles, more than the ` +
             `${limits.maxTriangles} left of the limit of ${limits.sceneTriangles} per scene`,
         );
@@ -92,11 +93,12 @@ function countObj(bytes: Uint8Array, limits: MeshLimits): Counts {
     }
     start = end + 1;
   }
-  if (c.faces === 0) throw new FileFormatError('the file has no faces (f)');
+  if (c.faces === 0) throw new FormatError('OBJ', 'the file has no faces (f)');
   // Every vertex a triangle can use is one of its three corners: more vertices than
   // that can only be unused, and would only cost memory.
   if (c.vertices > 3 * limits.sceneTriangles) {
-    throw new FileFormatError(
+    throw new FormatError(
+      'OBJ',
       `the file has ${c.vertices} vertices, more than 3 per triangle of the scene limit`,
     );
   }

@@ -13,8 +13,8 @@
  */
 import type { RawMesh } from '../geometry/mesh-data.ts';
 import type { MeshLimits } from './obj.ts';
+import { FormatError } from './format-error.ts';
 import {
-  FileFormatError,
   bytesToString,
   isBlank,
   lineEnd,
@@ -84,7 +84,7 @@ export function parsePly(bytes: Uint8Array, limits: MeshLimits): RawMesh {
 }
 
 function headerFail(line: number, message: string): never {
-  throw new FileFormatError(`header line ${line}: ${message}`);
+  throw new FormatError('PLY', `header line ${line}: ${message}`);
 }
 
 function parseHeader(bytes: Uint8Array): Header {
@@ -94,7 +94,8 @@ function parseHeader(bytes: Uint8Array): Header {
   const elements: Element[] = [];
   for (;;) {
     if (start >= bytes.length || start > MAX_HEADER) {
-      throw new FileFormatError(
+      throw new FormatError(
+        'PLY',
         start > MAX_HEADER
           ? 'the header has no end_header line within its first 1 MiB'
           : 'the file ends before the end_header line',
@@ -111,7 +112,7 @@ function parseHeader(bytes: Uint8Array): Header {
     const next = end + 1;
     if (line === 1) {
       if (words.length !== 1 || words[0] !== 'ply') {
-        throw new FileFormatError(`not a PLY file: it must start with the line "ply"`);
+        throw new FormatError('PLY', `not a PLY file: it must start with the line "ply"`);
       }
     } else if (words[0] === 'end_header') {
       if (format === undefined) headerFail(line, 'no format line before end_header');
@@ -179,32 +180,33 @@ interface Layout {
 function checkLayout(h: Header): Layout {
   const vertex = h.elements.findIndex((e) => e.name === 'vertex');
   const face = h.elements.findIndex((e) => e.name === 'face');
-  if (vertex < 0) throw new FileFormatError('the header declares no vertex element');
+  if (vertex < 0) throw new FormatError('PLY', 'the header declares no vertex element');
   const vp = h.elements[vertex].properties;
   const scalar = (name: string, required: boolean): number => {
     const i = vp.findIndex((p) => p.name === name);
     if (i >= 0 && vp[i].countType >= 0) {
-      throw new FileFormatError(`vertex property ${name} must be a scalar, not a list`);
+      throw new FormatError('PLY', `vertex property ${name} must be a scalar, not a list`);
     }
-    if (i < 0 && required) throw new FileFormatError(`the vertex element has no ${name} property`);
+    if (i < 0 && required)
+      throw new FormatError('PLY', `the vertex element has no ${name} property`);
     return i;
   };
   const [x, y, z] = [scalar('x', true), scalar('y', true), scalar('z', true)];
   const [nx, ny, nz] = [scalar('nx', false), scalar('ny', false), scalar('nz', false)];
   const normals = [nx, ny, nz].filter((i) => i >= 0).length;
   if (normals !== 0 && normals !== 3) {
-    throw new FileFormatError('the vertex element has some of nx, ny, nz but not all three');
+    throw new FormatError('PLY', 'the vertex element has some of nx, ny, nz but not all three');
   }
-  if (face < 0) throw new FileFormatError('the header declares no face element');
+  if (face < 0) throw new FormatError('PLY', 'the header declares no face element');
   const fp = h.elements[face].properties;
   let list = fp.findIndex((p) => p.name === 'vertex_indices');
   if (list < 0) list = fp.findIndex((p) => p.name === 'vertex_index');
-  if (list < 0) throw new FileFormatError('the face element has no vertex_indices property');
-  if (fp[list].countType < 0) throw new FileFormatError('face vertex_indices must be a list');
+  if (list < 0) throw new FormatError('PLY', 'the face element has no vertex_indices property');
+  if (fp[list].countType < 0) throw new FormatError('PLY', 'face vertex_indices must be a list');
   if (fp[list].type >= FLOAT32) {
-    throw new FileFormatError('face vertex_indices must have an integer item type');
+    throw new FormatError('PLY', 'face vertex_indices must have an integer item type');
   }
-  if (h.elements[face].count === 0) throw new FileFormatError('the file has no faces');
+  if (h.elements[face].count === 0) throw new FormatError('PLY', 'the file has no faces');
   return { vertex, face, x, y, z, nx, ny: nx < 0 ? -1 : ny, nz: nx < 0 ? -1 : nz, list };
 }
 
@@ -224,7 +226,8 @@ function checkSizes(h: Header, layout: Layout, bodyBytes: number, ascii: boolean
   if (need > bodyBytes) {
     const v = h.elements[layout.vertex].count;
     const f = h.elements[layout.face].count;
-    throw new FileFormatError(
+    throw new FormatError(
+      'PLY',
       `the header declares ${v} vertices and ${f} faces, which need at least ${need} bytes, ` +
         `but the body has ${bodyBytes}`,
     );
@@ -263,7 +266,8 @@ class BinaryBody implements Reader {
     const p = this.pos;
     const size = SIZE[type];
     if (p + size > this.end) {
-      throw new FileFormatError(
+      throw new FormatError(
+        'PLY',
         `the file ends in ${element.name} ${index} of the ${element.count} the header declares`,
       );
     }
@@ -324,7 +328,8 @@ class AsciiBody implements Reader {
       i++;
     }
     if (i >= b.length) {
-      throw new FileFormatError(
+      throw new FormatError(
+        'PLY',
         `the file ends in ${element.name} ${index} of the ${element.count} the header declares`,
       );
     }
@@ -333,7 +338,8 @@ class AsciiBody implements Reader {
     this.pos = e;
     const x = parseDecimal(b, i, e);
     if (Number.isNaN(x) || (type < FLOAT32 && !Number.isInteger(x))) {
-      throw new FileFormatError(
+      throw new FormatError(
+        'PLY',
         `${element.name} ${index}${this.where()}: expected ${type < FLOAT32 ? 'an integer' : 'a number'}, ` +
           `got ${quoteBytes(b, i, e)}`,
       );
@@ -354,7 +360,8 @@ function skipInstance(reader: Reader, element: Element, index: number, list: num
     }
     const n = reader.value(p.countType, element, index);
     if (n < 0) {
-      throw new FileFormatError(
+      throw new FormatError(
+        'PLY',
         `${element.name} ${index}${reader.where()}: list ${p.name} has a negative length ${n}`,
       );
     }
@@ -373,13 +380,15 @@ function countPass(h: Header, layout: Layout, reader: Reader, limits: MeshLimits
       const n = skipInstance(reader, e, i, list);
       if (list < 0) continue;
       if (n < 3) {
-        throw new FileFormatError(
+        throw new FormatError(
+          'PLY',
           `face ${i}${reader.where()}: needs at least 3 vertices, got ${n}`,
         );
       }
       triangles += n - 2;
       if (triangles > limits.maxTriangles) {
-        throw new FileFormatError(
+        throw new FormatError(
+          'PLY',
           `faces 0 to ${i} hold ${triangles} triangles, more than the ${limits.maxTriangles} ` +
             `left of the limit of ${limits.sceneTriangles} per scene`,
         );
@@ -388,7 +397,8 @@ function countPass(h: Header, layout: Layout, reader: Reader, limits: MeshLimits
   });
   const vertices = h.elements[layout.vertex].count;
   if (vertices > 3 * limits.sceneTriangles) {
-    throw new FileFormatError(
+    throw new FormatError(
+      'PLY',
       `the file has ${vertices} vertices, more than 3 per triangle of the scene limit`,
     );
   }
@@ -423,7 +433,8 @@ function fillPass(h: Header, layout: Layout, reader: Reader, triangles: number):
         }
         for (let a = 0; a < 3; a++) {
           if (!Number.isFinite(row[a])) {
-            throw new FileFormatError(
+            throw new FormatError(
+              'PLY',
               `vertex ${i}${reader.where()}: coordinate ${'xyz'[a]} is not finite`,
             );
           }
@@ -431,10 +442,13 @@ function fillPass(h: Header, layout: Layout, reader: Reader, triangles: number):
         }
         if (normals !== null) {
           if (!Number.isFinite(row[3]) || !Number.isFinite(row[4]) || !Number.isFinite(row[5])) {
-            throw new FileFormatError(`vertex ${i}${reader.where()}: its normal is not finite`);
+            throw new FormatError('PLY', `vertex ${i}${reader.where()}: its normal is not finite`);
           }
           if (row[3] === 0 && row[4] === 0 && row[5] === 0) {
-            throw new FileFormatError(`vertex ${i}${reader.where()}: its normal has zero length`);
+            throw new FormatError(
+              'PLY',
+              `vertex ${i}${reader.where()}: its normal has zero length`,
+            );
           }
           normals[3 * i] = row[3];
           normals[3 * i + 1] = row[4];
@@ -459,7 +473,8 @@ function fillPass(h: Header, layout: Layout, reader: Reader, triangles: number):
           for (let j = 0; j < n; j++) {
             const v = reader.value(p.type, e, i);
             if (!(v >= 0 && v < vertexCount)) {
-              throw new FileFormatError(
+              throw new FormatError(
+                'PLY',
                 `face ${i}${reader.where()}: vertex index ${v} is out of range ` +
                   `(the file has ${vertexCount} vertices)`,
               );

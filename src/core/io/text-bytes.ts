@@ -4,14 +4,6 @@
  * decode a whole file: they scan bytes and convert one token at a time.
  */
 
-/** A file the parser could not read; the message names the line or element. */
-export class FileFormatError extends Error {
-  constructor(message: string) {
-    super(message);
-    this.name = 'FileFormatError';
-  }
-}
-
 export const enum Byte {
   Tab = 9,
   LineFeed = 10,
