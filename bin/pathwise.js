@@ -1,13 +1,21 @@
 #!/usr/bin/env node
-// The CLI is bundled to dist/cli by `npm run build:cli` (run by `npm ci` through "prepare").
-import { spawn } from 'node:child_process';
+// The CLI is bundled to dist/cli (npm run build:cli). The published package
+// ships the bundle; in a source checkout it is built here on first use, so
+// the package needs no install-time script.
+import { execFileSync, spawn } from 'node:child_process';
 import { existsSync } from 'node:fs';
 import { availableParallelism } from 'node:os';
 import { fileURLToPath } from 'node:url';
 
 const entry = new URL('../dist/cli/pathwise.js', import.meta.url);
+const builder = new URL('../scripts/build-cli.mjs', import.meta.url);
+if (!existsSync(entry) && existsSync(builder)) {
+  execFileSync(process.execPath, [fileURLToPath(builder)], {
+    stdio: ['ignore', 'ignore', 'inherit'],
+  });
+}
 if (!existsSync(entry)) {
-  process.stderr.write('pathwise: the command line is not built yet; run `npm run build:cli`\n');
+  process.stderr.write('pathwise: the command line is not built; run `npm run build:cli`\n');
   process.exit(1);
 }
 

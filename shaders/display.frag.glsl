@@ -8,6 +8,9 @@ precision highp float;
 precision highp sampler2D;
 
 uniform sampler2D u_sums;
+// The last picture (linear mean RGB, A = 1 where it holds one), shown where
+// the film has no sample yet, so a restart never blanks the screen.
+uniform sampler2D u_backdrop;
 uniform float u_exposure;
 uniform vec2 u_canvasSize;
 
@@ -32,6 +35,8 @@ void main() {
   vec2 uv = vec2(gl_FragCoord.x, u_canvasSize.y - gl_FragCoord.y) / u_canvasSize;
   ivec2 texel = min(ivec2(uv * vec2(size)), size - 1);
   vec4 s = texelFetch(u_sums, texel, 0);
-  vec3 mean = s.a > 0.0 ? s.rgb / s.a : vec3(0.0);
+  ivec2 backSize = textureSize(u_backdrop, 0);
+  vec4 back = texelFetch(u_backdrop, min(ivec2(uv * vec2(backSize)), backSize - 1), 0);
+  vec3 mean = s.a > 0.0 ? s.rgb / s.a : back.rgb * back.a;
   fragColor = vec4(srgb(aces(mean * u_exposure)), 1.0);
 }

@@ -65,6 +65,29 @@ export function chooseStripeRows(height: number, workers: number): number {
   return Math.max(1, Math.min(4, height), Math.floor(height / (Math.max(1, workers) * 16)));
 }
 
+/**
+ * The order in which every pass visits its stripes: claim k of a pass takes
+ * stripe order[k]. Bit-reversed (the van der Corput sequence in base 2,
+ * skipping indices past the end), so the first claims of a pass lie evenly
+ * spread over the frame and each later claim halves the gaps: the pass
+ * fills the image coarse to fine instead of top to bottom. Only which rows
+ * a claim covers changes; every pixel still receives samples 0, 1, 2, … in
+ * order (pass k + 1 of a stripe waits for pass k), so the sums stay
+ * bit-identical to the command line's.
+ */
+export function stripeOrder(stripes: number): Int32Array {
+  const order = new Int32Array(stripes);
+  let bits = 0;
+  while (1 << bits < stripes) bits++;
+  let n = 0;
+  for (let i = 0; n < stripes; i++) {
+    let r = 0;
+    for (let b = 0; b < bits; b++) r |= ((i >> b) & 1) << (bits - 1 - b);
+    if (r < stripes) order[n++] = r;
+  }
+  return order;
+}
+
 export type JobMode = 'shared' | 'transfer';
 
 /** Everything a worker needs to render one controller's image. */

@@ -32,6 +32,7 @@ import {
   C_TARGET,
   lock,
   rowStampBase,
+  stripeOrder,
   unlock,
   type JobConfig,
   type RenderWorkerApi,
@@ -47,6 +48,8 @@ interface Job {
   ctrl?: Int32Array;
   /** One-row film the rows are rendered into before they are committed. */
   row?: Film;
+  /** Claim k of a pass renders stripe order[k] (see stripeOrder). */
+  order?: Int32Array;
 }
 
 const jobs = new Map<number, Job>();
@@ -104,6 +107,8 @@ function configure(id: number, config: JobConfig): void {
     job.ctrl =
       old?.config.ctrl === config.ctrl && old?.ctrl ? old.ctrl : new Int32Array(config.ctrl!);
     job.row = old?.row && old.row.width === config.width ? old.row : new Film(config.width, 1);
+    const stripes = Math.ceil(config.height / config.stripeRows);
+    job.order = old?.order?.length === stripes ? old.order : stripeOrder(stripes);
   }
   jobs.set(id, job);
   kick();
@@ -161,7 +166,7 @@ function renderOneStripe(job: Job): boolean {
   const gen = ctrl[C_GEN];
   unlock(ctrl);
   const pass = Math.floor(claim / stripes);
-  const stripe = claim - pass * stripes;
+  const stripe = job.order![claim - pass * stripes];
 
   // Pass `pass` of this stripe may start only once pass − 1 is committed.
   // Claims are taken in order, so the worker holding that pass is already

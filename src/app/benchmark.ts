@@ -9,6 +9,8 @@ import type { Controller } from '../view/index.ts';
 import { PRESETS } from './presets.ts';
 
 export const BENCHMARK_SECONDS = 10;
+/** Seconds traced before the measurement starts (scene compilation, JIT). */
+export const BENCHMARK_WARMUP_S = 0.5;
 
 export interface BenchmarkResult {
   mraysPerSecond: number;
@@ -37,7 +39,7 @@ export async function runBenchmark(
   c.setTargetSpp(1 << 20);
   c.resume();
   // A short warm-up lets the workers compile the scene and the JIT settle.
-  await sleep(500);
+  await sleep(BENCHMARK_WARMUP_S * 1000);
   const s0 = c.segmentsTraced();
   const t0 = performance.now();
   await sleep(seconds * 1000);

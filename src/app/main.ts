@@ -1,33 +1,41 @@
 /**
  * The demo page: the Cornell box renders at once; presets, scene files,
- * camera controls, settings, stats, saving and a benchmark around one
- * controller from src/view.
+ * camera controls, settings, stats, the error plot, saving and a benchmark
+ * around one controller from src/view.
  */
+import { validateScene } from '../core/index.ts';
 import { createPathTracer } from '../view/index.ts';
-import { runBenchmark } from './benchmark.ts';
+import { BENCHMARK_SECONDS, BENCHMARK_WARMUP_S, runBenchmark } from './benchmark.ts';
 import { attachControls } from './controls.ts';
+import { gridStep } from './error-grid.ts';
+import { ErrorMeter } from './error-meter.ts';
+import { ErrorPlot } from './error-plot.ts';
 import { readParams } from './params.ts';
 import { PRESETS, PRESET_FILES, type PresetName } from './presets.ts';
+import { REFERENCE_SIZES } from './references.ts';
 import { attachSceneFiles } from './scene-file.ts';
 import { startStatsPanel } from './stats-panel.ts';
 import './style.css';
 
-const { preset, options } = readParams(location.search);
+const { preset, options, unknownScene, benchmarkSeconds } = readParams(location.search);
 const canvas = document.getElementById('view') as HTMLCanvasElement;
 if (options.width && options.height) {
   // A fixed render size (tests, benchmarks) keeps its own aspect ratio on screen.
   canvas.classList.add('fixed');
   canvas.style.aspectRatio = `${options.width} / ${options.height}`;
 }
+
+/** Render-height step under which the film tiles the preset's reference grid (error-grid.ts). */
+function sizeStepFor(name: PresetName | null): number {
+  return name ? gridStep(...REFERENCE_SIZES[name]) : gridStep(128, 128);
+}
+
 const controller = createPathTracer(canvas, {
   ...options,
   scene: PRESETS[preset],
   files: PRESET_FILES,
+  sizeStep: sizeStepFor(preset),
 });
-
-// Test hook for the browser tests (tests/browser): the controller, and the
-// factory so a test can put a second view on the page (the shared pool).
-(window as unknown as { __pathwise: unknown }).__pathwise = { controller, createPathTracer };
 
 const errorBox = document.getElementById('error') as HTMLElement;
 function showError(message: string | null): void {
@@ -35,17 +43,58 @@ function showError(message: string | null): void {
   errorBox.textContent = message ?? '';
 }
 errorBox.addEventListener('click', () => showError(null));
+if (unknownScene !== null) {
+  showError(
+    `There is no scene "${unknownScene}" (the scene URL parameter takes ${Object.keys(PRESETS).join(', ')}); showing the Cornell box.`,
+  );
+}
 
-const controls = attachControls(controller, options.renderScale ?? 1);
+const meter = new ErrorMeter(
+  controller,
+  new ErrorPlot(
+    document.getElementById('error-plot') as HTMLCanvasElement,
+    document.getElementById('error-caption') as HTMLElement,
+  ),
+);
+
+// Test hook for the browser tests (tests/browser): the controller, the
+// error meter, and the factory so a test can put a second view on the page.
+(window as unknown as { __pathwise: unknown }).__pathwise = {
+  controller,
+  createPathTracer,
+  errorMeter: meter,
+};
+
+/**
+ * A loaded scene is a preset when it is one exactly (a file may share a preset's name
+ * only). Decoded meshes and maps are left out of the comparison: the preset is the same
+ * before and after its files are read, and a big mesh is not turned into text.
+ */
+const sceneKey = (scene: unknown) =>
+  JSON.stringify(scene, (k, v) =>
+    k === 'data' || k === 'image' || ArrayBuffer.isView(v) ? undefined : v,
+  );
+const presetKeys = new Map(
+  (Object.keys(PRESETS) as PresetName[]).map((p) => [sceneKey(validateScene(PRESETS[p])), p]),
+);
+
+const controls = attachControls(controller);
 controls.sync();
 controller.addEventListener('load', () => {
+  const scene = controller.scene;
+  const name = scene ? (presetKeys.get(sceneKey(scene)) ?? null) : null;
+  // Before the quick first pass ends and sizes the film.
+  controller.setSizeStep(sizeStepFor(name));
+  meter.setPreset(name);
   controls.sync();
-  const name = controller.scene?.name ?? '';
-  document.title = name ? `${name} — pathwise` : 'pathwise';
+  const title = scene?.name ?? '';
+  document.title = title ? `${title} — pathwise` : 'pathwise';
+  canvas.setAttribute('aria-label', `${title || 'Scene'}, path-traced image`);
 });
 controller.addEventListener('error', (e) =>
   showError((e as CustomEvent<{ message: string }>).detail.message),
 );
+meter.start();
 
 const mode = document.getElementById('mode') as HTMLElement;
 const m = controller.mode;
@@ -60,9 +109,11 @@ for (const button of document.querySelectorAll<HTMLButtonElement>('[data-preset]
   });
 }
 
+const fileInput = document.getElementById('file') as HTMLInputElement;
+document.getElementById('open-scene')!.addEventListener('click', () => fileInput.click());
 attachSceneFiles(
   () => controller,
-  document.getElementById('file') as HTMLInputElement,
+  fileInput,
   document.getElementById('stage') as HTMLElement,
   document.getElementById('drop-hint') as HTMLElement,
   () => showError(null),
@@ -87,20 +138,26 @@ document.getElementById('save-pfm')!.addEventListener('click', () => {
   download(new Blob([bytes.slice().buffer]), `${baseName()}.pfm`);
 });
 
+const panel = startStatsPanel(() => controller, controls.refresh);
+
 const benchButton = document.getElementById('benchmark') as HTMLButtonElement;
 const benchResult = document.getElementById('bench-result') as HTMLElement;
+const benchSeconds = benchmarkSeconds ?? BENCHMARK_SECONDS;
+benchButton.textContent = `Benchmark (${benchSeconds} s)`;
 benchButton.addEventListener('click', async () => {
   benchButton.disabled = true;
-  benchResult.textContent = 'Running for 10 seconds on the Cornell box…';
+  benchResult.textContent = `Running for ${benchSeconds} seconds on the Cornell box…`;
+  panel.benchmark(benchSeconds + BENCHMARK_WARMUP_S);
   try {
-    const r = await runBenchmark(controller);
+    const r = await runBenchmark(controller, benchSeconds);
     benchResult.textContent =
-      `${r.mraysPerSecond.toFixed(2)} M rays/s · ${r.spp} spp at ${r.width}×${r.height} · ` +
+      `Benchmark: ${r.mraysPerSecond.toFixed(2)} M rays/s · ${r.spp} spp at ${r.width}×${r.height} · ` +
       `${r.workers} workers · ${r.cores || '?'} cores reported by the browser`;
     benchResult.dataset.mrays = String(r.mraysPerSecond);
   } catch (e) {
     benchResult.textContent = `Benchmark failed: ${e instanceof Error ? e.message : String(e)}`;
   } finally {
+    panel.benchmark(null);
     benchButton.disabled = false;
     controls.sync();
   }
@@ -108,5 +165,3 @@ benchButton.addEventListener('click', async () => {
 
 const about = document.getElementById('about') as HTMLDialogElement;
 document.getElementById('about-open')!.addEventListener('click', () => about.showModal());
-
-startStatsPanel(() => controller);

@@ -2,7 +2,9 @@
  * URL parameters of the demo: the first scene, fixed sizes and seeds for
  * tests and benchmarks, and switches that force the fallback paths, e.g.
  * `?scene=spheres`, `?width=64&height=64&seed=1&spp=8`, `?shared=off`,
- * `?display=canvas2d` (or `webgl2`, even on a software renderer), `?workers=2`.
+ * `?display=canvas2d` (or `webgl2`, even on a software renderer), `?workers=2`,
+ * `?bench=2` (a 2-second benchmark), `?scale=1&dpr=3` (a fixed render scale;
+ * devicePixelRatio counted up to 3 instead of 2).
  */
 import type { PathTracerOptions } from '../view/index.ts';
 import { PRESETS, type PresetName } from './presets.ts';
@@ -10,6 +12,10 @@ import { PRESETS, type PresetName } from './presets.ts';
 export interface DemoParams {
   preset: PresetName;
   options: PathTracerOptions;
+  /** A `scene` parameter that names no preset (the Cornell box is shown instead). */
+  unknownScene: string | null;
+  /** Length of the benchmark in seconds (`bench`; default BENCHMARK_SECONDS). */
+  benchmarkSeconds: number | undefined;
 }
 
 function positiveInt(value: string | null): number | undefined {
@@ -31,8 +37,10 @@ function displayParam(value: string | null): PathTracerOptions['display'] {
 export function readParams(search: string): DemoParams {
   const q = new URLSearchParams(search);
   const name = q.get('scene') ?? 'cornell';
-  const preset: PresetName = name in PRESETS ? (name as PresetName) : 'cornell';
+  const known = Object.hasOwn(PRESETS, name);
+  const preset: PresetName = known ? (name as PresetName) : 'cornell';
   const scale = Number(q.get('scale'));
+  const dpr = Number(q.get('dpr'));
   const options: PathTracerOptions = {
     width: positiveInt(q.get('width')),
     height: positiveInt(q.get('height')),
@@ -41,8 +49,14 @@ export function readParams(search: string): DemoParams {
     bounces: nonNegativeInt(q.get('bounces')),
     workers: positiveInt(q.get('workers')),
     renderScale: scale > 0 ? scale : undefined,
+    maxPixelRatio: dpr > 0 ? dpr : undefined,
     display: displayParam(q.get('display')),
     shared: q.get('shared') === 'off' ? 'off' : 'auto',
   };
-  return { preset, options };
+  return {
+    preset,
+    options,
+    unknownScene: known ? null : name,
+    benchmarkSeconds: positiveInt(q.get('bench')),
+  };
 }

@@ -2,6 +2,8 @@
  * The live numbers: samples per pixel with a progress bar toward the
  * target, FPS, M rays/s, main-thread frame time, resolution, memory and
  * the noise estimate. Refreshed a few times a second, not every frame.
+ * While the benchmark runs, progress is its elapsed time, not samples
+ * toward the (deliberately unreachable) target it sets.
  */
 import type { Controller } from '../view/index.ts';
 import { formatBytes, formatNoise, formatRate } from './format.ts';
@@ -13,20 +15,42 @@ function text(id: string, value: string): void {
   if (el && el.textContent !== value) el.textContent = value;
 }
 
-export function startStatsPanel(getController: () => Controller): () => void {
+export interface StatsPanel {
+  /** A benchmark runs from now for `seconds` (null: it ended). */
+  benchmark(seconds: number | null): void;
+  stop(): void;
+}
+
+export function startStatsPanel(getController: () => Controller, onTick?: () => void): StatsPanel {
   const bar = document.getElementById('progress-bar') as HTMLElement;
+  let bench: { start: number; seconds: number } | null = null;
   const timer = setInterval(() => {
     const c = getController();
     const s = c.stats();
-    const done = s.spp >= s.target;
-    text('s-spp', `${s.spp} / ${s.target}${done ? ' (done)' : s.paused ? ' (paused)' : ''}`);
+    let fraction: number;
+    if (bench) {
+      const elapsed = Math.min(bench.seconds, (performance.now() - bench.start) / 1000);
+      text('s-spp', `${s.spp} (benchmark, ${elapsed.toFixed(0)} of ${bench.seconds} s)`);
+      fraction = elapsed / bench.seconds;
+    } else {
+      const done = s.spp >= s.target;
+      text('s-spp', `${s.spp} / ${s.target}${done ? ' (done)' : s.paused ? ' (paused)' : ''}`);
+      fraction = c.progress() / s.target;
+    }
+    const idle = (!bench && s.spp >= s.target) || s.paused;
     text('s-fps', s.fps > 0 ? s.fps.toFixed(0) : '–');
-    text('s-rays', done || s.paused ? '–' : formatRate(s.raysPerSecond));
+    text('s-rays', idle ? '–' : formatRate(s.raysPerSecond));
     text('s-frame', `${s.frameMs.toFixed(2)} ms`);
     text('s-res', `${s.width} × ${s.height}`);
     text('s-mem', formatBytes(s.memoryBytes));
     text('s-noise', formatNoise(s.noise));
-    bar.style.width = `${Math.min(100, (c.progress() / s.target) * 100).toFixed(2)}%`;
+    bar.style.width = `${Math.min(100, fraction * 100).toFixed(2)}%`;
+    onTick?.();
   }, REFRESH_MS);
-  return () => clearInterval(timer);
+  return {
+    benchmark(seconds) {
+      bench = seconds === null ? null : { start: performance.now(), seconds };
+    },
+    stop: () => clearInterval(timer),
+  };
 }

@@ -10,7 +10,16 @@
  *
  * While the user drags, the job switches to a preview film a quarter of the
  * size in each direction, so each camera step shows within a frame or two;
- * when the pointer rests the full film takes over again.
+ * when the pointer rests the full film takes over again. Each new scene
+ * starts the same way: one quick pass in the preview film puts a whole
+ * picture up at once and measures the speed from which the automatic
+ * render scale is chosen (auto-scale.ts).
+ *
+ * A restart never blanks the screen: what was shown becomes the backdrop
+ * (backdrop.ts), which the display keeps under every pixel the new pass
+ * has not reached yet, and passes visit stripes spread over the frame
+ * (stripeOrder), so the new picture refines on top of the old one
+ * everywhere at once.
  *
  * The animation-frame loop runs only while something can change on screen:
  * samples arriving, a pending resize, a redraw asked for. Paused, converged
@@ -41,9 +50,11 @@ import {
 } from '../core/index.ts';
 import { sceneSizeProblem } from '../core/scene/load.ts';
 import type { JobConfig } from '../../workers/render-protocol.ts';
+import { compositeBackdrop, type Backdrop } from './backdrop.ts';
 import type { Display, DisplayPixels } from './display.ts';
-import type { FilmJob } from './film-job.ts';
+import type { FilmJob, FilmSnapshot } from './film-job.ts';
 import { Films } from './films.ts';
+import { FirstPass, type Timeline } from './first-pass.ts';
 import { attachCameraControls } from './interaction.ts';
 import { chooseCompute, createDisplay } from './mode.ts';
 import { dollyCamera, orbitCamera } from './orbit.ts';
@@ -52,6 +63,7 @@ import { ByteLimitError, readBlobBounded, readResponseBounded } from './read-bou
 import { RateMeter } from './rate-meter.ts';
 import { urlSceneFiles } from './scene-files.ts';
 import { SharedFilmJob } from './shared-job.ts';
+import { TraceClock } from './trace-clock.ts';
 import type {
   FallbackInfo,
   PathTracerController,
@@ -111,7 +123,16 @@ export class Controller extends EventTarget implements PathTracerController {
   private sceneRequested = false;
   /** Bumped by every setScene: one that finishes reading files after a newer one is dropped. */
   private sceneRequest = 0;
-
+  /** The last picture, shown where the active film has no sample yet. */
+  private backdrop: Backdrop | null = null;
+  /** The film the display showed last (its pixels are what is on screen). */
+  private shownJob: FilmJob | null = null;
+  /** The pointer (or keyboard) is moving the camera: restarts go to the preview film. */
+  private interacting = false;
+  /** The quick first pass of a new scene and the automatic scale. */
+  private readonly firstPass: FirstPass;
+  /** Tracing time of the active film since its last restart. */
+  private readonly clock = new TraceClock();
   constructor(canvas: HTMLCanvasElement, options: PathTracerOptions) {
     super();
     this.canvas = canvas;
@@ -130,6 +151,7 @@ export class Controller extends EventTarget implements PathTracerController {
     };
     this.pool = sharedPool(options, options.workers);
     this.films = new Films(canvas, options, compute.compute, () => this.pool.size);
+    this.firstPass = new FirstPass(this.films);
     if (options.workers !== undefined && options.workers !== this.pool.size) {
       void this.pool.setSize(options.workers);
     }
@@ -231,6 +253,7 @@ export class Controller extends EventTarget implements PathTracerController {
       first && this.options.bounces !== undefined
         ? this.options.bounces
         : scene.settings.maxBounces;
+    this.firstPass.sceneLoaded(performance.now());
     this.restart();
     this.emit('load', { scene, skippedTriangles: countSkippedTriangles(scene) });
   }
@@ -263,6 +286,8 @@ export class Controller extends EventTarget implements PathTracerController {
   /** New configuration version, reset of the active film, configuration to the workers. */
   private restart(): void {
     if (!this.currentScene || !this.camera || this.destroyed) return;
+    this.captureBackdrop();
+    this.films.wantPreview = this.interacting || this.firstPass.active;
     const active = this.films.select(this.target);
     this.version++;
     // Version first, then reset: a worker still holding the old
@@ -292,6 +317,8 @@ export class Controller extends EventTarget implements PathTracerController {
     this.rays.reset();
     this.noise = NaN;
     this.lastProgressSpp = -1;
+    this.clock.restart(performance.now(), this.isPaused);
+    this.firstPass.interrupted();
     this.pool.register(this.client);
     this.pool.configure(this.client);
     this.pool.kick();
@@ -301,7 +328,9 @@ export class Controller extends EventTarget implements PathTracerController {
   reset(): void {
     const job = this.activeJob();
     if (!job || !this.config) return;
+    this.captureBackdrop();
     job.reset();
+    this.clock.restart(performance.now(), this.isPaused);
     this.convergedSent = false;
     this.displayDirty = true;
     this.noise = NaN;
@@ -311,6 +340,7 @@ export class Controller extends EventTarget implements PathTracerController {
   }
 
   pause(): void {
+    this.clock.pause(performance.now());
     this.isPaused = true;
     this.activeJob()?.setPaused(true);
     // Stripes already in hand still finish and should be shown; the loop
@@ -319,6 +349,9 @@ export class Controller extends EventTarget implements PathTracerController {
   }
 
   resume(): void {
+    this.clock.resume(performance.now());
+    // A measurement window must not span a pause.
+    if (this.isPaused) this.firstPass.interrupted();
     this.isPaused = false;
     this.activeJob()?.setPaused(false);
     this.pool.kick();
@@ -350,9 +383,29 @@ export class Controller extends EventTarget implements PathTracerController {
     this.restart();
   }
 
-  setRenderScale(scale: number): void {
+  setRenderScale(scale: number | null): void {
+    if (scale === null) {
+      // Back to automatic: measure again with a quick first pass.
+      if (this.films.autoScale || this.films.fixedSize) return;
+      this.films.autoScale = true;
+      this.firstPass.start(performance.now());
+      this.restart();
+      return;
+    }
+    this.films.autoScale = false;
+    this.firstPass.manual();
     this.films.renderScale = Math.max(0.05, Math.min(4, scale));
     if (this.films.ensureFull(this.target)) this.restart();
+  }
+
+  /** See PathTracerOptions.sizeStep; applies from the next restart that sizes the film. */
+  setSizeStep(step: number): void {
+    this.films.sizeStep = Math.max(1, Math.floor(step));
+  }
+
+  /** Max bounces in use. */
+  get maxBounces(): number {
+    return this.bounces;
   }
 
   async setWorkers(count: number): Promise<void> {
@@ -421,15 +474,26 @@ export class Controller extends EventTarget implements PathTracerController {
 
   /** Interaction hooks: the preview film while the pointer moves, the full film when it rests. */
   beginPreview(): void {
+    this.interacting = true;
     this.films.wantPreview = true;
     this.wake();
   }
 
   endPreview(): void {
-    this.films.wantPreview = false;
-    if (!this.films.previewing) return;
-    this.films.previewing = false;
+    this.interacting = false;
+    this.films.wantPreview = this.firstPass.active;
+    // The quick first pass, if still running, hands over to the full film itself.
+    if (!this.films.previewing || this.firstPass.active) return;
     this.restart();
+  }
+
+  // ---- backdrop ------------------------------------------------------------
+
+  /** What is on screen (the shown film over the old backdrop) becomes the backdrop. */
+  private captureBackdrop(): void {
+    const job = this.shownJob;
+    if (!job) return;
+    this.backdrop = compositeBackdrop(job.film.sums, job.width, job.height, this.backdrop);
   }
 
   // ---- per frame ---------------------------------------------------------
@@ -443,9 +507,10 @@ export class Controller extends EventTarget implements PathTracerController {
     const cleared = job.takeCleared();
     const dirty = job.takeDirtyRows();
     if (!force && !cleared && dirty.length === 0 && !this.displayDirty) return false;
-    if (cleared) this.display.clear(job.width, job.height);
+    if (cleared) this.display.clear(job.width, job.height, this.backdrop);
     this.display.draw(job.film.sums, job.width, job.height, this.exposure, dirty);
     this.displayDirty = false;
+    this.shownJob = job;
     return true;
   }
 
@@ -454,6 +519,13 @@ export class Controller extends EventTarget implements PathTracerController {
     if (this.destroyed) return;
     this.framesCount++;
     if (this.films.follow(now, this.target)) this.restart();
+    // The speed measurements may hand over to another film (a restart):
+    // this frame then draws that one, over the picture captured as backdrop.
+    const before = this.activeJob();
+    const paused = this.isPaused;
+    if (before && this.firstPass.advance(now, before, this.target, paused, this.interacting)) {
+      this.restart();
+    }
     const job = this.activeJob();
     // No scene yet: setScene's restart wakes the loop. A resize waiting to
     // settle is checked again on the next frame.
@@ -471,7 +543,9 @@ export class Controller extends EventTarget implements PathTracerController {
       this.frames.add(now, 1);
       this.changedSinceNoise = true;
     }
-    const spp = job.passesDone();
+    // Preview passes are not the image's samples: the full film has none yet.
+    const spp = this.films.previewing ? 0 : job.passesDone();
+    if (drew) this.firstPass.drew(now, job, spp);
     // Once converged (or paused) nothing changes, so the film is not read
     // again for the noise estimate.
     if (this.changedSinceNoise && now - this.noiseAt > NOISE_INTERVAL_MS) {
@@ -505,6 +579,7 @@ export class Controller extends EventTarget implements PathTracerController {
       tracing ||
       owed ||
       job.busy() ||
+      (this.firstPass.active && !this.isPaused) ||
       this.films.resizePending ||
       this.films.wantPreview ||
       this.films.previewing
@@ -527,13 +602,13 @@ export class Controller extends EventTarget implements PathTracerController {
     const now = performance.now();
     const textureBytes = job && this.mode.display === 'webgl2' ? job.width * job.height * 16 : 0;
     return {
-      ...this.progressInfo(job ? job.passesDone() : 0),
+      ...this.progressInfo(job && !this.films.previewing ? job.passesDone() : 0),
       fps: this.frames.rate(now),
       frameMs: this.frameMs,
       width: job?.width ?? 0,
       height: job?.height ?? 0,
       workers: this.pool.size,
-      memoryBytes: this.films.memoryBytes + textureBytes,
+      memoryBytes: this.films.memoryBytes + textureBytes + (this.backdrop?.rgba.byteLength ?? 0),
       rejected: job?.rejected() ?? 0,
       paused: this.isPaused,
     };
@@ -547,6 +622,16 @@ export class Controller extends EventTarget implements PathTracerController {
     return this.framesCount;
   }
 
+  /**
+   * When the latest scene was loaded, and when the first whole picture
+   * (any film, the quick preview pass included) and the first whole image
+   * of the full film were drawn (frame times, performance.now()), for
+   * benchmarks of the time to first image.
+   */
+  timeline(): Timeline {
+    return { ...this.firstPass.times };
+  }
+
   /** Segments traced since the controller was made (for benchmarks: a difference over time). */
   segmentsTraced(): number {
     return this.segmentsTotal;
@@ -554,7 +639,43 @@ export class Controller extends EventTarget implements PathTracerController {
 
   /** Fractional passes of the active film (for a smooth progress bar). */
   progress(): number {
-    return this.activeJob()?.progress() ?? 0;
+    return this.films.previewing ? 0 : (this.activeJob()?.progress() ?? 0);
+  }
+
+  /**
+   * The render scale in use, whether it was chosen automatically, and the
+   * measured speed (samples per second) it was chosen from.
+   */
+  renderScaleInfo(): { scale: number; auto: boolean; samplesPerSecond: number } {
+    return {
+      scale: this.films.renderScale,
+      auto: this.films.autoScale,
+      samplesPerSecond: this.firstPass.rate,
+    };
+  }
+
+  /**
+   * The full film as it is now, for measurements off the hot path (the
+   * demo's error plot): its sums and per-pixel squared luminance (live
+   * views, not copies: read them at once), complete passes, tracing
+   * seconds, and the configuration version, which changes on every
+   * restart. Null while the preview is active.
+   */
+  filmSnapshot(): FilmSnapshot | null {
+    const job = this.films.full;
+    if (!job || this.films.previewing || !this.config || !this.camera) return null;
+    return {
+      version: this.version,
+      width: job.width,
+      height: job.height,
+      sums: job.film.sums,
+      extra: job.film.extra,
+      spp: job.passesDone(),
+      seconds: this.clock.seconds(performance.now()),
+      camera: this.camera,
+      bounces: this.bounces,
+      seed: this.seed,
+    };
   }
 
   // ---- output ------------------------------------------------------------

@@ -3,7 +3,7 @@
  * tonemapSums runs on the main thread into an ImageData, so the picture
  * equals the WebGL2 one within 1/255 per channel.
  */
-import { tonemapSums } from '../core/index.ts';
+import { tonemapOverBackdrop, type Backdrop } from './backdrop.ts';
 import type { Display, DisplayPixels } from './display.ts';
 
 export class Canvas2DDisplay implements Display {
@@ -14,6 +14,7 @@ export class Canvas2DDisplay implements Display {
   /** Holds a preview film's pixels before they are scaled onto the canvas. */
   private scratch: HTMLCanvasElement | null = null;
   private lastExposure = NaN;
+  private backdrop: Backdrop | null = null;
 
   constructor(canvas: HTMLCanvasElement) {
     const ctx = canvas.getContext('2d', { alpha: false });
@@ -40,11 +41,18 @@ export class Canvas2DDisplay implements Display {
     this.lastExposure = exposure;
     if (rows === null) rows = [0, filmHeight];
     const image = this.image;
-    const rowFloats = filmWidth * 4;
     for (let i = 0; i < rows.length; i += 2) {
-      const a = rows[i] * rowFloats;
-      const b = rows[i + 1] * rowFloats;
-      tonemapSums(sums.subarray(a, b), exposure, image.data.subarray(a, b));
+      const { data } = image;
+      tonemapOverBackdrop(
+        sums,
+        filmWidth,
+        filmHeight,
+        rows[i],
+        rows[i + 1],
+        this.backdrop,
+        exposure,
+        data,
+      );
     }
     const { width, height } = this.canvas;
     if (filmWidth === width && filmHeight === height) {
@@ -62,17 +70,10 @@ export class Canvas2DDisplay implements Display {
     this.ctx.drawImage(this.scratch, 0, 0, width, height);
   }
 
-  clear(filmWidth: number, filmHeight: number): void {
-    if (!this.image || this.image.width !== filmWidth || this.image.height !== filmHeight) {
-      this.image = new ImageData(filmWidth, filmHeight);
-    }
-    const data = this.image.data;
-    // Opaque black, four bytes at a time (R, G, B = 0, A = 255 in memory order).
-    new Uint32Array(data.buffer, data.byteOffset, data.length / 4).fill(
-      new Uint32Array(new Uint8Array([0, 0, 0, 255]).buffer)[0],
-    );
-    this.ctx.fillStyle = '#000';
-    this.ctx.fillRect(0, 0, this.canvas.width, this.canvas.height);
+  clear(filmWidth: number, filmHeight: number, backdrop: Backdrop | null): void {
+    this.backdrop = backdrop;
+    // The next draw tone maps every row: the film's zeros show the backdrop.
+    this.image = null;
   }
 
   readPixels(): DisplayPixels {
@@ -84,5 +85,6 @@ export class Canvas2DDisplay implements Display {
   destroy(): void {
     this.image = null;
     this.scratch = null;
+    this.backdrop = null;
   }
 }

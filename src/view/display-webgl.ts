@@ -6,6 +6,7 @@
  */
 import fragmentSource from '../../shaders/display.frag.glsl?raw';
 import vertexSource from '../../shaders/display.vert.glsl?raw';
+import type { Backdrop } from './backdrop.ts';
 import type { Display, DisplayPixels } from './display.ts';
 
 function compile(gl: WebGL2RenderingContext, type: number, source: string): WebGLShader {
@@ -18,12 +19,29 @@ function compile(gl: WebGL2RenderingContext, type: number, source: string): WebG
   return shader;
 }
 
+/** Dirty row spans at most this far apart are uploaded together. */
+const UPLOAD_GAP_ROWS = 4;
+
+/** A nearest-sampled, edge-clamped texture bound to texture unit `unit` (left bound there). */
+function newTexture(gl: WebGL2RenderingContext, unit: number): WebGLTexture {
+  const texture = gl.createTexture()!;
+  gl.activeTexture(gl.TEXTURE0 + unit);
+  gl.bindTexture(gl.TEXTURE_2D, texture);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
+  return texture;
+}
+
 export class WebGLDisplay implements Display {
   readonly mode = 'webgl2' as const;
   private readonly canvas: HTMLCanvasElement;
   private readonly gl: WebGL2RenderingContext;
   private readonly program: WebGLProgram;
   private readonly texture: WebGLTexture;
+  /** The last picture (linear RGB, A = shown), sampled where the film has no sample yet. */
+  private readonly backdrop: WebGLTexture;
   private readonly uExposure: WebGLUniformLocation | null;
   private readonly uCanvasSize: WebGLUniformLocation | null;
   private texWidth = 0;
@@ -57,17 +75,30 @@ export class WebGLDisplay implements Display {
     this.program = program;
     this.uExposure = gl.getUniformLocation(program, 'u_exposure');
     this.uCanvasSize = gl.getUniformLocation(program, 'u_canvasSize');
-    this.texture = gl.createTexture()!;
-    gl.bindTexture(gl.TEXTURE_2D, this.texture);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
+    gl.useProgram(program);
+    gl.uniform1i(gl.getUniformLocation(program, 'u_sums'), 0);
+    gl.uniform1i(gl.getUniformLocation(program, 'u_backdrop'), 1);
+    this.backdrop = newTexture(gl, 1);
+    this.texture = newTexture(gl, 0);
     // Probe: a 1×1 float texture must upload without error.
     gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, 1, 1, 0, gl.RGBA, gl.FLOAT, new Float32Array(4));
     if (gl.getError() !== gl.NO_ERROR) throw new Error('float textures are unavailable');
     this.texWidth = 1;
     this.texHeight = 1;
+    this.setBackdrop(null);
+  }
+
+  /** Uploads the backdrop (a 1×1 texture with A = 0, drawn black, for none). */
+  private setBackdrop(backdrop: Backdrop | null): void {
+    const gl = this.gl;
+    gl.activeTexture(gl.TEXTURE1);
+    gl.bindTexture(gl.TEXTURE_2D, this.backdrop);
+    gl.pixelStorei(gl.UNPACK_ALIGNMENT, 4);
+    const w = backdrop?.width ?? 1;
+    const h = backdrop?.height ?? 1;
+    const data = backdrop?.rgba ?? new Float32Array(4);
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, w, h, 0, gl.RGBA, gl.FLOAT, data);
+    gl.activeTexture(gl.TEXTURE0);
   }
 
   draw(
@@ -95,7 +126,14 @@ export class WebGLDisplay implements Display {
     const rowFloats = filmWidth * 4;
     for (let i = 0; i < rows.length; i += 2) {
       const y0 = rows[i];
-      const y1 = rows[i + 1];
+      let y1 = rows[i + 1];
+      // A pass visits stripes spread over the frame, so a frame's rows come
+      // scattered: spans a few rows apart go up as one call, which costs
+      // less than the calls it saves.
+      while (i + 2 < rows.length && rows[i + 2] - y1 <= UPLOAD_GAP_ROWS) {
+        y1 = rows[i + 3];
+        i += 2;
+      }
       this.upload(sums.subarray(y0 * rowFloats, y1 * rowFloats), filmWidth, y0, y1 - y0);
     }
     gl.viewport(0, 0, this.canvas.width, this.canvas.height);
@@ -105,8 +143,9 @@ export class WebGLDisplay implements Display {
     gl.drawArrays(gl.TRIANGLES, 0, 3);
   }
 
-  clear(filmWidth: number, filmHeight: number): void {
+  clear(filmWidth: number, filmHeight: number, backdrop: Backdrop | null): void {
     const gl = this.gl;
+    this.setBackdrop(backdrop);
     gl.bindTexture(gl.TEXTURE_2D, this.texture);
     // A fresh texture is zero-filled by WebGL: no sums travel from here.
     const f = gl.FLOAT;
@@ -150,6 +189,7 @@ export class WebGLDisplay implements Display {
 
   destroy(): void {
     this.gl.deleteTexture(this.texture);
+    this.gl.deleteTexture(this.backdrop);
     this.gl.deleteProgram(this.program);
     // Browsers cap live WebGL contexts per page (about 16) and only free one
     // when its canvas is collected; losing it now frees the GPU side at once.

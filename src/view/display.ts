@@ -4,6 +4,7 @@
  * RGBA32F texture, tone map in a shader) and Canvas 2D (tone map on the CPU
  * with the core's tonemapSums).
  */
+import type { Backdrop } from './backdrop.ts';
 import type { DisplayMode } from './types.ts';
 
 export interface DisplayPixels {
@@ -17,7 +18,8 @@ export interface Display {
   readonly mode: DisplayMode;
   /**
    * Draws a film of filmWidth × filmHeight onto the whole canvas (a smaller
-   * film, the low-resolution preview, is scaled up). `dirtyRows` lists the
+   * film, the low-resolution preview, is scaled up); pixels without a
+   * sample show the backdrop given to `clear`. `dirtyRows` lists the
    * rows whose sums changed since the previous draw as flat [y0, y1, …]
    * spans, so only those are uploaded or tone mapped; null means all.
    */
@@ -29,10 +31,11 @@ export interface Display {
     dirtyRows: readonly number[] | null,
   ): void;
   /**
-   * Forgets the previous image: the film (of this size) is all zeros now.
+   * The film (of this size) is all zeros now: until its pixels get samples
+   * they show `backdrop` (the last picture, scaled), or black without one.
    * Much cheaper than drawing every row of zeros; a draw follows.
    */
-  clear(filmWidth: number, filmHeight: number): void;
+  clear(filmWidth: number, filmHeight: number, backdrop: Backdrop | null): void;
   /** The canvas's pixels as last drawn. */
   readPixels(): DisplayPixels;
   destroy(): void;

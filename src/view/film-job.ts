@@ -5,7 +5,7 @@
  * control block) and the transfer job (the main thread hands out stripe
  * passes and merges the rows that come back).
  */
-import type { Film } from '../core/index.ts';
+import type { CameraDesc, Film } from '../core/index.ts';
 import type { StripeResult, StripeTask } from '../../workers/render-protocol.ts';
 
 export interface FilmJob {
@@ -40,4 +40,21 @@ export interface FilmJob {
   /** Transfer mode only. */
   nextTask?(job: number): StripeTask | null;
   onResult?(result: StripeResult): void;
+}
+
+/**
+ * A full film as it is at one moment, for measurements off the hot path
+ * (Controller.filmSnapshot): live views of its sums, not copies.
+ */
+export interface FilmSnapshot {
+  version: number;
+  width: number;
+  height: number;
+  sums: Float32Array;
+  extra: Float32Array;
+  spp: number;
+  seconds: number;
+  camera: CameraDesc;
+  bounces: number;
+  seed: number;
 }

@@ -1,33 +1,53 @@
 /**
  * The films of one controller: the full-resolution film, sized from the
- * canvas (CSS size × devicePixelRatio × render scale) or fixed by the
- * options, and the low-resolution preview used while the pointer drags.
- * Exactly one is active; the other is parked (configuration version -1),
- * so no worker spends time on it.
+ * canvas (CSS size × capped devicePixelRatio × render scale) or fixed by
+ * the options, and the low-resolution preview used while the pointer
+ * drags and for the first, quick pass (see controller.ts). Exactly one is
+ * active; the other is parked (configuration version -1), so no worker
+ * spends time on it.
  */
 import { chooseStripeRows } from '../../workers/render-protocol.ts';
+import { DEFAULT_MAX_PIXEL_RATIO } from './auto-scale.ts';
 import type { FilmJob } from './film-job.ts';
 import { SharedFilmJob } from './shared-job.ts';
 import { TransferFilmJob } from './transfer-job.ts';
 import type { ComputeMode, PathTracerOptions } from './types.ts';
 
-/** Preview films are this many times smaller in each direction. */
+/** Preview films are at least this many times smaller in each direction. */
 const PREVIEW_DIVISOR = 4;
+/**
+ * …and hold at most this many pixels, so a preview pass takes a frame or
+ * two even when the user raised the render scale (~12 ms at the 1.4 M
+ * samples/s of two cores).
+ */
+const PREVIEW_MAX_PIXELS = 16_384;
 /** A new canvas size must hold this long before the film follows it. */
 const RESIZE_SETTLE_MS = 200;
+/**
+ * Shared-memory stripes are this many rows high at most per 256 rows of
+ * image: thin stripes let the spread-out pass order (stripeOrder) cover the
+ * frame evenly; a claim costs microseconds next to a row's milliseconds.
+ */
+const SHARED_STRIPES_TARGET = 256;
 
 export class Films {
   full: FilmJob | null = null;
   preview: FilmJob | null = null;
   /** The preview is the active film. */
   previewing = false;
-  /** The pointer is moving: the next restart switches to the preview film. */
+  /** The pointer is moving (or the first pass is wanted quickly): the next restart uses the preview film. */
   wantPreview = false;
+  /** Render scale in use; chosen from the measured speed while `autoScale` holds. */
   renderScale: number;
+  /** The scale is the automatic one (no renderScale option, not set by the user). */
+  autoScale: boolean;
   private readonly canvas: HTMLCanvasElement;
   private readonly options: PathTracerOptions;
   private readonly compute: ComputeMode;
   private readonly workers: () => number;
+  private readonly maxPixelRatio: number;
+  /** See PathTracerOptions.sizeStep; takes effect when the full film is next sized. */
+  sizeStep: number;
   private pendingSize = '';
   private pendingSince = 0;
 
@@ -41,7 +61,12 @@ export class Films {
     this.options = options;
     this.compute = compute;
     this.workers = workers;
+    this.autoScale = options.renderScale === undefined && !this.fixedSize;
+    // Until a speed is measured, the automatic scale is the largest one: the
+    // quick first pass runs in the preview film, which it sizes.
     this.renderScale = options.renderScale ?? 1;
+    this.maxPixelRatio = options.maxPixelRatio ?? DEFAULT_MAX_PIXEL_RATIO;
+    this.sizeStep = Math.max(1, Math.floor(options.sizeStep ?? 1));
   }
 
   active(): FilmJob | null {
@@ -52,22 +77,50 @@ export class Films {
     return (this.full?.memoryBytes ?? 0) + (this.preview?.memoryBytes ?? 0);
   }
 
-  /** The full render size: fixed, or the canvas's CSS size × devicePixelRatio × renderScale. */
-  private fullSize(): [number, number] {
+  get fixedSize(): boolean {
+    return !!(this.options.width && this.options.height);
+  }
+
+  /** The canvas's CSS size and the capped devicePixelRatio that multiplies it. */
+  cssSize(): { width: number; height: number; pixelRatio: number } {
+    const dpr = typeof devicePixelRatio === 'number' && devicePixelRatio > 0 ? devicePixelRatio : 1;
+    return {
+      width: this.canvas.clientWidth || this.canvas.width || 300,
+      height: this.canvas.clientHeight || this.canvas.height || 150,
+      pixelRatio: Math.min(dpr, this.maxPixelRatio),
+    };
+  }
+
+  /**
+   * The full render size: fixed, or the canvas's CSS size × capped
+   * devicePixelRatio × renderScale. With a size step the height is a
+   * multiple of it and the width even, so that film pixels tile a centred
+   * grid exactly (the demo compares its image with references cell by
+   * cell); the aspect ratio stays within a pixel of the canvas's.
+   */
+  fullSize(scale = this.renderScale): [number, number] {
     const o = this.options;
     if (o.width && o.height) return [Math.floor(o.width), Math.floor(o.height)];
-    const dpr = typeof devicePixelRatio === 'number' ? devicePixelRatio : 1;
-    const w = this.canvas.clientWidth || this.canvas.width || 300;
-    const h = this.canvas.clientHeight || this.canvas.height || 150;
-    const s = dpr * this.renderScale;
-    return [Math.max(1, Math.round(w * s)), Math.max(1, Math.round(h * s))];
+    const css = this.cssSize();
+    const s = css.pixelRatio * scale;
+    let w = Math.max(1, Math.round(css.width * s));
+    let h = Math.max(1, Math.round(css.height * s));
+    const step = this.sizeStep;
+    if (step > 1) {
+      const aspect = css.width / css.height;
+      h = Math.max(step, Math.round(h / step) * step);
+      w = Math.max(2, 2 * Math.round((h * aspect) / 2));
+    }
+    return [w, h];
   }
 
   private make(width: number, height: number, target: number): FilmJob {
-    const rows = chooseStripeRows(height, this.workers());
-    return this.compute === 'shared'
-      ? new SharedFilmJob(width, height, rows, target)
-      : new TransferFilmJob(width, height, rows, target);
+    if (this.compute === 'shared') {
+      const rows = Math.max(1, Math.floor(height / SHARED_STRIPES_TARGET));
+      return new SharedFilmJob(width, height, rows, target);
+    }
+    // Each transferred stripe is a message both ways: keep them few.
+    return new TransferFilmJob(width, height, chooseStripeRows(height, this.workers()), target);
   }
 
   /**
@@ -86,24 +139,38 @@ export class Films {
     return true;
   }
 
+  /** The preview's size for a full film of w × h. */
+  static previewSize(w: number, h: number): [number, number] {
+    const f = Math.max(PREVIEW_DIVISOR, Math.sqrt((w * h) / PREVIEW_MAX_PIXELS));
+    return [Math.max(1, Math.round(w / f)), Math.max(1, Math.round(h / f))];
+  }
+
   private ensurePreview(target: number): FilmJob {
-    const full = this.full!;
-    const w = Math.max(1, Math.round(full.width / PREVIEW_DIVISOR));
-    const h = Math.max(1, Math.round(full.height / PREVIEW_DIVISOR));
+    // Before the full film exists (the quick first pass, which measures the
+    // speed the automatic scale needs) the preview follows the largest size.
+    const [fw, fh] = this.full ? [this.full.width, this.full.height] : this.fullSize();
+    const [w, h] = Films.previewSize(fw, fh);
     if (!this.preview || this.preview.width !== w || this.preview.height !== h) {
+      this.preview?.setVersion(-1);
       this.preview = this.make(w, h, target);
+    }
+    if (!this.full) {
+      this.canvas.width = fw;
+      this.canvas.height = fh;
     }
     return this.preview;
   }
 
-  /** For a restart: the film to render (the preview while dragging); the other is parked. */
+  /** For a restart: the film to render (the preview while wanted); the other is parked. */
   select(target: number): FilmJob {
+    this.previewing = this.wantPreview;
+    if (this.previewing) {
+      this.full?.setVersion(-1);
+      return this.ensurePreview(target);
+    }
     this.ensureFull(target);
-    if (this.wantPreview) this.previewing = true;
-    const active = this.previewing ? this.ensurePreview(target) : this.full!;
-    const parked = this.previewing ? this.full : this.preview;
-    parked?.setVersion(-1);
-    return active;
+    this.preview?.setVersion(-1);
+    return this.full!;
   }
 
   /** A new canvas size is waiting to settle (follow must be called again). */
@@ -119,7 +186,7 @@ export class Films {
    * film was remade (the caller restarts).
    */
   follow(now: number, target: number): boolean {
-    if ((this.options.width && this.options.height) || !this.full || this.previewing) return false;
+    if (this.fixedSize || !this.full || this.previewing) return false;
     const [w, h] = this.fullSize();
     if (Math.abs(w - this.full.width) <= 1 && Math.abs(h - this.full.height) <= 1) {
       this.pendingSize = '';

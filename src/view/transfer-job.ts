@@ -7,7 +7,7 @@
  * same, bit for bit, as the shared path's.
  */
 import { Film } from '../core/index.ts';
-import type { StripeResult, StripeTask } from '../../workers/render-protocol.ts';
+import { stripeOrder, type StripeResult, type StripeTask } from '../../workers/render-protocol.ts';
 import type { FilmJob } from './film-job.ts';
 
 export class TransferFilmJob implements FilmJob {
@@ -22,6 +22,8 @@ export class TransferFilmJob implements FilmJob {
   private paused = false;
   private done: Int32Array;
   private inFlight: Uint8Array;
+  /** Stripes in the order a pass visits them (spread over the frame, see stripeOrder). */
+  private readonly order: Int32Array;
   /** Stripes ready for their next pass, in the order they will be handed out. */
   private queue: number[] = [];
   /** Rows changed since the last takeDirtyRows, as [y0, y1) spans. */
@@ -39,6 +41,7 @@ export class TransferFilmJob implements FilmJob {
     this.target = target;
     this.done = new Int32Array(this.stripes);
     this.inFlight = new Uint8Array(this.stripes);
+    this.order = stripeOrder(this.stripes);
     this.requeue();
   }
 
@@ -48,7 +51,7 @@ export class TransferFilmJob implements FilmJob {
 
   private requeue(): void {
     this.queue = [];
-    for (let s = 0; s < this.stripes; s++) {
+    for (const s of this.order) {
       if (!this.inFlight[s] && this.done[s] < this.target) this.queue.push(s);
     }
   }

@@ -52,8 +52,20 @@ export interface PathTracerOptions {
   /** Display exposure (linear gain), default 1; never resets accumulation. */
   exposure?: number;
   seed?: number;
-  /** Render resolution relative to canvas CSS size × devicePixelRatio (default 1). */
+  /**
+   * Render resolution relative to the canvas's CSS size × devicePixelRatio
+   * (capped at maxPixelRatio). Left out, it is chosen from the speed
+   * measured on the first pass, so that one pass takes about 0.2 s.
+   */
   renderScale?: number;
+  /** devicePixelRatio above this is not rendered (default 2). */
+  maxPixelRatio?: number;
+  /**
+   * Round the render height to a multiple of this and the width to an even
+   * number (keeping the aspect ratio). The demo uses it so that its pixels
+   * tile the grid on which it compares the image with a reference.
+   */
+  sizeStep?: number;
   /** Fixed render size; overrides the canvas-derived size (tests, benchmarks). */
   width?: number;
   height?: number;
@@ -100,7 +112,8 @@ export interface PathTracerController extends EventTarget {
   setBounces(bounces: number): void;
   setExposure(exposure: number): void;
   setSeed(seed: number): void;
-  setRenderScale(scale: number): void;
+  /** A fixed render scale, or null for the automatic one (see PathTracerOptions.renderScale). */
+  setRenderScale(scale: number | null): void;
   setWorkers(count: number): Promise<void>;
   getCamera(): CameraDesc;
   setCamera(camera: CameraDesc): void;

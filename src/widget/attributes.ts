@@ -16,13 +16,13 @@ export const OBSERVED_ATTRIBUTES = [
   'autoplay',
   'paused',
   'render-scale',
+  'alt',
 ] as const;
 
 export type ObservedAttribute = (typeof OBSERVED_ATTRIBUTES)[number];
 
 export const DEFAULT_SPP = 512;
 export const DEFAULT_EXPOSURE = 1;
-export const DEFAULT_RENDER_SCALE = 1;
 
 /** A finite number, or undefined when the attribute is absent or not a number. */
 export function parseNumber(value: string | null): number | undefined {

@@ -13,9 +13,9 @@ import type {
   PathTracerOptions,
   ProgressInfo,
 } from '../view/types.ts';
+import { ViewAccessibility } from './accessibility.ts';
 import {
   DEFAULT_EXPOSURE,
-  DEFAULT_RENDER_SCALE,
   DEFAULT_SPP,
   OBSERVED_ATTRIBUTES,
   parseAutoplay,
@@ -59,6 +59,7 @@ export class PathwiseViewElement extends ElementBase {
   private canvasUsed = false;
   private readonly messageBox: HTMLDivElement;
   private readonly visibility: VisibilityWatcher;
+  private readonly a11y: ViewAccessibility;
   private tracer: ReturnType<typeof createPathTracer> | null = null;
   /** Detaches the pointer controls while `camera-controls` is on. */
   private detachControls: (() => void) | null = null;
@@ -82,6 +83,7 @@ export class PathwiseViewElement extends ElementBase {
     this.messageBox.setAttribute('role', 'alert');
     this.messageBox.hidden = true;
     root.append(style, this.canvas, this.messageBox);
+    this.a11y = new ViewAccessibility(this, this.canvas, root);
     this.visibility = new VisibilityWatcher(this, () => this.applyRunState());
   }
 
@@ -151,12 +153,23 @@ export class PathwiseViewElement extends ElementBase {
     writeBoolean(this, 'paused', value);
   }
 
-  /** Render resolution relative to the element's size × devicePixelRatio (default 1). */
-  get renderScale(): number {
-    return parsePositive(this.getAttribute('render-scale')) ?? DEFAULT_RENDER_SCALE;
+  /**
+   * Render resolution relative to the element's size × devicePixelRatio
+   * (capped at 2); null (no attribute) chooses it from the measured speed.
+   */
+  get renderScale(): number | null {
+    return parsePositive(this.getAttribute('render-scale')) ?? null;
   }
-  set renderScale(value: number) {
+  set renderScale(value: number | null) {
     writeNumber(this, 'render-scale', value);
+  }
+
+  /** Text alternative for the picture (attribute `alt`); default: the scene's name. */
+  get alt(): string {
+    return this.getAttribute('alt') ?? '';
+  }
+  set alt(value: string) {
+    this.setAttribute('alt', value);
   }
 
   /**
@@ -232,6 +245,7 @@ export class PathwiseViewElement extends ElementBase {
       // `paused` state so that resume() is the one way to start.
       if (!this.autoplay) this.paused = true;
     }
+    this.a11y.update();
     // Creation waits a microtask so that properties set right after the
     // element is created or upgraded (scene, workerUrl) are seen at start.
     queueMicrotask(() => {
@@ -250,7 +264,9 @@ export class PathwiseViewElement extends ElementBase {
   }
 
   attributeChangedCallback(name: string, oldValue: string | null, value: string | null): void {
-    if (oldValue === value || !this.tracer) return;
+    if (oldValue === value) return;
+    if ((name === 'alt' || name === 'camera-controls') && this.isConnected) this.a11y.update();
+    if (!this.tracer) return;
     const tracer = this.tracer;
     switch (name as ObservedAttribute) {
       case 'src':
@@ -280,6 +296,7 @@ export class PathwiseViewElement extends ElementBase {
         this.applyRunState();
         break;
       case 'autoplay':
+      case 'alt':
         break;
     }
   }
@@ -290,11 +307,11 @@ export class PathwiseViewElement extends ElementBase {
     const options: PathTracerOptions = {
       spp: this.spp,
       exposure: this.exposure,
-      renderScale: this.renderScale,
       autoplay: this.shouldRun(),
       cameraControls: false,
     };
     if (this.bounces !== null) options.bounces = this.bounces;
+    if (this.renderScale !== null) options.renderScale = this.renderScale;
     if (this.seed !== null) options.seed = this.seed;
     // A worker URL goes to the pool as is: it starts one on another origin
     // through a same-origin shim, and reports a URL it cannot start as an
@@ -310,6 +327,7 @@ export class PathwiseViewElement extends ElementBase {
         const canvas = createCanvas();
         this.canvas.replaceWith(canvas);
         this.canvas = canvas;
+        this.a11y.setCanvas(canvas);
       }
       this.canvasUsed = true;
       tracer = createPathTracer(this.canvas, options);
@@ -374,6 +392,7 @@ export class PathwiseViewElement extends ElementBase {
     switch (event.type) {
       case 'load':
         this.hideMessage();
+        this.a11y.setSceneName((detail as { scene: { name?: string } }).scene.name ?? '');
         break;
       case 'progress':
       case 'converged':

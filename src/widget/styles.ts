@@ -22,6 +22,18 @@ canvas {
   width: 100%;
   height: 100%;
 }
+canvas:focus-visible {
+  outline: 2px solid Highlight;
+  outline-offset: -2px;
+}
+.visually-hidden {
+  position: absolute;
+  width: 1px;
+  height: 1px;
+  overflow: hidden;
+  clip-path: inset(50%);
+  white-space: nowrap;
+}
 [part='message'] {
   position: absolute;
   inset: 0;

@@ -20,6 +20,19 @@ export function nodeRender(
   camera?: CameraDesc,
   maxBounces?: number,
 ): Float32Array {
+  return nodeFilm(scene, width, height, seed, spp, camera, maxBounces).mean();
+}
+
+/** The Node core's film (sums and squared luminance) of the same render. */
+export function nodeFilm(
+  scene: string,
+  width: number,
+  height: number,
+  seed: number,
+  spp: number,
+  camera?: CameraDesc,
+  maxBounces?: number,
+): Film {
   const parsed = parseScene(readFileSync(join(root, 'scenes', `${scene}.json`), 'utf8'));
   const tracer = new PathTracer(compileScene(parsed), {
     width,
@@ -30,7 +43,7 @@ export function nodeRender(
   });
   const film = new Film(width, height);
   tracer.renderRows(film, 0, height, 0, spp, new RenderStats());
-  return film.mean();
+  return film;
 }
 
 /** Distance along the view axis to the surface at film point (x, y): what click-to-focus sets. */

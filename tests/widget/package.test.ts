@@ -50,20 +50,27 @@ function runInProject(name: string, source: string): string {
 }
 
 describe('the installed package', () => {
-  test('ships only the library, its types, the command line and bin', () => {
+  test('ships only the library, its types, the command line, bin and the scenes', () => {
     const top = readdirSync(installed.packageDir).sort();
     for (const entry of top) {
-      expect(['LICENSE', 'README.md', 'bin', 'dist', 'package.json']).toContain(entry);
+      expect(['LICENSE', 'README.md', 'bin', 'dist', 'package.json', 'scenes']).toContain(entry);
     }
     expect(readdirSync(join(installed.packageDir, 'dist')).sort()).toEqual(['cli', 'lib', 'types']);
     const pkg = JSON.parse(readFileSync(join(installed.packageDir, 'package.json'), 'utf8')) as {
       exports: Record<string, string | Record<string, string>>;
       sideEffects: string[];
     };
-    // Every target of the exports map is really there.
+    // Every target of the exports map is really there (a pattern: some file matches).
     for (const target of Object.values(pkg.exports)) {
       for (const file of typeof target === 'string' ? [target] : Object.values(target)) {
-        expect(existsSync(join(installed.packageDir, file)), file).toBe(true);
+        if (file.endsWith('/*')) {
+          expect(
+            readdirSync(join(installed.packageDir, file.slice(0, -2))).length,
+            file,
+          ).toBeGreaterThan(0);
+        } else {
+          expect(existsSync(join(installed.packageDir, file)), file).toBe(true);
+        }
       }
     }
     // Only the registering entry is marked as having side effects among the shipped files.

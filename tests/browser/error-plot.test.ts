@@ -1,0 +1,114 @@
+/**
+ * The demo's live error plot on the Cornell box, in Chromium: the true
+ * relMSE against the shipped Mitsuba reference falls as samples accrue,
+ * sits at or below the variance estimate (Sobol sampling), equals the
+ * figures Node computes from the same film exactly, is withdrawn when the view
+ * leaves the reference's camera and comes back with Reset view.
+ */
+import { readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { describe, expect, it } from 'vitest';
+import { errorFigures, gridLayout, referenceLuminance } from '../../src/app/error-grid.ts';
+import type { ErrorPoint } from '../../src/app/error-plot.ts';
+import { decodePfm } from '../../src/core/index.ts';
+import { useDemo } from './context.ts';
+import { openDemo, root, waitForSpp } from './harness.ts';
+
+const ctx = useDemo();
+const SIZE = 128;
+const SPP = 64;
+
+function points(page: import('playwright-core').Page): Promise<ErrorPoint[]> {
+  return page.evaluate(() => (window as any).__pathwise.errorMeter.points);
+}
+
+describe('live error plot (Chromium)', () => {
+  it('shows the true error against the Mitsuba reference falling on the Cornell box', async () => {
+    // One worker: slow enough for several points before the target.
+    const page = await openDemo(
+      ctx.browser,
+      ctx.url,
+      `width=${SIZE}&height=${SIZE}&seed=1&spp=${SPP}&workers=1`,
+    );
+    await waitForSpp(page, SPP);
+    // The meter takes its last point a moment after convergence.
+    await page.waitForFunction(
+      (n) => (window as any).__pathwise.errorMeter.points.at(-1)?.spp === n,
+      SPP,
+      { timeout: 10_000 },
+    );
+    const series = await points(page);
+    const truth = series.filter((p) => Number.isFinite(p.truth));
+    expect(truth.length).toBeGreaterThanOrEqual(3);
+    for (let i = 1; i < series.length; i++) {
+      expect(series[i].seconds).toBeGreaterThan(series[i - 1].seconds);
+      expect(series[i].spp).toBeGreaterThan(series[i - 1].spp);
+    }
+    // Falling: twice the samples or more, clearly less error (relMSE ∝ 1/spp).
+    for (const a of truth) {
+      for (const b of truth) {
+        if (b.spp >= 2 * a.spp)
+          expect(b.truth, `${a.spp} → ${b.spp} spp`).toBeLessThan(0.75 * a.truth);
+      }
+    }
+    const last = series.at(-1)!;
+    // Sobol's stratification: the truth at or below the independent-sample estimate.
+    expect(last.truth / last.estimated).toBeGreaterThan(0.3);
+    expect(last.truth / last.estimated).toBeLessThan(1.1);
+
+    // The page's film is the Node core's bit for bit (demo.test.ts); the
+    // figures computed on it in the page equal Node's, exactly.
+    const film = await page.evaluate(() => {
+      const snap = (window as any).__pathwise.controller.filmSnapshot();
+      return {
+        sums: Array.from(snap.sums as Float32Array),
+        extra: Array.from(snap.extra as Float32Array),
+      };
+    });
+    const pfm = decodePfm(readFileSync(join(root, 'tests/references/cornell.pfm')));
+    const f = errorFigures(
+      SIZE,
+      Float32Array.from(film.sums),
+      Float32Array.from(film.extra),
+      gridLayout(SIZE, SIZE, pfm.width, pfm.height)!,
+      referenceLuminance(pfm.width, pfm.height, pfm.rgb),
+    );
+    expect(last.truth).toBe(f.relMse);
+    expect(last.estimated).toBe(f.estimatedRelMse);
+
+    // The plot is drawn and its numbers are in words too.
+    const caption = (await page.locator('#error-caption').textContent()) ?? '';
+    expect(caption).toMatch(new RegExp(`\\(${SPP} spp\\): estimated [\\d.e-]+, true [\\d.e-]+`));
+    expect(await page.locator('#error-plot').getAttribute('aria-label')).toContain(caption);
+    const colours = await page.evaluate(() => {
+      const canvas = document.getElementById('error-plot') as HTMLCanvasElement;
+      const data = canvas.getContext('2d')!.getImageData(0, 0, canvas.width, canvas.height).data;
+      const seen = new Set<number>();
+      for (let i = 0; i < data.length; i += 4)
+        seen.add((data[i] << 16) | (data[i + 1] << 8) | data[i + 2]);
+      return seen.size;
+    });
+    expect(colours).toBeGreaterThan(10);
+    await page.close();
+  });
+
+  it('withdraws the true error away from the reference view and restores it with Reset view', async () => {
+    const page = await openDemo(ctx.browser, ctx.url, `width=${SIZE}&height=${SIZE}&seed=1&spp=8`);
+    await waitForSpp(page, 2);
+    await page.evaluate(() => (window as any).__pathwise.controller.orbit(30, 0));
+    await waitForSpp(page, 8);
+    await page.waitForFunction(
+      () => (window as any).__pathwise.errorMeter.points.at(-1)?.spp === 8,
+    );
+    const moved = await points(page);
+    expect(moved.every((p) => Number.isNaN(p.truth))).toBe(true);
+    expect(moved.every((p) => p.estimated > 0)).toBe(true);
+    expect(await page.locator('#error-caption').textContent()).toMatch(/Reset view/);
+    await page.click('#reset-view');
+    await page.waitForFunction(() => {
+      const p = (window as any).__pathwise.errorMeter.points.at(-1);
+      return p && p.spp === 8 && Number.isFinite(p.truth);
+    });
+    await page.close();
+  });
+});
