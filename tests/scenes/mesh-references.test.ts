@@ -41,7 +41,7 @@ describe.each(cases)('$name converges to the Mitsuba reference', ({ name, spp })
   const ref = downsample(full, 2);
   let img: SampledImage;
 
-  it('renders with its files', async () => {
+  it('renders with its files', { timeout: 600_000 }, async () => {
     const scene = await loadSceneWithFiles(name);
     img = renderSampled(scene, { width: ref.width, height: ref.height, spp, seed: 7 });
     expect(img.stats.rejected).toBe(0);
