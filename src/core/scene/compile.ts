@@ -349,7 +349,9 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
     sphereBoxes(spheres, sphereCount, prims);
     quadBoxes(quads, quadCount, prims);
     triangleBoxes(mesh.triPositions, mesh.triIndices, triCount, prims);
-    bvh = buildBvh(prims.boxes, prims.refs, total);
+    // Meshes: a node cost of 2 makes leaves of 2–4 triangles, 42 rather than 68 bytes of
+    // hierarchy per triangle for a million of them (docs/performance.md; bench/mesh-bvh.ts).
+    bvh = buildBvh(prims.boxes, prims.refs, total, triCount > 0 ? 2 : undefined);
   }
   return new CompiledScene({
     materials,
