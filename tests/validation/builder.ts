@@ -1,0 +1,209 @@
+/**
+ * The scene builder the generator's archetypes write into: named random
+ * materials, shapes in the scene's own unit frame (the generator maps it
+ * by a random similarity at the end), light bookkeeping, and the coverage
+ * features each scene exercises.
+ *
+ * Extension points (see docs/validation.md, "Extending the generator"):
+ * - a new shape kind (e.g. `mesh` once the core loads it) is one more
+ *   `ShapeJson` variant, one `add…` method here that records it, and one
+ *   case in `transformShape` (generate.ts); an `OBJECT_MAKERS` entry in
+ *   archetypes.ts then places it in scenes;
+ * - a new environment kind (an environment map) is one more
+ *   `EnvironmentJson` variant and an `ENVIRONMENT_MAKERS` entry in
+ *   archetypes.ts.
+ */
+import type { Rng } from './rng.ts';
+import { cross, length, type Vec3 } from './vec.ts';
+
+/** Everything a generated scene can be tagged with; the generator test checks each occurs. */
+export const FEATURES = [
+  'sphere-light',
+  'quad-light',
+  'tiny-light',
+  'large-light',
+  'light-near-receiver',
+  'huge-receiver',
+  'ground-sphere',
+  'ground-sphere-1e5',
+  'multiple-lights',
+  'power-ratio-1000',
+  'environment',
+  'no-environment',
+  'camera-in-room',
+  'camera-outside',
+  'camera-in-glass',
+  'aperture',
+  'bounces-0',
+  'bounces-12',
+  'scale-1e-4',
+  'scale-1e4',
+  'rotated',
+  'grazing',
+  'diffuse',
+  'conductor',
+  'mirror',
+  'dielectric',
+  'emissive-non-diffuse',
+] as const;
+export type Feature = (typeof FEATURES)[number];
+
+export type MaterialJson =
+  | { type: 'diffuse'; albedo: Vec3; emission?: Vec3 }
+  | { type: 'conductor'; color: Vec3; roughness: number; emission?: Vec3 }
+  | { type: 'dielectric'; ior: number; color: Vec3; emission?: Vec3 };
+
+export type ShapeJson =
+  | { type: 'sphere'; center: Vec3; radius: number; material: string }
+  | { type: 'quad'; corner: Vec3; u: Vec3; v: Vec3; material: string };
+
+/** `null`: no environment (black). Environment maps will be another variant. */
+export type EnvironmentJson = Vec3 | null;
+
+export interface CameraJson {
+  position: Vec3;
+  target: Vec3;
+  up: Vec3;
+  fovY: number;
+  aperture?: number;
+  focusDistance?: number;
+}
+
+export interface SceneJson {
+  format: 'pathwise-scene/1';
+  name: string;
+  camera: CameraJson;
+  settings: { width: number; height: number; maxBounces: number; spp: number };
+  materials: Record<string, MaterialJson>;
+  shapes: ShapeJson[];
+  environment?: Vec3;
+}
+
+export type MaterialKind = 'diffuse' | 'conductor' | 'dielectric';
+
+/** One emitter as placed, for the archetypes' own bookkeeping. */
+export interface LightInfo {
+  kind: 'sphere' | 'quad';
+  /** Radius, or the square root of the quad's area. */
+  size: number;
+  /** The radiance it was given. */
+  emission: number;
+}
+
+export class SceneBuilder {
+  readonly materials: Record<string, MaterialJson> = {};
+  readonly shapes: ShapeJson[] = [];
+  readonly features = new Set<Feature>();
+  readonly lights: LightInfo[] = [];
+  environment: EnvironmentJson = null;
+  private count = 0;
+
+  constructor(readonly rng: Rng) {}
+
+  tag(...features: Feature[]): void {
+    for (const f of features) this.features.add(f);
+  }
+
+  /** A random colour with every channel in [lo, hi]. */
+  color(lo: number, hi: number): Vec3 {
+    const r = this.rng;
+    return [r.uniform(lo, hi), r.uniform(lo, hi), r.uniform(lo, hi)];
+  }
+
+  /** A new material of the given kind (random kind by default) with random parameters. */
+  material(kind?: MaterialKind, emission?: Vec3): string {
+    const r = this.rng;
+    const k =
+      kind ??
+      r.weighted<MaterialKind>([
+        ['diffuse', 0.55],
+        ['conductor', 0.3],
+        ['dielectric', 0.15],
+      ]);
+    let m: MaterialJson;
+    if (k === 'diffuse') {
+      m = { type: 'diffuse', albedo: this.color(0.05, 0.9) };
+    } else if (k === 'conductor') {
+      // A quarter are perfect mirrors (a delta BSDF: no light sampling at all).
+      const roughness = r.chance(0.25) ? 0 : r.uniform(0.05, 1);
+      m = { type: 'conductor', color: this.color(0.3, 1), roughness };
+      this.tag(roughness === 0 ? 'mirror' : 'conductor');
+    } else {
+      m = { type: 'dielectric', ior: r.uniform(1.1, 2.4), color: this.color(0.6, 1) };
+    }
+    this.tag(k === 'conductor' ? 'conductor' : k);
+    if (emission !== undefined) {
+      m.emission = emission;
+      if (k !== 'diffuse') this.tag('emissive-non-diffuse');
+    }
+    const name = `${k}${this.count++}`;
+    this.materials[name] = m;
+    return name;
+  }
+
+  /**
+   * An emitter's material: radiance `radiance` with a random tint; mostly
+   * diffuse (black or grey albedo), sometimes a conductor or glass.
+   */
+  emitter(radiance: number): string {
+    const r = this.rng;
+    const tint = this.color(0.5, 1);
+    const emission: Vec3 = [radiance * tint[0], radiance * tint[1], radiance * tint[2]];
+    const kind = r.weighted<MaterialKind>([
+      ['diffuse', 0.88],
+      ['conductor', 0.06],
+      ['dielectric', 0.06],
+    ]);
+    if (kind === 'diffuse' && r.chance(0.6)) {
+      const name = `lamp${this.count++}`;
+      this.materials[name] = { type: 'diffuse', albedo: [0, 0, 0], emission };
+      this.tag('diffuse');
+      return name;
+    }
+    return this.material(kind, emission);
+  }
+
+  sphere(center: Vec3, radius: number, material: string): void {
+    this.shapes.push({ type: 'sphere', center, radius, material });
+    this.noteLight(material, 'sphere', radius);
+  }
+
+  quad(corner: Vec3, u: Vec3, v: Vec3, material: string): void {
+    this.shapes.push({ type: 'quad', corner, u, v, material });
+    this.noteLight(material, 'quad', Math.sqrt(length(cross(u, v))));
+  }
+
+  /**
+   * An axis-aligned box of six quads from `lo` to `hi`, normals outward
+   * (a closed solid: glass when the material is a dielectric) or inward
+   * (a room). `skip` leaves out faces by name.
+   */
+  box(lo: Vec3, hi: Vec3, material: string, outward: boolean, skip: string[] = []): void {
+    const [x0, y0, z0] = lo;
+    const [x1, y1, z1] = hi;
+    const dx = x1 - x0;
+    const dy = y1 - y0;
+    const dz = z1 - z0;
+    // Each face as (corner, u, v) with cross(u, v) pointing outward.
+    const faces: [string, Vec3, Vec3, Vec3][] = [
+      ['floor', [x0, y0, z0], [dx, 0, 0], [0, 0, dz]],
+      ['ceiling', [x0, y1, z0], [0, 0, dz], [dx, 0, 0]],
+      ['left', [x0, y0, z0], [0, 0, dz], [0, dy, 0]],
+      ['right', [x1, y0, z0], [0, dy, 0], [0, 0, dz]],
+      ['back', [x0, y0, z1], [dx, 0, 0], [0, dy, 0]],
+      ['front', [x0, y0, z0], [0, dy, 0], [dx, 0, 0]],
+    ];
+    for (const [name, corner, u, v] of faces) {
+      if (skip.includes(name)) continue;
+      if (outward) this.quad(corner, u, v, material);
+      else this.quad(corner, v, u, material);
+    }
+  }
+
+  private noteLight(material: string, kind: 'sphere' | 'quad', size: number): void {
+    const e = this.materials[material].emission;
+    if (e === undefined) return;
+    this.lights.push({ kind, size, emission: Math.max(...e) });
+    this.tag(kind === 'sphere' ? 'sphere-light' : 'quad-light');
+  }
+}

@@ -1,0 +1,52 @@
+/**
+ * The generated-scene consistency suite (issue 8, deliverable 3), shared by
+ * consistency-*.test.ts so vitest can run its halves on both cores.
+ *
+ * For each of SCENE_COUNT generated scenes (seeds 1…SCENE_COUNT), at
+ * 32×24 pixels and SEEDS independent seeds per configuration,
+ * NEE+MIS must agree with BSDF-only and Sobol with independent sampling
+ * (consistency.ts) in every region and channel: 2 pairs × 17 regions × 3
+ * channels = 102 two-sided Welch tests per scene.
+ *
+ * False alarms: each test rejects at p < ALPHA_SUITE / (SCENE_COUNT · 102)
+ * (Bonferroni), so a correct renderer fails the whole suite, over a fresh
+ * draw of seeds, with probability at most ALPHA_SUITE = 1e-3. The seeds
+ * are fixed, so the suite itself cannot flake: it either passes on every
+ * run or fails on every run.
+ */
+import { describe, expect, it } from 'vitest';
+import {
+  ALPHA_PER_TEST,
+  OPTIONS,
+  TESTS_PER_SCENE,
+  checkConsistency,
+  type PairTest,
+} from './consistency.ts';
+import { generateScene } from './generate.ts';
+
+export { SCENE_COUNT } from './consistency.ts';
+
+function explain(t: PairTest): string {
+  return (
+    `${t.pair} ${t.region} channel ${t.channel}: ${t.meanA.toPrecision(6)} vs ` +
+    `${t.meanB.toPrecision(6)}, t = ${t.t.toFixed(2)} (ν = ${t.nu.toFixed(1)}), p = ${t.p.toExponential(2)}`
+  );
+}
+
+/** Registers one test per scene for seeds first…last. */
+export function consistencySuite(first: number, last: number): void {
+  describe(`generated scenes ${first}–${last}: NEE+MIS = BSDF-only, Sobol = independent`, () => {
+    for (let seed = first; seed <= last; seed++) {
+      const generated = generateScene(seed);
+      it(`scene ${seed} (${generated.archetype}, ${generated.features.join(' ')})`, () => {
+        const r = checkConsistency(generated.scene, OPTIONS, 100_003 * seed);
+        expect(r.tests.length).toBe(TESTS_PER_SCENE);
+        expect(r.rejected, 'non-finite samples').toBe(0);
+        // The premise of the BSDF-only variance floor (consistency.ts).
+        expect(r.maxBsdfSample).toBeLessThanOrEqual(r.bsdfBound);
+        const failures = r.tests.filter((t) => !(t.p >= ALPHA_PER_TEST)).map(explain);
+        expect(failures, `p < ${ALPHA_PER_TEST.toExponential(2)}`).toEqual([]);
+      });
+    }
+  });
+}
