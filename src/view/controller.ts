@@ -34,7 +34,11 @@ import {
   compileScene,
   encodePfm,
   estimateNoise,
+  countSkippedTriangles,
+  isValidatedScene,
   parseScene,
+  resolveSceneFiles,
+  sceneNeedsFiles,
   tonemapSums,
   validateScene,
   type CameraDesc,
@@ -42,6 +46,7 @@ import {
   type CompiledScene,
   type PackedScene,
   type Scene,
+  type SceneFileReader,
 } from '../core/index.ts';
 import { sceneSizeProblem } from '../core/scene/load.ts';
 import type { JobConfig } from '../../workers/render-protocol.ts';
@@ -56,6 +61,7 @@ import { dollyCamera, orbitCamera } from './orbit.ts';
 import { releasePool, sharedPool, type PoolClient, type WorkerPool } from './pool.ts';
 import { ByteLimitError, readBlobBounded, readResponseBounded } from './read-bounded.ts';
 import { RateMeter } from './rate-meter.ts';
+import { urlSceneFiles } from './scene-files.ts';
 import { SharedFilmJob } from './shared-job.ts';
 import { TraceClock } from './trace-clock.ts';
 import type {
@@ -115,6 +121,8 @@ export class Controller extends EventTarget implements PathTracerController {
   private detachControls: (() => void) | null = null;
   private picker: PathTracer | null = null;
   private sceneRequested = false;
+  /** Bumped by every setScene: one that finishes reading files after a newer one is dropped. */
+  private sceneRequest = 0;
   /** The last picture, shown where the active film has no sample yet. */
   private backdrop: Backdrop | null = null;
   /** The film the display showed last (its pixels are what is on screen). */
@@ -204,22 +212,34 @@ export class Controller extends EventTarget implements PathTracerController {
 
   // ---- scene -------------------------------------------------------------
 
-  async setScene(value: unknown): Promise<void> {
+  async setScene(value: unknown, files?: SceneFileReader): Promise<void> {
     this.sceneRequested = true;
+    const request = ++this.sceneRequest;
     let scene: Scene;
     try {
       // Bytes and files get the loader's byte bound and strict UTF-8, as on the command line.
       if (value instanceof Blob) value = await readBlobBounded(value, LIMITS.fileBytes);
-      scene =
-        typeof value === 'string' || value instanceof Uint8Array
+      scene = isValidatedScene(value)
+        ? value
+        : typeof value === 'string' || value instanceof Uint8Array
           ? parseScene(value)
           : validateScene(value);
+      if (sceneNeedsFiles(scene)) {
+        // Mesh and environment-map files: fetched relative to the page unless the
+        // caller says how (a scene's URL, dropped files, a preset's assets).
+        scene = await resolveSceneFiles(
+          scene,
+          files ?? this.options.files ?? urlSceneFiles(document.baseURI),
+        );
+      }
     } catch (e) {
       if (e instanceof ByteLimitError) e = new SceneError([sceneSizeProblem(e.size, e.exact)]);
       const message = e instanceof Error ? e.message : String(e);
       this.emit('error', { message });
       throw new Error(message);
     }
+    // A later call started while this one read its files: that one wins.
+    if (request !== this.sceneRequest || this.destroyed) return;
     const first = this.currentScene === null;
     this.currentScene = scene;
     this.compiled = compileScene(scene);
@@ -235,15 +255,17 @@ export class Controller extends EventTarget implements PathTracerController {
         : scene.settings.maxBounces;
     this.firstPass.sceneLoaded(performance.now());
     this.restart();
-    this.emit('load', { scene });
+    this.emit('load', { scene, skippedTriangles: countSkippedTriangles(scene) });
   }
 
   async load(url: string): Promise<void> {
     this.sceneRequested = true;
     let bytes: Uint8Array;
+    let base: string;
     try {
       const response = await fetch(url);
       if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
+      base = response.url || new URL(url, document.baseURI).href;
       bytes = await readResponseBounded(response, LIMITS.fileBytes);
     } catch (e) {
       const message =
@@ -255,7 +277,8 @@ export class Controller extends EventTarget implements PathTracerController {
       this.emit('error', { message });
       throw new Error(message);
     }
-    await this.setScene(bytes);
+    // The files the scene names live beside it.
+    await this.setScene(bytes, urlSceneFiles(base));
   }
 
   // ---- restart machinery -------------------------------------------------
