@@ -13,7 +13,7 @@ import { gridStep } from './error-grid.ts';
 import { ErrorMeter } from './error-meter.ts';
 import { ErrorPlot } from './error-plot.ts';
 import { readParams } from './params.ts';
-import { PRESETS, type PresetName } from './presets.ts';
+import { PRESETS, PRESET_FILES, type PresetName } from './presets.ts';
 import { REFERENCE_SIZES } from './references.ts';
 import { attachSceneFiles } from './scene-file.ts';
 import { startStatsPanel } from './stats-panel.ts';
@@ -35,6 +35,7 @@ function sizeStepFor(name: PresetName | null): number {
 const controller = createPathTracer(canvas, {
   ...options,
   scene: PRESETS[preset],
+  files: PRESET_FILES,
   sizeStep: sizeStepFor(preset),
 });
 
@@ -69,16 +70,24 @@ const meter = new ErrorMeter(
   faults,
 };
 
-/** A loaded scene is a preset when it is one exactly (a file may share a preset's name only). */
+/**
+ * A loaded scene is a preset when it is one exactly (a file may share a preset's name
+ * only). Decoded meshes and maps are left out of the comparison: the preset is the same
+ * before and after its files are read, and a big mesh is not turned into text.
+ */
+const sceneKey = (scene: unknown) =>
+  JSON.stringify(scene, (k, v) =>
+    k === 'data' || k === 'image' || ArrayBuffer.isView(v) ? undefined : v,
+  );
 const presetKeys = new Map(
-  (Object.keys(PRESETS) as PresetName[]).map((p) => [JSON.stringify(validateScene(PRESETS[p])), p]),
+  (Object.keys(PRESETS) as PresetName[]).map((p) => [sceneKey(validateScene(PRESETS[p])), p]),
 );
 
 const controls = attachControls(controller);
 controls.sync();
 controller.addEventListener('load', () => {
   const scene = controller.scene;
-  const name = scene ? (presetKeys.get(JSON.stringify(scene)) ?? null) : null;
+  const name = scene ? (presetKeys.get(sceneKey(scene)) ?? null) : null;
   // Before the quick first pass ends and sizes the film.
   controller.setSizeStep(sizeStepFor(name));
   meter.setPreset(name);
@@ -106,7 +115,7 @@ controller.addEventListener('fallback', showMode);
 for (const button of document.querySelectorAll<HTMLButtonElement>('[data-preset]')) {
   button.addEventListener('click', () => {
     showError(null);
-    void controller.setScene(PRESETS[button.dataset.preset as PresetName]);
+    void controller.setScene(PRESETS[button.dataset.preset as PresetName], PRESET_FILES);
   });
 }
 

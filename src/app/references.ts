@@ -13,6 +13,7 @@ const URLS: Record<PresetName, URL> = {
   cornell: new URL('./assets/references/cornell.pfm', import.meta.url),
   spheres: new URL('./assets/references/spheres.pfm', import.meta.url),
   mirror: new URL('./assets/references/mirror.pfm', import.meta.url),
+  sky: new URL('./assets/references/metal-sky.pfm', import.meta.url),
 };
 
 /** Sizes of the shipped references, known before they are fetched (to size the film). */
@@ -20,6 +21,7 @@ export const REFERENCE_SIZES: Record<PresetName, [number, number]> = {
   cornell: [128, 128],
   spheres: [160, 90],
   mirror: [128, 128],
+  sky: [128, 128],
 };
 
 const loaded = new Map<PresetName, Promise<ReferenceLuminance>>();

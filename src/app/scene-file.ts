@@ -1,9 +1,12 @@
 /**
- * Opening a scene file by the file picker or by dropping it on the page.
- * A bad file reports the loader's message; the current scene keeps
- * rendering because the controller only replaces it after validation.
+ * Opening a scene by the file picker or by dropping it on the page, together with the
+ * mesh and environment-map files it names (several files at once: the scene's `.json`
+ * and its `.obj`, `.ply`, `.hdr`, `.pfm`). A bad file reports the loader's message; the
+ * current scene keeps rendering because the controller only replaces it after
+ * validation.
  */
 import type { Controller } from '../view/index.ts';
+import { droppedSceneFiles } from '../view/scene-files.ts';
 
 export function attachSceneFiles(
   getController: () => Controller,
@@ -13,18 +16,27 @@ export function attachSceneFiles(
   onLoaded: () => void,
   onError: (message: string) => void,
 ): void {
-  const open = async (file: File): Promise<void> => {
+  const open = async (files: File[]): Promise<void> => {
+    const scenes = files.filter((f) => /\.json$/i.test(f.name));
+    if (scenes.length !== 1) {
+      onError(
+        scenes.length === 0
+          ? 'no scene among the files: open a .json scene, with the files it names'
+          : `${scenes.length} scenes among the files: open one .json at a time`,
+      );
+      return;
+    }
+    const scene = scenes[0];
     try {
       // The File itself: the loader applies the byte bound and strict UTF-8 to it.
-      await getController().setScene(file);
+      await getController().setScene(scene, droppedSceneFiles(files));
       onLoaded();
     } catch (e) {
-      onError(`${file.name}: ${e instanceof Error ? e.message : String(e)}`);
+      onError(`${scene.name}: ${e instanceof Error ? e.message : String(e)}`);
     }
   };
   input.addEventListener('change', () => {
-    const file = input.files?.[0];
-    if (file) void open(file);
+    if (input.files && input.files.length > 0) void open(Array.from(input.files));
     input.value = '';
   });
   dropZone.addEventListener('dragover', (e) => {
@@ -35,7 +47,7 @@ export function attachSceneFiles(
   dropZone.addEventListener('drop', (e) => {
     e.preventDefault();
     hint.classList.remove('visible');
-    const file = e.dataTransfer?.files[0];
-    if (file) void open(file);
+    const files = e.dataTransfer?.files;
+    if (files && files.length > 0) void open(Array.from(files));
   });
 }

@@ -3,7 +3,12 @@
  * stderr for bad arguments, a bad or unreadable scene, or an output that cannot be
  * written; 1 for anything else (a bug).
  */
-import { FilmFileError, SceneError, validateSettingsOverride } from '../core/index.ts';
+import {
+  FilmFileError,
+  SceneError,
+  countSkippedTriangles,
+  validateSettingsOverride,
+} from '../core/index.ts';
 import { printableLine, quote } from '../core/scene/message.ts';
 import { SYNOPSIS, USAGE, UsageError, parseRenderArgs } from './args.ts';
 import { CliError } from './errors.ts';
@@ -18,6 +23,10 @@ async function render(argv: string[]): Promise<void> {
   }
   const args = parseRenderArgs(argv);
   const scene = await loadSceneFile(args.scenePath);
+  const skipped = countSkippedTriangles(scene);
+  if (skipped > 0) {
+    process.stderr.write(`pathwise: note: skipped ${skipped} triangles of zero area\n`);
+  }
   const names: Record<string, string> = {
     width: '--width',
     height: '--height',
@@ -29,7 +38,7 @@ async function render(argv: string[]): Promise<void> {
     { width: args.width, height: args.height, maxBounces: args.bounces, spp: args.spp },
     (key) => names[key],
   );
-  await renderCommand(args, scene, settings);
+  await renderCommand(args, scene, settings, skipped);
 }
 
 async function main(argv: string[]): Promise<number> {

@@ -35,6 +35,8 @@ export async function renderCommand(
   args: RenderArgs,
   scene: Scene,
   settings: SettingsDesc,
+  /** Zero-area triangles the loader skipped (reported in --json). */
+  skippedTriangles = 0,
 ): Promise<void> {
   const b = args.batch;
   const criteria = b.time !== undefined || b.noise !== undefined;
@@ -180,6 +182,7 @@ export async function renderCommand(
             mpaths_per_s: stats.paths / seconds / 1e6,
             msegments_per_s: stats.segments / seconds / 1e6,
             rejected_samples: stats.rejected,
+            skipped_triangles: skippedTriangles,
             compile_seconds: report.compileSeconds,
             first_ready_seconds: report.firstReadySeconds,
             last_ready_seconds: report.lastReadySeconds,

@@ -3,7 +3,20 @@
  * the main thread alike.
  */
 export * from './scene/types.ts';
-export { parseScene, validateScene, validateSettingsOverride, SceneError } from './scene/load.ts';
+export {
+  parseScene,
+  validateScene,
+  validateSettingsOverride,
+  isValidatedScene,
+  SceneError,
+} from './scene/load.ts';
+export {
+  loadScene,
+  resolveSceneFiles,
+  sceneNeedsFiles,
+  type SceneFileReader,
+} from './scene/files.ts';
+export { countSkippedTriangles } from './scene/mesh-desc.ts';
 export {
   compileScene,
   CompiledScene,
@@ -21,6 +34,7 @@ export {
 export { Film } from './film/film.ts';
 export { Camera } from './camera/camera.ts';
 export { encodePfm, decodePfm, type PfmImage, type PfmDecodeOptions } from './io/pfm.ts';
+export { encodeHdr, decodeHdr } from './io/hdr.ts';
 export { FormatError } from './io/format-error.ts';
 export { encodePng, zlibStored } from './io/png.ts';
 export { acesFilmic, srgbEncode, toDisplayByte, tonemapSums } from './io/tonemap.ts';

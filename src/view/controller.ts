@@ -34,7 +34,11 @@ import {
   compileScene,
   encodePfm,
   estimateNoise,
+  countSkippedTriangles,
+  isValidatedScene,
   parseScene,
+  resolveSceneFiles,
+  sceneNeedsFiles,
   tonemapSums,
   validateScene,
   type CameraDesc,
@@ -42,6 +46,7 @@ import {
   type CompiledScene,
   type PackedScene,
   type Scene,
+  type SceneFileReader,
 } from '../core/index.ts';
 import { sceneSizeProblem } from '../core/scene/load.ts';
 import type { JobConfig } from '../../workers/render-protocol.ts';
@@ -58,6 +63,7 @@ import { dollyCamera, orbitCamera } from './orbit.ts';
 import { releasePool, sharedPool, type PoolClient, type WorkerPool } from './pool.ts';
 import { ByteLimitError, readBlobBounded, readResponseBounded } from './read-bounded.ts';
 import { RateMeter } from './rate-meter.ts';
+import { urlSceneFiles } from './scene-files.ts';
 import { SharedFilmJob } from './shared-job.ts';
 import { TraceClock } from './trace-clock.ts';
 import type {
@@ -251,8 +257,8 @@ export class Controller extends EventTarget implements PathTracerController {
    * Loads a scene. A request superseded by a later one (setScene or load)
    * before it was read resolves without loading anything.
    */
-  async setScene(value: unknown): Promise<void> {
-    return this.applyScene(value, this.newSceneRequest());
+  async setScene(value: unknown, files?: SceneFileReader): Promise<void> {
+    return this.applyScene(value, this.newSceneRequest(), files);
   }
 
   private newSceneRequest(): number {
@@ -262,16 +268,29 @@ export class Controller extends EventTarget implements PathTracerController {
     return ++this.sceneRequest;
   }
 
-  private async applyScene(value: unknown, request: number): Promise<void> {
+  private async applyScene(
+    value: unknown,
+    request: number,
+    files?: SceneFileReader,
+  ): Promise<void> {
     let scene: Scene;
     try {
       // Bytes and files get the loader's byte bound and strict UTF-8, as on the command line.
       if (value instanceof Blob) value = await readBlobBounded(value, LIMITS.fileBytes);
       if (request !== this.sceneRequest) return;
-      scene =
-        typeof value === 'string' || value instanceof Uint8Array
+      scene = isValidatedScene(value)
+        ? value
+        : typeof value === 'string' || value instanceof Uint8Array
           ? parseScene(value)
           : validateScene(value);
+      if (sceneNeedsFiles(scene)) {
+        // Mesh and environment-map files: fetched relative to the page unless the
+        // caller says how (a scene's URL, dropped files, a preset's assets).
+        scene = await resolveSceneFiles(
+          scene,
+          files ?? this.options.files ?? urlSceneFiles(document.baseURI),
+        );
+      }
     } catch (e) {
       // A superseded request's failure is nobody's concern any more.
       if (request !== this.sceneRequest) return;
@@ -280,6 +299,8 @@ export class Controller extends EventTarget implements PathTracerController {
       this.emit('error', { message });
       throw new Error(message);
     }
+    // A later call started while this one read its files: that one wins.
+    if (request !== this.sceneRequest || this.destroyed) return;
     let compiled: CompiledScene;
     let packed: PackedScene;
     try {
@@ -307,7 +328,7 @@ export class Controller extends EventTarget implements PathTracerController {
         : scene.settings.maxBounces;
     this.firstPass.sceneLoaded(performance.now());
     this.restart();
-    this.emit('load', { scene });
+    this.emit('load', { scene, skippedTriangles: countSkippedTriangles(scene) });
   }
 
   /** Fetches and loads a scene; superseded like setScene (its fetch is aborted then). */
@@ -316,9 +337,11 @@ export class Controller extends EventTarget implements PathTracerController {
     const abort = typeof AbortController !== 'undefined' ? new AbortController() : null;
     this.loadAbort = abort;
     let bytes: Uint8Array;
+    let base: string;
     try {
       const response = await fetch(url, abort ? { signal: abort.signal } : undefined);
       if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
+      base = response.url || new URL(url, document.baseURI).href;
       bytes = await readResponseBounded(response, LIMITS.fileBytes);
     } catch (e) {
       if (request !== this.sceneRequest) return;
@@ -332,7 +355,8 @@ export class Controller extends EventTarget implements PathTracerController {
       throw new Error(message);
     }
     if (this.loadAbort === abort) this.loadAbort = null;
-    await this.applyScene(bytes, request);
+    // The files the scene names live beside it.
+    await this.applyScene(bytes, request, urlSceneFiles(base));
   }
 
   // ---- restart machinery -------------------------------------------------

@@ -3,7 +3,7 @@
  * (src/widget): `createPathTracer(canvas, options)` returns a
  * PathTracerController. This file is the contract; src/view implements it.
  */
-import type { CameraDesc, Scene } from '../core/index.ts';
+import type { CameraDesc, Scene, SceneFileReader } from '../core/index.ts';
 
 export type DisplayMode = 'webgl2' | 'canvas2d';
 export type ComputeMode = 'shared' | 'transfer';
@@ -46,6 +46,11 @@ export interface PathTracerOptions {
   /** A scene object (validated on load) or a URL to fetch. */
   scene?: unknown;
   src?: string;
+  /**
+   * How the mesh and environment-map files named by `scene` are read; default: URLs
+   * relative to the page. A scene loaded from `src` reads them relative to its own URL.
+   */
+  files?: SceneFileReader;
   /** Target samples per pixel; tracing stops there (default 512). */
   spp?: number;
   /** Max bounces; default from the scene. */
@@ -84,7 +89,8 @@ export interface PathTracerOptions {
 }
 
 export interface PathTracerEventMap {
-  load: CustomEvent<{ scene: Scene }>;
+  /** `skippedTriangles`: zero-area triangles the scene's meshes dropped (the spec asks for a report). */
+  load: CustomEvent<{ scene: Scene; skippedTriangles: number }>;
   progress: CustomEvent<ProgressInfo>;
   converged: CustomEvent<ProgressInfo>;
   error: CustomEvent<{ message: string }>;
@@ -98,9 +104,11 @@ export interface PathTracerController extends EventTarget {
   /**
    * Validates and loads a scene: an object, its JSON text, or the bytes of a file (a
    * Uint8Array or a File/Blob, held to the 16 MiB bound and strict UTF-8 like the command
-   * line). Rejects with the loader's message, keeping the current scene.
+   * line), reading the mesh and map files it names through `files` (default: URLs
+   * relative to the page). Rejects with the loader's message, keeping the current scene.
    */
-  setScene(scene: unknown): Promise<void>;
+  setScene(scene: unknown, files?: SceneFileReader): Promise<void>;
+  /** Fetches a scene; the files it names are fetched relative to its URL. */
   load(url: string): Promise<void>;
   reset(): void;
   pause(): void;

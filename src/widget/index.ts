@@ -4,7 +4,12 @@
  * registered only when `definePathwiseView()` is called. The package's main
  * entry (register.ts) is this plus the registration.
  */
-export { createPathTracer } from '../view/index.ts';
+export {
+  createPathTracer,
+  droppedSceneFiles,
+  mappedSceneFiles,
+  urlSceneFiles,
+} from '../view/index.ts';
 export type {
   ComputeMode,
   DisplayMode,
@@ -15,7 +20,7 @@ export type {
   ProgressInfo,
   RenderStatsInfo,
 } from '../view/types.ts';
-export type { CameraDesc, Scene, Vec3 } from '../core/index.ts';
+export type { CameraDesc, Scene, SceneFileReader, Vec3 } from '../core/index.ts';
 export { PathwiseViewElement, type PathwiseViewEventMap } from './element.ts';
 export { definePathwiseView } from './define.ts';
 export { moduleWorkerFactory } from '../view/worker-source.ts';

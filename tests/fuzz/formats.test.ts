@@ -49,7 +49,13 @@ describe.each(FORMATS.map((f) => [f.name, f] as const))('%s', (_, format) => {
 
   it('rejects every truncation of every sample with a FormatError', async () => {
     for (const bytes of format.samples()) {
-      for (let n = 0; n < bytes.length; n++) await expectFormatError(format, bytes.subarray(0, n));
+      for (let n = 0; n < bytes.length; n++) {
+        const prefix = bytes.subarray(0, n);
+        // A text format without a terminator (OBJ) has prefixes that are whole files:
+        // those must decode to a sane value; every other prefix is a FormatError.
+        if (format.validPrefix?.(prefix)) format.check(await format.decode(prefix));
+        else await expectFormatError(format, prefix);
+      }
     }
   });
 

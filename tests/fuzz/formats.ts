@@ -16,8 +16,10 @@ import {
   Film,
   crc32,
   decodeFilmFile,
+  decodeHdr,
   decodePfm,
   encodeFilmFile,
+  encodeHdr,
   encodePfm,
   type FilmFile,
   type FilmHeader,
@@ -27,6 +29,9 @@ import { GM_STRIDE } from '../../src/core/gltf/material-table.ts';
 import { type GltfModel, loadGltf } from '../../src/core/gltf/load.ts';
 import { decodeImageJs } from '../../src/core/texture/decode-js.ts';
 import { POSITION_Y2_OFFSET, quadGlb, quadGltfDataUri } from './gltf-samples.ts';
+import type { RawMesh } from '../../src/core/geometry/mesh-data.ts';
+import { parseObj } from '../../src/core/io/obj.ts';
+import { parsePly } from '../../src/core/io/ply.ts';
 
 export interface FormatEntry {
   /** As the decoder's FormatError names it (error.format), e.g. "PFM". */
@@ -43,6 +48,11 @@ export interface FormatEntry {
   nonFinite: () => { name: string; bytes: Uint8Array; message?: RegExp }[];
   /** Other hostile files with the message they must give. */
   others?: () => { name: string; bytes: Uint8Array; message?: RegExp }[];
+  /**
+   * For text formats without a terminator (OBJ, ASCII PLY): whether a prefix of a sample
+   * is itself a complete file, to be decoded rather than rejected.
+   */
+  validPrefix?: (prefix: Uint8Array) => boolean;
 }
 
 const ascii = (s: string) => Uint8Array.from(s, (c) => c.charCodeAt(0));
@@ -436,3 +446,158 @@ export const FORMATS: FormatEntry[] = [
     ],
   },
 ];
+
+const MESH_LIMITS = { maxTriangles: 10_000_000, sceneTriangles: 10_000_000 };
+
+function checkMesh(value: unknown): void {
+  const m = value as RawMesh;
+  expect(m.positions.length % 3).toBe(0);
+  expect(m.indices.length % 3).toBe(0);
+  expect(m.positions.every(Number.isFinite)).toBe(true);
+  const vertices = m.positions.length / 3;
+  expect(m.indices.every((i) => i < vertices)).toBe(true);
+  if (m.normals !== null) {
+    expect(m.normals.length).toBe(m.positions.length);
+    expect(m.normals.every(Number.isFinite)).toBe(true);
+  }
+}
+
+/** A binary PLY: header, then the body written by `body`. */
+function plyBinary(vertices: number, faces: number, body: (v: DataView) => number, size: number) {
+  const header = ascii(
+    `ply\nformat binary_little_endian 1.0\nelement vertex ${vertices}\n` +
+      'property float x\nproperty float y\nproperty float z\n' +
+      `element face ${faces}\nproperty list uchar int vertex_indices\nend_header\n`,
+  );
+  const data = new DataView(new ArrayBuffer(size));
+  const n = body(data);
+  return concat(header, new Uint8Array(data.buffer, 0, n));
+}
+
+/** The unit square as a binary PLY, with float `index` of the positions set to `value`. */
+function plySquare(value = 0, index = -1): Uint8Array {
+  return plyBinary(
+    4,
+    1,
+    (v) => {
+      const p = [0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0];
+      if (index >= 0) p[index] = value;
+      p.forEach((x, i) => v.setFloat32(4 * i, x, true));
+      v.setUint8(48, 4);
+      [0, 1, 2, 3].forEach((x, i) => v.setInt32(49 + 4 * i, x, true));
+      return 65;
+    },
+    65,
+  );
+}
+
+function hdrSample(width: number, height: number): Uint8Array {
+  const rgb = Float32Array.from({ length: width * height * 3 }, (_, i) => (i % 7) * 0.25);
+  return encodeHdr(width, height, rgb);
+}
+
+FORMATS.push(
+  {
+    name: 'OBJ',
+    decode: (bytes) => parseObj(bytes, MESH_LIMITS),
+    check: checkMesh,
+    // Prefixes ending after the last face's last vertex (its index, its newline) are
+    // whole files; so are the prefixes cut inside a trailing "//1" (a vertex with its
+    // normal field cut off is a vertex without one).
+    validPrefix: (p) => {
+      const text = String.fromCharCode(...p);
+      const last = text.lastIndexOf('\nf ');
+      if (last < 0) return false;
+      const face = text
+        .slice(last + 3)
+        .trim()
+        .split(/\s+/);
+      return face.length >= 3 && face.every((v) => /^-?[1-9]\d*(\/\d*(\/\d*)?)?$/.test(v));
+    },
+    samples: () => [
+      ascii('v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1 4//1\n'),
+      ascii('# a triangle\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf -3/1 -2/1 -1/1\n'),
+    ],
+    lyingHeaders: () => [
+      {
+        name: 'an index past the vertices',
+        bytes: ascii('v 0 0 0\nv 1 0 0\nf 1 2 2147483647\n'),
+        message: /vertex index 2147483647 is out of range/,
+      },
+    ],
+    nonFinite: () => [
+      { name: 'nan coordinate', bytes: ascii('v 0 nan 0\nf 1 1 1\n'), message: /finite/ },
+      { name: 'huge coordinate', bytes: ascii('v 0 1e400 0\nf 1 1 1\n'), message: /finite/ },
+    ],
+    others: () => [{ name: 'empty file', bytes: new Uint8Array(0), message: /no faces/ }],
+  },
+  {
+    name: 'PLY',
+    decode: (bytes) => parsePly(bytes, MESH_LIMITS),
+    check: checkMesh,
+    // The ASCII sample without its final newline is still whole.
+    validPrefix: (p) => String.fromCharCode(...p).endsWith('\n3 0 1 2'),
+    samples: () => [
+      plySquare(),
+      ascii(
+        'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n' +
+          'property float z\nelement face 1\nproperty list uchar int vertex_indices\n' +
+          'end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n',
+      ),
+    ],
+    lyingHeaders: () => [
+      {
+        name: '2^31 vertices',
+        bytes: plyBinary(2 ** 31, 1, () => 0, 0),
+        message: /declares 2147483648 vertices and 1 faces, which need at least/,
+      },
+      {
+        name: 'a face list of 255 vertices in a short file',
+        bytes: plyBinary(
+          3,
+          1,
+          (v) => {
+            v.setUint8(36, 255);
+            return 40;
+          },
+          40,
+        ),
+        message: /the file ends in face 0/,
+      },
+    ],
+    nonFinite: () => [
+      { name: 'NaN x', bytes: plySquare(NaN, 3), message: /vertex 1: coordinate x is not finite/ },
+      {
+        name: 'Inf z',
+        bytes: plySquare(Infinity, 8),
+        message: /vertex 2: coordinate z is not finite/,
+      },
+    ],
+    others: () => [{ name: 'not a PLY', bytes: ascii('PLY\n'), message: /not a PLY file/ }],
+  },
+  {
+    name: 'HDR',
+    decode: (bytes) => decodeHdr(bytes, { maxWidth: 16384, maxHeight: 8192 }),
+    check: (value) => {
+      const img = value as PfmImage;
+      expect(img.rgb.length).toBe(img.width * img.height * 3);
+      expect(img.rgb.every((x) => Number.isFinite(x) && x >= 0)).toBe(true);
+    },
+    samples: () => [hdrSample(9, 3), hdrSample(3, 2)],
+    lyingHeaders: () => [
+      {
+        name: '16384 x 8192 texels in a few bytes',
+        bytes: ascii('#?RADIANCE\n\n-Y 8192 +X 16384\n\u0002\u0002'),
+        message: /declares 16384 × 8192 texels, which need at least/,
+      },
+      {
+        name: '10^9 x 10^9 texels',
+        bytes: ascii('#?RADIANCE\n\n-Y 1000000000 +X 1000000000\n'),
+        message: /more than the limit of 16384 × 8192/,
+      },
+    ],
+    // RGBE cannot encode NaN or Inf: every texel decodes to m · 2^(e − 136) < 2^127.
+    nonFinite: () => [],
+    others: () => [{ name: 'not an HDR', bytes: ascii('P6\n'), message: /not a Radiance HDR/ }],
+  },
+);

@@ -5,11 +5,13 @@
  */
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
+import { nodeSceneFiles } from '../../src/cli/scene-files.ts';
 import {
   PathTracer,
   RenderStats,
   compileScene,
   decodePfm,
+  loadScene as loadSceneAndFiles,
   parseScene,
   type Estimator,
   type PfmImage,
@@ -174,4 +176,30 @@ export function blockChiSquare(
 export function chiSquareQuantile(k: number, z: number): number {
   const a = 2 / (9 * k);
   return k * Math.pow(1 - a + z * Math.sqrt(a), 3);
+}
+
+/** Loads a canonical scene with the mesh and map files it names (scenes/ beside it). */
+export async function loadSceneWithFiles(name: string): Promise<Scene> {
+  const text = readFileSync(`${ROOT}scenes/${name}.json`, 'utf8');
+  return loadSceneAndFiles(text, nodeSceneFiles(`${ROOT}scenes`));
+}
+
+/**
+ * The reference at 1/k of its resolution: each pixel the mean of k×k pixels. With the
+ * box pixel filter this is exactly the image rendered at that resolution, so a test can
+ * render fewer, larger pixels against the same reference.
+ */
+export function downsample(ref: PfmImage, k: number): PfmImage {
+  const width = ref.width / k;
+  const height = ref.height / k;
+  const rgb = new Float32Array(width * height * 3);
+  for (let y = 0; y < ref.height; y++) {
+    for (let x = 0; x < ref.width; x++) {
+      for (let c = 0; c < 3; c++) {
+        rgb[(Math.floor(y / k) * width + Math.floor(x / k)) * 3 + c] +=
+          ref.rgb[(y * ref.width + x) * 3 + c] / (k * k);
+      }
+    }
+  }
+  return { width, height, rgb };
 }

@@ -37,7 +37,9 @@ function scaled(s: Scene, k: number): Scene {
     shapes: s.shapes.map((sh) =>
       sh.type === 'sphere'
         ? { ...sh, center: v(sh.center), radius: sh.radius * k }
-        : { ...sh, corner: v(sh.corner), u: v(sh.u), v: v(sh.v) },
+        : sh.type === 'quad'
+          ? { ...sh, corner: v(sh.corner), u: v(sh.u), v: v(sh.v) }
+          : sh,
     ),
   };
 }

@@ -72,7 +72,14 @@ describe('canonical scenes', () => {
       12,
     );
     expect(scene.settings).toEqual(raw.settings);
-    expect(scene.environment).toEqual(raw.environment ?? [0, 0, 0]);
+    if (Array.isArray(raw.environment) || raw.environment === undefined) {
+      expect(scene.environment).toEqual(raw.environment ?? [0, 0, 0]);
+      expect(scene.environmentMap).toBeNull();
+    } else {
+      // An environment map: its file is read later (resolveSceneFiles), its defaults now.
+      expect(scene.environment).toEqual([0, 0, 0]);
+      expect(scene.environmentMap).toMatchObject({ type: 'map', file: raw.environment.file });
+    }
     expect(scene.shapes).toHaveLength(raw.shapes.length);
     for (const [name, m] of Object.entries(scene.materials)) {
       expect(m.emission).toEqual(raw.materials[name].emission ?? [0, 0, 0]);
@@ -432,7 +439,9 @@ describe('shapes', () => {
     s.shapes[0].type = 'cube';
     s.shapes[1] = null;
     const problems = problemsOf(s);
-    expect(problems).toContain('shapes[0].type must be one of "sphere", "quad", got "cube"');
+    expect(problems).toContain(
+      'shapes[0].type must be one of "sphere", "quad", "mesh", got "cube"',
+    );
     expect(problems).toContain('shapes[1] must be an object, got null');
   });
 

@@ -56,12 +56,14 @@ describe('scene generator', () => {
       const d =
         receiver.type === 'sphere'
           ? Math.hypot(...light.center.map((x, i) => x - receiver.center[i])) - receiver.radius
-          : Math.abs(
-              light.center.reduce(
-                (sum, x, i) => sum + (x - receiver.corner[i]) * normal(receiver)[i],
-                0,
-              ),
-            );
+          : receiver.type === 'quad'
+            ? Math.abs(
+                light.center.reduce(
+                  (sum, x, i) => sum + (x - receiver.corner[i]) * normal(receiver)[i],
+                  0,
+                ),
+              )
+            : Infinity;
       closest = Math.min(closest, d / light.radius);
     }
     expect(closest).toBeLessThan(1.05);

@@ -13,7 +13,7 @@
  *   4. a `case` where the integrator completes a hit (point, normal, material).
  */
 import { QUAD_STRIDE, Q_CORNER, Q_U, Q_V, SPHERE_STRIDE } from '../geometry/shapes.ts';
-import { SHAPE_QUAD, SHAPE_SPHERE } from '../geometry/ray.ts';
+import { SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE } from '../geometry/ray.ts';
 import { f32Above, f32Below } from './bvh.ts';
 
 export const PRIM_KIND_BITS = 2;
@@ -94,5 +94,37 @@ export function quadBoxes(quads: Float64Array, count: number, out: PrimitiveBoxe
       z1 = Math.max(z1, z);
     }
     out.add(SHAPE_QUAD, i, x0, y0, z0, x1, y1, z1);
+  }
+}
+
+export function triangleBoxes(
+  positions: Float64Array,
+  indices: Uint32Array | Int32Array,
+  count: number,
+  out: PrimitiveBoxes,
+): void {
+  for (let t = 0; t < count; t++) {
+    const a = indices[3 * t] * 3,
+      b = indices[3 * t + 1] * 3,
+      c = indices[3 * t + 2] * 3;
+    const ax = positions[a],
+      ay = positions[a + 1],
+      az = positions[a + 2];
+    const bx = positions[b],
+      by = positions[b + 1],
+      bz = positions[b + 2];
+    const cx = positions[c],
+      cy = positions[c + 1],
+      cz = positions[c + 2];
+    out.add(
+      SHAPE_TRIANGLE,
+      t,
+      Math.min(ax, bx, cx),
+      Math.min(ay, by, cy),
+      Math.min(az, bz, cz),
+      Math.max(ax, bx, cx),
+      Math.max(ay, by, cy),
+      Math.max(az, bz, cz),
+    );
   }
 }

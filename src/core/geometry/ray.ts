@@ -16,10 +16,18 @@ export class Ray {
  */
 export class Hit {
   t = Infinity;
-  /** SHAPE_SPHERE or SHAPE_QUAD, or -1 for no hit. */
+  /** SHAPE_SPHERE, SHAPE_QUAD or SHAPE_TRIANGLE, or -1 for no hit. */
   kind = -1;
   index = -1;
+  /** Barycentrics of a triangle hit (of its vertices 0, 1, 2); set for triangles only. */
+  b0 = 0;
+  b1 = 0;
+  b2 = 0;
 }
 
 export const SHAPE_SPHERE = 0;
 export const SHAPE_QUAD = 1;
+/** One triangle of a mesh; its index runs over all meshes' triangles (scene/compile-meshes.ts). */
+export const SHAPE_TRIANGLE = 2;
+/** Not a shape: the environment map, as a kind of light (lights/lights.ts). */
+export const LIGHT_ENVIRONMENT = 3;

@@ -22,7 +22,8 @@ import {
 import { PRIM_KIND_BITS, PRIM_KIND_MASK } from '../accel/primitives.ts';
 import type { CompiledScene } from '../scene/compile.ts';
 import { intersectQuad, intersectSphere } from './intersect.ts';
-import { SHAPE_QUAD, SHAPE_SPHERE, type Hit, type Ray } from './ray.ts';
+import { SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE, type Hit, type Ray } from './ray.ts';
+import { hitTriangle, intersectTriangleBary, setTriangleRay } from './triangle.ts';
 
 /** Ray record layout: origin, direction, far bound. */
 export const R_OX = 0;
@@ -65,15 +66,36 @@ export function intersectScene(scene: CompiledScene, ray: Ray, hit: Hit): boolea
   loadRay(r, ray);
   // Two small functions rather than one big one: V8 optimises (and inlines
   // the primitive tests into) each far better.
+  if (scene.triCount > 0) setTriangleRay(r[0], r[1], r[2], r[3], r[4], r[5], scene.triRay);
   const found = scene.bvh === null ? intersectList(scene, r, hit) : intersectBvh(scene, r, hit);
-  if (found) hit.t = r[6];
+  if (found) {
+    hit.t = r[6];
+    if (hit.kind === SHAPE_TRIANGLE) triangleBarycentrics(scene, hit);
+  }
   return found;
+}
+
+/** Barycentrics of the kept triangle hit, recomputed once with the same ray constants. */
+function triangleBarycentrics(scene: CompiledScene, hit: Hit): void {
+  const th = scene.triHit;
+  intersectTriangleBary(
+    scene.triPositions,
+    scene.triIndices,
+    hit.index,
+    scene.triRay,
+    Infinity,
+    th,
+  );
+  hit.b0 = th.b0;
+  hit.b1 = th.b1;
+  hit.b2 = th.b2;
 }
 
 /** Whether anything lies on the ray in (0, ray.tMax). */
 export function occluded(scene: CompiledScene, ray: Ray): boolean {
   const r = scene.ray;
   loadRay(r, ray);
+  if (scene.triCount > 0) setTriangleRay(r[0], r[1], r[2], r[3], r[4], r[5], scene.triRay);
   return scene.bvh === null ? occludedList(scene, r) : occludedBvh(scene, r);
 }
 
@@ -107,8 +129,20 @@ function intersectList(scene: CompiledScene, r: Float64Array, hit: Hit): boolean
       index = i;
     }
   }
-  if (kind < 0) return false;
   r[6] = tBest;
+  const triCount = scene.triCount;
+  if (triCount > 0) {
+    const pos = scene.triPositions;
+    const idx = scene.triIndices;
+    const tr = scene.triRay;
+    for (let i = 0; i < triCount; i++) {
+      if (hitTriangle(pos, idx, i, tr, r)) {
+        kind = SHAPE_TRIANGLE;
+        index = i;
+      }
+    }
+  }
+  if (kind < 0) return false;
   hit.kind = kind;
   hit.index = index;
   return true;
@@ -129,6 +163,13 @@ function occludedList(scene: CompiledScene, r: Float64Array): boolean {
   const quads = scene.quads;
   for (let i = 0, n = scene.quadCount; i < n; i++) {
     if (intersectQuad(quads, i, ox, oy, oz, dx, dy, dz, tMax) < tMax) return true;
+  }
+  const triCount = scene.triCount;
+  if (triCount > 0) {
+    const pos = scene.triPositions;
+    const idx = scene.triIndices;
+    const tr = scene.triRay;
+    for (let i = 0; i < triCount; i++) if (hitTriangle(pos, idx, i, tr, r)) return true;
   }
   return false;
 }
@@ -166,6 +207,9 @@ function intersectBvh(scene: CompiledScene, r: Float64Array, hit: Hit): boolean 
   const refs = bvh.refs;
   const spheres = scene.spheres;
   const quads = scene.quads;
+  const triPositions = scene.triPositions;
+  const triIndices = scene.triIndices;
+  const tr = scene.triRay;
   const stack = scene.stack;
   const stackT = scene.stackT;
   const nearX = ix < 0 ? 3 : 0,
@@ -270,6 +314,12 @@ function intersectBvh(scene: CompiledScene, r: Float64Array, hit: Hit): boolean 
               index = i;
             }
             break;
+          case SHAPE_TRIANGLE:
+            if (hitTriangle(triPositions, triIndices, i, tr, r)) {
+              kind = SHAPE_TRIANGLE;
+              index = i;
+            }
+            break;
         }
       }
     }
@@ -301,6 +351,9 @@ function occludedBvh(scene: CompiledScene, r: Float64Array): boolean {
   const refs = bvh.refs;
   const spheres = scene.spheres;
   const quads = scene.quads;
+  const triPositions = scene.triPositions;
+  const triIndices = scene.triIndices;
+  const tr = scene.triRay;
   const stack = scene.stack;
   const nearX = ix < 0 ? 3 : 0,
     nearY = iy < 0 ? 4 : 1,
@@ -373,6 +426,9 @@ function occludedBvh(scene: CompiledScene, r: Float64Array): boolean {
             break;
           case SHAPE_QUAD:
             if (hitQuad(quads, i, r)) return true;
+            break;
+          case SHAPE_TRIANGLE:
+            if (hitTriangle(triPositions, triIndices, i, tr, r)) return true;
             break;
         }
       }

@@ -26,10 +26,12 @@ import {
 import { BsdfQuery, BsdfSample, BsdfValue } from '../bsdf/records.ts';
 import { Camera } from '../camera/camera.ts';
 import type { Film } from '../film/film.ts';
-import { Hit, Ray, SHAPE_QUAD, SHAPE_SPHERE } from '../geometry/ray.ts';
+import { Hit, LIGHT_ENVIRONMENT, Ray, SHAPE_SPHERE, SHAPE_TRIANGLE } from '../geometry/ray.ts';
 import { OFFSET_SCALE, QUAD_STRIDE, Q_NORMAL, Q_PLANE, SPHERE_STRIDE } from '../geometry/shapes.ts';
 import { intersectScene, occluded } from '../geometry/trace.ts';
-import { LightSample, lightPdf, sampleLight } from '../lights/lights.ts';
+import { EnvironmentSample } from '../lights/environment-map.ts';
+import { LightSample, environmentLightPdf, lightPdf, sampleLight } from '../lights/lights.ts';
+import { TriangleSurface, completeTriangleHit } from './triangle-surface.ts';
 import { Frame } from '../math/frame.ts';
 import {
   DIM_BOUNCE,
@@ -89,6 +91,8 @@ export class PathTracer {
   private readonly bs = new BsdfSample();
   private readonly fv = new BsdfValue();
   private readonly ls = new LightSample();
+  private readonly es = new EnvironmentSample();
+  private readonly ts = new TriangleSurface();
   /** This bounce's random numbers (see Sampler.fill). */
   private readonly bq = new BsdfQuery();
   private readonly u = new Float64Array(DIM_PER_BOUNCE);
@@ -183,7 +187,20 @@ export class PathTracer {
 
     for (let depth = 0; ; depth++) {
       if (!intersectScene(scene, ray, hit)) {
-        if (scene.hasEnvironment) {
+        const env = scene.envMap;
+        if (env !== null) {
+          const es = this.es;
+          env.eval(ray.dx, ray.dy, ray.dz, es);
+          let w = 1;
+          if (nee && !specular) {
+            const pl = environmentLightPdf(lights!, ray.dx, ray.dy, ray.dz);
+            w = (prevPdf * prevPdf) / (prevPdf * prevPdf + pl * pl);
+          }
+          lr += br * es.r * w;
+          lg += bg * es.g * w;
+          lb += bb * es.b * w;
+        } else if (scene.hasEnvironment) {
+          // The constant environment: no light sampling, no lookup.
           lr += br * scene.envR;
           lg += bg * scene.envG;
           lb += bb * scene.envB;
@@ -196,6 +213,10 @@ export class PathTracer {
       let y = ray.oy + t * ray.dy;
       let z = ray.oz + t * ray.dz;
       let nx: number, ny: number, nz: number;
+      // Shading normal: the geometric one except on meshes with vertex normals.
+      let snx = 0,
+        sny = 0,
+        snz = 0;
       let m: number;
       let light: number;
       let shapeScale: number;
@@ -220,6 +241,21 @@ export class PathTracer {
         m = scene.sphereMaterial[index];
         light = scene.sphereLight[index];
         shapeScale = scene.sphereScale[index];
+      } else if (hit.kind === SHAPE_TRIANGLE) {
+        const ts = this.ts;
+        completeTriangleHit(scene, hit, ts);
+        x = ts.x;
+        y = ts.y;
+        z = ts.z;
+        nx = ts.nx;
+        ny = ts.ny;
+        nz = ts.nz;
+        snx = ts.snx;
+        sny = ts.sny;
+        snz = ts.snz;
+        m = ts.material;
+        light = ts.light;
+        shapeScale = ts.scale;
       } else {
         const o = index * QUAD_STRIDE;
         nx = quads[o + Q_NORMAL];
@@ -233,6 +269,11 @@ export class PathTracer {
         m = scene.quadMaterial[index];
         light = scene.quadLight[index];
         shapeScale = scene.quadScale[index];
+      }
+      if (hit.kind !== SHAPE_TRIANGLE) {
+        snx = nx;
+        sny = ny;
+        snz = nz;
       }
       const mo = m * MATERIAL_STRIDE;
       const wox = -ray.dx,
@@ -255,11 +296,12 @@ export class PathTracer {
 
       // Shading frame: glass needs the outward normal to know inside from
       // outside; every other surface scatters on both sides, so its frame
-      // faces wo.
-      let sx = nx,
-        sy = ny,
-        sz = nz;
-      if (materials[mo + M_TYPE] !== MATERIAL_DIELECTRIC && cosO < 0) {
+      // faces wo. With vertex normals the shading normal decides both, as in
+      // Mitsuba 3 (the geometric normal still decides emission and offsets).
+      let sx = snx,
+        sy = sny,
+        sz = snz;
+      if (materials[mo + M_TYPE] !== MATERIAL_DIELECTRIC && snx * wox + sny * woy + snz * woz < 0) {
         sx = -nx;
         sy = -ny;
         sz = -nz;
@@ -301,34 +343,51 @@ export class PathTracer {
             bsdfEval(materials, m, bq, fv);
             if (fv.r !== 0 || fv.g !== 0 || fv.b !== 0) {
               // Both ends lifted off their surfaces (see lights.ts): the
-              // segment between them crosses neither.
+              // segment between them crosses neither. The origin leaves by
+              // the geometric side wi is on.
               const sr = this.shadowRay;
-              const ox = x + sx * scale;
-              const oy = y + sy * scale;
-              const oz = z + sz * scale;
-              const ex = ls.px - ox;
-              const ey = ls.py - oy;
-              const ez = ls.pz - oz;
-              const len = Math.sqrt(ex * ex + ey * ey + ez * ez);
+              const lift = wix * nx + wiy * ny + wiz * nz >= 0 ? scale : -scale;
+              const ox = x + nx * lift;
+              const oy = y + ny * lift;
+              const oz = z + nz * lift;
+              const infinite = ls.distance === Infinity;
+              let len = Infinity;
+              if (infinite) {
+                sr.dx = wix;
+                sr.dy = wiy;
+                sr.dz = wiz;
+              } else {
+                const ex = ls.px - ox;
+                const ey = ls.py - oy;
+                const ez = ls.pz - oz;
+                len = Math.sqrt(ex * ex + ey * ey + ez * ez);
+                sr.dx = ex / len;
+                sr.dy = ey / len;
+                sr.dz = ez / len;
+              }
               sr.ox = ox;
               sr.oy = oy;
               sr.oz = oz;
-              sr.dx = ex / len;
-              sr.dy = ey / len;
-              sr.dz = ez / len;
               sr.tMax = len;
               segments++;
               if (len > 0 && !occluded(scene, sr)) {
-                const lm =
-                  (lights!.kind[l] === SHAPE_QUAD
-                    ? scene.quadMaterial[lights!.shape[l]]
-                    : scene.sphereMaterial[lights!.shape[l]]) * MATERIAL_STRIDE;
+                let er: number, eg: number, eb: number;
+                if (lights!.kind[l] === LIGHT_ENVIRONMENT) {
+                  er = ls.r;
+                  eg = ls.g;
+                  eb = ls.b;
+                } else {
+                  const lm = lights!.material[l] * MATERIAL_STRIDE;
+                  er = materials[lm + M_EMISSION];
+                  eg = materials[lm + M_EMISSION + 1];
+                  eb = materials[lm + M_EMISSION + 2];
+                }
                 const pb = fv.pdf;
                 const pl = ls.pdf;
                 const w = (pl / (pl * pl + pb * pb)) * lwiz;
-                lr += br * fv.r * materials[lm + M_EMISSION] * w;
-                lg += bg * fv.g * materials[lm + M_EMISSION + 1] * w;
-                lb += bb * fv.b * materials[lm + M_EMISSION + 2] * w;
+                lr += br * fv.r * er * w;
+                lg += bg * fv.g * eg * w;
+                lb += bb * fv.b * eb * w;
               }
             }
           }

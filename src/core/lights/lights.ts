@@ -1,8 +1,12 @@
 /**
- * The emitters of a scene, for next-event estimation: every emissive sphere
- * and quad, chosen in proportion to its power (luminance of the emitted
- * radiance times area) and then sampled on its surface:
+ * The emitters of a scene, for next-event estimation: every emissive sphere,
+ * quad and mesh, and the environment map, chosen in proportion to power
+ * (luminance of the emitted radiance times area; for the map, its integral of
+ * luminance times the scene's radius squared, see compile.ts) from a CDF, and
+ * then sampled:
  * - quads uniformly by area (pbr-book 4e §6.5.1), converted to solid angle;
+ * - meshes uniformly by area over all their triangles (mesh-light.ts);
+ * - the environment map by luminance times solid angle (environment-map.ts);
  * - spheres seen from outside uniformly in the cone of directions they
  *   subtend (pbr-book 3e §14.2.2, Sphere::Sample(ref)), which wastes no
  *   samples on the hidden back side; from inside, uniformly by area.
@@ -28,7 +32,10 @@ import {
   Q_V,
   SPHERE_STRIDE,
 } from '../geometry/shapes.ts';
-import { SHAPE_QUAD } from '../geometry/ray.ts';
+import { LIGHT_ENVIRONMENT, SHAPE_QUAD, SHAPE_TRIANGLE } from '../geometry/ray.ts';
+import { Distribution1D } from '../sampling/distribution.ts';
+import { EnvironmentSample, type EnvironmentMap } from './environment-map.ts';
+import { MeshLightSample, type MeshLight } from './mesh-light.ts';
 
 /**
  * In: the reference point and two random numbers (set by the caller; a
@@ -56,42 +63,64 @@ export class LightSample {
   pdf = 0;
   /** Index of the chosen light in the light list. */
   light = -1;
+  /** Radiance arriving from the environment map (`distance` is then Infinity). */
+  r = 0;
+  g = 0;
+  b = 0;
+}
+
+/** What a light list is made of, one entry per light. */
+export interface LightListInput {
+  /** SHAPE_SPHERE, SHAPE_QUAD, SHAPE_TRIANGLE (a whole mesh) or LIGHT_ENVIRONMENT. */
+  kind: number[];
+  /** Index of the sphere, quad or mesh (0 for the environment). */
+  shape: number[];
+  /** Selection weight (see the module comment). */
+  power: number[];
+  /** Coordinate magnitude, for the lift of sampled points (0 for the environment). */
+  scale: number[];
+  /** Material index of the emitter (−1 for the environment). */
+  material: number[];
+  /** The MeshLight of each mesh entry, by its `shape`: meshLights[shape]. */
+  meshLights?: (MeshLight | null)[];
+  environment?: EnvironmentMap | null;
 }
 
 export class LightList {
   readonly count: number;
   readonly kind: Int32Array;
   readonly shape: Int32Array;
+  readonly material: Int32Array;
   /** Probability of choosing each light. */
   readonly prob: Float64Array;
-  /** Cumulative distribution over lights (count + 1 entries). */
-  readonly cdf: Float64Array;
+  /** The choice: a CDF over the lights (stratified numbers stay stratified). */
+  readonly distribution: Distribution1D;
   /** Distance by which a sampled point is lifted off each light (OFFSET_SCALE × its scale). */
   readonly offset: Float64Array;
+  readonly meshLights: (MeshLight | null)[];
+  readonly environment: EnvironmentMap | null;
+  /** Index of the environment map in the list, or −1. */
+  readonly environmentLight: number;
+  /** Scratch records of sampleLight (one list per thread, so never shared). */
+  readonly meshSample = new MeshLightSample();
+  readonly envSample = new EnvironmentSample();
 
-  constructor(kind: number[], shape: number[], power: number[], scale: number[]) {
-    this.count = kind.length;
-    this.kind = Int32Array.from(kind);
-    this.shape = Int32Array.from(shape);
-    this.offset = Float64Array.from(scale, (s) => s * OFFSET_SCALE);
-    const total = power.reduce((a, b) => a + b, 0);
-    this.prob = Float64Array.from(power, (p) => p / total);
-    this.cdf = new Float64Array(this.count + 1);
-    for (let i = 0; i < this.count; i++) this.cdf[i + 1] = this.cdf[i] + this.prob[i];
-    this.cdf[this.count] = 1;
+  constructor(input: LightListInput) {
+    this.count = input.kind.length;
+    this.kind = Int32Array.from(input.kind);
+    this.shape = Int32Array.from(input.shape);
+    this.material = Int32Array.from(input.material);
+    this.offset = Float64Array.from(input.scale, (s) => s * OFFSET_SCALE);
+    this.distribution = new Distribution1D(input.power);
+    this.prob = Float64Array.from({ length: this.count }, (_, i) => this.distribution.prob(i));
+    this.meshLights = input.meshLights ?? [];
+    this.environment = input.environment ?? null;
+    this.environmentLight = input.kind.indexOf(LIGHT_ENVIRONMENT);
   }
 
   /** Index of the light whose CDF interval contains u (binary search). */
   choose(u: number): number {
-    let lo = 0;
-    let hi = this.count - 1;
-    const cdf = this.cdf;
-    while (lo < hi) {
-      const mid = (lo + hi) >> 1;
-      if (cdf[mid + 1] <= u) lo = mid + 1;
-      else hi = mid;
-    }
-    return lo;
+    return this.distribution.find(u);
   }
 }
 
@@ -116,7 +145,41 @@ export function sampleLight(
   const choose = lights.prob[l];
   const lift = lights.offset[l];
   out.light = l;
-  if (lights.kind[l] === SHAPE_QUAD) {
+  const kind = lights.kind[l];
+  if (kind === SHAPE_TRIANGLE) {
+    const mesh = lights.meshLights[s]!;
+    const ms = lights.meshSample;
+    mesh.sample(u0, u1, ms);
+    return finishAreaSample(
+      x,
+      y,
+      z,
+      ms.px,
+      ms.py,
+      ms.pz,
+      ms.nx,
+      ms.ny,
+      ms.nz,
+      mesh.area,
+      choose,
+      lift,
+      out,
+    );
+  }
+  if (kind === LIGHT_ENVIRONMENT) {
+    const es = lights.envSample;
+    if (!lights.environment!.sample(u0, u1, es)) return false;
+    out.wx = es.wx;
+    out.wy = es.wy;
+    out.wz = es.wz;
+    out.distance = Infinity;
+    out.pdf = choose * es.pdf;
+    out.r = es.r;
+    out.g = es.g;
+    out.b = es.b;
+    return true;
+  }
+  if (kind === SHAPE_QUAD) {
     const o = s * QUAD_STRIDE;
     const px = quads[o + Q_CORNER] + u0 * quads[o + Q_U] + u1 * quads[o + Q_V];
     const py = quads[o + Q_CORNER + 1] + u0 * quads[o + Q_U + 1] + u1 * quads[o + Q_V + 1];
@@ -305,8 +368,12 @@ export function lightPdf(
 ): number {
   const s = lights.shape[l];
   const choose = lights.prob[l];
-  if (lights.kind[l] === SHAPE_QUAD) {
+  const kind = lights.kind[l];
+  if (kind === SHAPE_QUAD) {
     return (choose * t * t) / (quads[s * QUAD_STRIDE + Q_AREA] * cosLight);
+  }
+  if (kind === SHAPE_TRIANGLE) {
+    return (choose * t * t) / (lights.meshLights[s]!.area * cosLight);
   }
   const o = s * SPHERE_STRIDE;
   const r = spheres[o + 3];
@@ -318,4 +385,13 @@ export function lightPdf(
   const sin2Max = (r * r) / dc2;
   const cosMax = Math.sqrt(Math.max(0, 1 - sin2Max));
   return choose / ((2 * Math.PI * sin2Max) / (1 + cosMax));
+}
+
+/**
+ * Solid-angle pdf with which `sampleLight` would have chosen the environment map and
+ * drawn the unit direction d: what MIS needs when a path escapes.
+ */
+export function environmentLightPdf(lights: LightList, dx: number, dy: number, dz: number): number {
+  const l = lights.environmentLight;
+  return l < 0 ? 0 : lights.prob[l] * lights.environment!.pdf(dx, dy, dz);
 }

@@ -143,3 +143,35 @@ export function uniformConeToSquare(
   if (phi < 0) phi += 2 * PI;
   out.y = phi / (2 * PI);
 }
+
+/**
+ * Uniform point on a triangle as barycentrics (b0, b1), b2 = 1 − b0 − b1: the
+ * low-distortion map of Heitz, "A Low-Distortion Map Between Triangle and Square"
+ * (2019), as pbr-book 4e §A.5.5 uses it. out.x = b0, out.y = b1.
+ */
+export function squareToUniformTriangle(u0: number, u1: number, out: Vec2Out): void {
+  if (u0 < u1) {
+    out.x = u0 / 2;
+    out.y = u1 - out.x;
+  } else {
+    out.y = u1 / 2;
+    out.x = u0 - out.y;
+  }
+}
+
+/** Density over the barycentric triangle (area 1/2); by area on a triangle it is 1/area. */
+export function squareToUniformTrianglePdf(b0: number, b1: number): number {
+  return b0 >= 0 && b1 >= 0 && b0 + b1 <= 1 ? 2 : 0;
+}
+
+export function uniformTriangleToSquare(b0: number, b1: number, out: Vec2Out): void {
+  if (b0 > b1) {
+    // From the branch u0 ≥ u1: b1 = u1 / 2, b0 = u0 − b1.
+    out.y = 2 * b1;
+    out.x = b0 + b1;
+  } else {
+    // From the branch u0 < u1: b0 = u0 / 2, b1 = u1 − b0.
+    out.x = 2 * b0;
+    out.y = b1 + b0;
+  }
+}

@@ -5,10 +5,11 @@
  * BVH_THRESHOLD), so the hot loops never pay for kinds that are absent.
  */
 import { BVH_NODE_WORDS, Bvh, buildBvh } from '../accel/bvh.ts';
-import { PrimitiveBoxes, quadBoxes, sphereBoxes } from '../accel/primitives.ts';
+import { PrimitiveBoxes, quadBoxes, sphereBoxes, triangleBoxes } from '../accel/primitives.ts';
 import { compileMaterials, MATERIAL_STRIDE, M_EMISSION, M_EMISSIVE } from '../bsdf/materials.ts';
-import { SHAPE_QUAD, SHAPE_SPHERE } from '../geometry/ray.ts';
+import { LIGHT_ENVIRONMENT, SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE } from '../geometry/ray.ts';
 import { RAY_RECORD_WORDS } from '../geometry/trace.ts';
+import { TriangleHit, TriangleRay } from '../geometry/triangle.ts';
 import {
   compileQuads,
   compileSpheres,
@@ -18,8 +19,12 @@ import {
   SPHERE_STRIDE,
   sphereScale as sphereScaleOf,
 } from '../geometry/shapes.ts';
+import { EnvironmentMap } from '../lights/environment-map.ts';
 import { LightList } from '../lights/lights.ts';
-import type { QuadDesc, Scene, SphereDesc } from './types.ts';
+import { MeshLight } from '../lights/mesh-light.ts';
+import { sceneRadius } from './bounds.ts';
+import { CompiledMeshes, compileMeshArrays, type MeshArrays } from './compile-meshes.ts';
+import type { MeshDesc, QuadDesc, Scene, SphereDesc } from './types.ts';
 
 /**
  * Shape count from which a BVH beats the plain loop over all shapes,
@@ -41,7 +46,7 @@ export interface CompileOptions {
  * every worker (pack.ts) instead of being parsed and compiled again there.
  * A new primitive kind adds its arrays here and in SCENE_ARRAYS.
  */
-export interface SceneData {
+export interface SceneData extends MeshArrays {
   materials: Float64Array;
   spheres: Float64Array;
   sphereMaterial: Int32Array;
@@ -58,13 +63,25 @@ export interface SceneData {
   quadMaterial: Int32Array;
   quadLight: Int32Array;
   quadScale: Float64Array;
-  /** Emitters: kind (SHAPE_*), shape index, selection weight and offset scale (LightList). */
+  /** Light index of each mesh, −1 when it does not emit (the mesh arrays: compile-meshes.ts). */
+  meshLight: Int32Array;
+  /**
+   * Emitters: kind (SHAPE_* or LIGHT_ENVIRONMENT), shape index, selection weight, offset
+   * scale and material (−1 for the environment map) (LightList).
+   */
   lightKind: Int32Array;
   lightShape: Int32Array;
   lightPower: Float64Array;
   lightScale: Float64Array;
+  lightMaterial: Int32Array;
   /** Constant environment radiance, RGB. */
   environment: Float64Array;
+  /**
+   * The environment map: its texels (RGB, row 0 at the top, without the scale) and
+   * [width, height, scale r, g, b, rotationY]; both empty without a map.
+   */
+  envTexels: Float32Array;
+  envParams: Float64Array;
   /** The BVH's nodes (as 32-bit words) and references; empty without a BVH. */
   bvhNodes: Int32Array;
   bvhRefs: Int32Array;
@@ -86,7 +103,18 @@ export const SCENE_ARRAYS = [
   'lightShape',
   'lightPower',
   'lightScale',
+  'lightMaterial',
   'environment',
+  'envTexels',
+  'envParams',
+  'triPositions',
+  'triIndices',
+  'triNormals',
+  'meshFirstTriangle',
+  'meshMaterial',
+  'meshHasNormals',
+  'meshScale',
+  'meshLight',
   'bvhNodes',
   'bvhRefs',
 ] as const satisfies readonly (keyof SceneData)[];
@@ -107,7 +135,19 @@ export class CompiledScene {
   /** See SceneData.sphereScale. */
   readonly sphereScale: Float64Array;
   readonly quadScale: Float64Array;
+  /** The triangles of all meshes (compile-meshes.ts), or null without meshes. */
+  readonly meshes: CompiledMeshes | null;
+  readonly triCount: number;
+  readonly triPositions: Float64Array;
+  readonly triIndices: Int32Array;
+  /** Light index of each mesh, −1 when it does not emit. */
+  readonly meshLight: Int32Array;
+  /** Per-ray constants of the triangle test and the barycentrics of the kept hit (trace.ts). */
+  readonly triRay = new TriangleRay();
+  readonly triHit = new TriangleHit();
   readonly lights: LightList | null;
+  /** The environment map, or null for the constant environment (envR, envG, envB). */
+  readonly envMap: EnvironmentMap | null;
   readonly envR: number;
   readonly envG: number;
   readonly envB: number;
@@ -136,16 +176,48 @@ export class CompiledScene {
     this.quadMaterial = data.quadMaterial;
     this.quadLight = data.quadLight;
     this.quadScale = data.quadScale;
+    const meshes = data.meshMaterial.length > 0 ? new CompiledMeshes(data) : null;
+    this.meshes = meshes;
+    this.triCount = meshes?.triangleCount ?? 0;
+    this.triPositions = data.triPositions;
+    this.triIndices = data.triIndices;
+    this.meshLight = data.meshLight;
+    const p = data.envParams;
+    this.envMap =
+      p.length > 0
+        ? new EnvironmentMap({
+            type: 'map',
+            file: '',
+            scale: [p[2], p[3], p[4]],
+            rotationY: p[5],
+            image: { width: p[0], height: p[1], rgb: data.envTexels },
+          })
+        : null;
     // The same arithmetic on the same numbers: a scene unpacked in a worker
-    // gets bit-identical light probabilities.
+    // gets bit-identical light probabilities (and mesh and map distributions).
+    const meshLights: (MeshLight | null)[] = [];
+    for (let l = 0; l < data.lightKind.length; l++) {
+      if (data.lightKind[l] !== SHAPE_TRIANGLE) continue;
+      const k = data.lightShape[l];
+      const first = data.meshFirstTriangle[k];
+      meshLights[k] = new MeshLight(
+        data.triPositions,
+        data.triIndices,
+        first,
+        data.meshFirstTriangle[k + 1] - first,
+      );
+    }
     this.lights =
       data.lightKind.length > 0
-        ? new LightList(
-            Array.from(data.lightKind),
-            Array.from(data.lightShape),
-            Array.from(data.lightPower),
-            Array.from(data.lightScale),
-          )
+        ? new LightList({
+            kind: Array.from(data.lightKind),
+            shape: Array.from(data.lightShape),
+            power: Array.from(data.lightPower),
+            scale: Array.from(data.lightScale),
+            material: Array.from(data.lightMaterial),
+            meshLights,
+            environment: this.envMap,
+          })
         : null;
     this.envR = data.environment[0];
     this.envG = data.environment[1];
@@ -168,6 +240,13 @@ export class CompiledScene {
 }
 
 export function compileScene(scene: Scene, options: CompileOptions = {}): CompiledScene {
+  const meshDescs = scene.shapes.filter((s): s is MeshDesc => s.type === 'mesh');
+  const map = scene.environmentMap ?? null;
+  if (meshDescs.some((m) => m.data === null) || (map !== null && map.image === null)) {
+    throw new Error(
+      'the scene names files that were not read: load it with loadScene or resolveSceneFiles',
+    );
+  }
   const names = Object.keys(scene.materials);
   const materialIndex = new Map(names.map((n, i) => [n, i]));
   const materials = compileMaterials(names.map((n) => scene.materials[n]));
@@ -186,10 +265,16 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
   const quadScale = new Float64Array(quadCount);
   for (let i = 0; i < quadCount; i++) quadScale[i] = quadScaleOf(quads, i);
 
+  const mesh = compileMeshArrays(meshDescs, (n) => materialIndex.get(n)!);
+  const meshCount = mesh.meshMaterial.length;
+  const triCount = mesh.triIndices.length / 3;
+  const meshLight = new Int32Array(meshCount).fill(-1);
+
   const kinds: number[] = [];
   const shapes: number[] = [];
   const power: number[] = [];
   const scale: number[] = [];
+  const material: number[] = [];
   const emitted = (m: number): number => {
     const o = m * MATERIAL_STRIDE;
     if (materials[o + M_EMISSIVE] === 0) return 0;
@@ -211,6 +296,7 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
     shapes.push(i);
     power.push(lum * 4 * Math.PI * r * r);
     scale.push(sphereScale[i]);
+    material.push(sphereMaterial[i]);
   }
   for (let i = 0; i < quadCount; i++) {
     const lum = emitted(quadMaterial[i]);
@@ -220,8 +306,41 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
     shapes.push(i);
     power.push(lum * quads[i * QUAD_STRIDE + Q_AREA]);
     scale.push(quadScale[i]);
+    material.push(quadMaterial[i]);
   }
-  const total = sphereCount + quadCount;
+  for (let k = 0; k < meshCount; k++) {
+    // An emissive mesh is one light, sampled by area over its triangles.
+    const lum = emitted(mesh.meshMaterial[k]);
+    if (lum === 0) continue;
+    const first = mesh.meshFirstTriangle[k];
+    const count = mesh.meshFirstTriangle[k + 1] - first;
+    const area = new MeshLight(mesh.triPositions, mesh.triIndices, first, count).area;
+    meshLight[k] = kinds.length;
+    kinds.push(SHAPE_TRIANGLE);
+    shapes.push(k);
+    power.push(lum * area);
+    scale.push(mesh.meshScale[k]);
+    material.push(mesh.meshMaterial[k]);
+  }
+  let envTexels: Float32Array = new Float32Array(0);
+  let envParams: Float64Array = new Float64Array(0);
+  if (map !== null) {
+    const image = map.image!;
+    envTexels = image.rgb;
+    envParams = Float64Array.from([image.width, image.height, ...map.scale, map.rotationY]);
+    const integral = new EnvironmentMap(map).integral;
+    if (integral > 0) {
+      // The map's power through the scene's bounding disc, in the units of the area
+      // lights' luminance × area: ∫ L dω × r² (the π of both cancels).
+      const r = sceneRadius(spheres, sphereCount, quads, quadCount, mesh.triPositions);
+      kinds.push(LIGHT_ENVIRONMENT);
+      shapes.push(0);
+      power.push(integral * r * r);
+      scale.push(0);
+      material.push(-1);
+    }
+  }
+  const total = sphereCount + quadCount + triCount;
   const useBvh = options.bvh ?? total >= BVH_THRESHOLD;
   let bvh: Bvh | null = null;
   if (useBvh && total > 0) {
@@ -229,7 +348,10 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
     const prims = new PrimitiveBoxes(total);
     sphereBoxes(spheres, sphereCount, prims);
     quadBoxes(quads, quadCount, prims);
-    bvh = buildBvh(prims.boxes, prims.refs, total);
+    triangleBoxes(mesh.triPositions, mesh.triIndices, triCount, prims);
+    // Meshes: a node cost of 2 makes leaves of 2–4 triangles, 42 rather than 68 bytes of
+    // hierarchy per triangle for a million of them (docs/performance.md; bench/mesh-bvh.ts).
+    bvh = buildBvh(prims.boxes, prims.refs, total, triCount > 0 ? 2 : undefined);
   }
   return new CompiledScene({
     materials,
@@ -245,7 +367,12 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
     lightShape: Int32Array.from(shapes),
     lightPower: Float64Array.from(power),
     lightScale: Float64Array.from(scale),
+    lightMaterial: Int32Array.from(material),
     environment: Float64Array.from(scene.environment),
+    envTexels,
+    envParams,
+    ...mesh,
+    meshLight,
     bvhNodes: bvh ? bvh.words : new Int32Array(0),
     bvhRefs: bvh ? bvh.refs : new Int32Array(0),
     bvhDepth: bvh ? bvh.depth : 0,

@@ -43,6 +43,8 @@ import { decodeUtf8, Utf8Error, utf8Length } from '../io/utf8.ts';
 import { JsonError, parseJson } from './json.ts';
 import { RADIANCE } from './radiance.ts';
 import { Q_NORMAL, QUAD_STRIDE, writeQuadRecord } from '../geometry/shapes.ts';
+import { checkEnvironment } from './environment-desc.ts';
+import { MESH_KEYS, checkMesh } from './mesh-desc.ts';
 
 const FORMAT = 'pathwise-scene/1';
 
@@ -125,22 +127,36 @@ export function validateScene(value: unknown): Scene {
   const settings = checkSceneSettings(root.settings, problems);
   const materials = checkMaterials(root.materials, problems);
   const shapes = checkShapes(root.shapes, materials, problems);
-  const environment =
-    root.environment === undefined
-      ? ([0, 0, 0] as Vec3)
-      : expectVec3(root.environment, 'environment', problems, RADIANCE);
+  const environment = checkEnvironment(root.environment, problems);
 
   if (problems.length > 0) throw new SceneError(problems);
   // No problem was recorded, so every part validated and is defined.
-  return {
+  return markValidated({
     format: FORMAT,
     name: name!,
     camera: camera!,
     settings: settings!,
     materials: Object.fromEntries(materials!),
     shapes: shapes!,
-    environment: environment!,
-  };
+    environment: environment!.constant,
+    environmentMap: environment!.map,
+  });
+}
+
+/**
+ * Scenes this loader made (validateScene, resolveSceneFiles), which may be handed back
+ * as they are: a loaded scene holds decoded meshes and maps, not the JSON it came from.
+ */
+const validated = new WeakSet<object>();
+
+export function markValidated(scene: Scene): Scene {
+  validated.add(scene);
+  return scene;
+}
+
+/** Whether `value` is a scene this loader made (in this thread). */
+export function isValidatedScene(value: unknown): value is Scene {
+  return typeof value === 'object' && value !== null && validated.has(value);
 }
 
 const CAMERA_KEYS = ['position', 'target', 'up', 'fovY', 'aperture', 'focusDistance'];
@@ -338,10 +354,11 @@ function checkMaterial(value: unknown, path: string, problems: Problems): Materi
   return problems.length > before ? undefined : material;
 }
 
-const SHAPE_TYPES = ['sphere', 'quad'] as const;
+const SHAPE_TYPES = ['sphere', 'quad', 'mesh'] as const;
 const SHAPE_KEYS: Record<ShapeDesc['type'], string[]> = {
   sphere: ['type', 'center', 'radius', 'material'],
   quad: ['type', 'corner', 'u', 'v', 'material'],
+  mesh: MESH_KEYS,
 };
 
 function checkShapes(
@@ -366,7 +383,21 @@ function checkShapes(
   const before = problems.length;
   const known = materials === undefined ? undefined : new MaterialNames(materials);
   const out = value.map((shape, i) => checkShape(shape, indexPath('shapes', i), known, problems));
-  return problems.length > before ? undefined : (out as ShapeDesc[]);
+  if (problems.length > before) return undefined;
+  // Inline meshes count against the scene's triangle limit here; mesh files when read.
+  let triangles = 0;
+  for (const shape of out) {
+    if (shape?.type === 'mesh' && shape.data !== null) {
+      triangles += shape.data.indices.length / 3 + shape.data.skipped;
+    }
+  }
+  if (triangles > LIMITS.triangles) {
+    problems.push(
+      `shapes hold ${triangles} triangles, more than the limit of ${LIMITS.triangles} per scene`,
+    );
+    return undefined;
+  }
+  return out as ShapeDesc[];
 }
 
 function checkShape(
@@ -381,6 +412,7 @@ function checkShape(
   if (type === undefined) return undefined; // the allowed keys depend on the type
   expectKnownKeys(obj, path, SHAPE_KEYS[type], problems);
   const material = checkMaterialRef(obj.material, `${path}.material`, materials, problems);
+  if (type === 'mesh') return checkMesh(obj, path, material, problems);
   if (type === 'sphere') {
     const center = expectVec3(obj.center, `${path}.center`, problems);
     const radius = expectNumber(obj.radius, `${path}.radius`, problems, POSITIVE);

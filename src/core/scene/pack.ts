@@ -19,7 +19,7 @@ export interface PackedScene {
   format: 'pathwise-packed/1';
   buffer: ArrayBuffer | SharedArrayBuffer;
   /** Per array of SCENE_ARRAYS: byte offset, element count and element type. */
-  arrays: { name: ArrayName; offset: number; length: number; type: 'f64' | 'i32' }[];
+  arrays: { name: ArrayName; offset: number; length: number; type: 'f64' | 'f32' | 'i32' }[];
   bvhDepth: number;
 }
 
@@ -46,7 +46,7 @@ export function packScene(scene: CompiledScene, shared = canShareMemory()): Pack
       name,
       offset: bytes,
       length: a.length,
-      type: a instanceof Float64Array ? 'f64' : 'i32',
+      type: a instanceof Float64Array ? 'f64' : a instanceof Float32Array ? 'f32' : 'i32',
     });
     bytes += Math.ceil(a.byteLength / 8) * 8;
   }
@@ -55,8 +55,10 @@ export function packScene(scene: CompiledScene, shared = canShareMemory()): Pack
     const view =
       type === 'f64'
         ? new Float64Array(buffer, offset, length)
-        : new Int32Array(buffer, offset, length);
-    view.set(data[name]);
+        : type === 'f32'
+          ? new Float32Array(buffer, offset, length)
+          : new Int32Array(buffer, offset, length);
+    (view as Float64Array).set(data[name] as Float64Array);
   }
   return { format: 'pathwise-packed/1', buffer, arrays, bvhDepth: data.bvhDepth };
 }
@@ -66,12 +68,14 @@ export function unpackScene(packed: PackedScene): CompiledScene {
   if (packed.format !== 'pathwise-packed/1') {
     throw new Error(`not a packed pathwise scene (format ${String(packed.format)})`);
   }
-  const views: Partial<Record<ArrayName, Float64Array | Int32Array>> = {};
+  const views: Partial<Record<ArrayName, Float64Array | Float32Array | Int32Array>> = {};
   for (const { name, offset, length, type } of packed.arrays) {
     views[name] =
       type === 'f64'
         ? new Float64Array(packed.buffer, offset, length)
-        : new Int32Array(packed.buffer, offset, length);
+        : type === 'f32'
+          ? new Float32Array(packed.buffer, offset, length)
+          : new Int32Array(packed.buffer, offset, length);
   }
   for (const name of SCENE_ARRAYS) {
     if (!views[name]) throw new Error(`packed scene lacks ${name}`);

@@ -63,7 +63,57 @@ export interface QuadDesc {
   material: string;
 }
 
-export type ShapeDesc = SphereDesc | QuadDesc;
+/**
+ * A triangle mesh, inline or from an `.obj` / `.ply` file. `data` holds its triangles
+ * in world space (after `transform`): the loader fills it for inline meshes, and
+ * `resolveSceneFiles` (scene/files.ts) for files; a scene whose meshes lack `data`
+ * cannot be compiled.
+ */
+export interface MeshDesc {
+  type: 'mesh';
+  material: string;
+  /** The file named by the scene (relative to it), or null for an inline mesh. */
+  file: string | null;
+  /** Row-major affine 4×4 (16 numbers), or null for the identity. */
+  transform: number[] | null;
+  data: MeshData | null;
+}
+
+/** The triangles of one mesh in world space, zero-area triangles removed. */
+export interface MeshData {
+  /** x, y, z per vertex. */
+  positions: Float64Array;
+  /** Three vertex indices per triangle. */
+  indices: Uint32Array;
+  /**
+   * Unit shading normal per vertex, or null when the mesh has none. A vertex of a
+   * face without normals (an OBJ face lacking `vn`) has (0, 0, 0): its triangles use
+   * the geometric normal.
+   */
+  normals: Float32Array | null;
+  /** Zero-area triangles skipped (the spec asks the renderer to report them). */
+  skipped: number;
+}
+
+export type ShapeDesc = SphereDesc | QuadDesc | MeshDesc;
+
+/** An equirectangular environment map (docs/scene-format.md, Environment maps). */
+export interface EnvironmentMapDesc {
+  type: 'map';
+  file: string;
+  scale: Vec3;
+  /** Degrees about +y. */
+  rotationY: number;
+  /** The decoded texels, filled by `resolveSceneFiles`. */
+  image: EnvironmentImage | null;
+}
+
+export interface EnvironmentImage {
+  width: number;
+  height: number;
+  /** Linear RGB per texel, row 0 at the top (the +y pole), without `scale`. */
+  rgb: Float32Array;
+}
 
 export interface Scene {
   format: 'pathwise-scene/1';
@@ -72,7 +122,13 @@ export interface Scene {
   settings: SettingsDesc;
   materials: Record<string, MaterialDesc>;
   shapes: ShapeDesc[];
+  /** Constant radiance of escaping rays; [0, 0, 0] when an environment map is used. */
   environment: Vec3;
+  /**
+   * The environment map, or null (or absent, in a scene built by code) for the constant
+   * environment. The loader always sets it.
+   */
+  environmentMap?: EnvironmentMapDesc | null;
 }
 
 /** Hard limits on input size; each has a clear error in the loader. */
@@ -82,6 +138,12 @@ export const LIMITS = {
   pixels: 16_777_216,
   spp: 1_048_576,
   maxBounces: 64,
+  /** Triangles per scene, over all meshes, counted as read (before zero-area ones are skipped). */
+  triangles: 10_000_000,
+  /** Bytes of one mesh file. */
+  meshFileBytes: 1024 * 1024 * 1024,
+  envMapWidth: 16384,
+  envMapHeight: 8192,
 } as const;
 
 export const DEFAULT_SETTINGS: SettingsDesc = {

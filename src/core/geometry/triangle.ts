@@ -1,0 +1,236 @@
+/**
+ * Watertight ray–triangle intersection (Woop, Benthin and Wald, "Watertight Ray/Triangle
+ * Intersection", JCGT 2(1), 2013; pbr-book 4e §6.5.3). The vertices are translated to
+ * the ray origin and sheared so the ray runs along +z; the 2D edge functions U, V, W
+ * then decide the hit. Every vertex is transformed the same way for every triangle that
+ * uses it, so two triangles sharing an edge see it through bit-identical (negated)
+ * values: a ray cannot slip between them.
+ *
+ * Two refinements for double precision and exact edges:
+ * - an edge function too close to zero for its sign to be trusted is recomputed exactly
+ *   (exact.ts), the double-precision analogue of the paper's float→double fallback, so
+ *   the signs around a shared vertex are consistent too;
+ * - a point exactly on an edge or vertex belongs to one triangle only, by a tie rule
+ *   equivalent to moving the point an infinitesimal step along (1, −δ) in the sheared
+ *   plane (the "top-left" rule of rasterisers), so there are no double hits either.
+ *
+ * Coordinates relative to the ray origin stay exact for magnitudes of about 1e-90 to
+ * 1e90 (the distance is a cubic in them); the scene's relative ray offsets keep every
+ * scale in that range alike.
+ */
+import { DIFF_OF_PRODUCTS_ERROR, exactDiffOfProducts } from './exact.ts';
+
+/**
+ * Per-ray constants: the permutation that makes the largest direction component z (kx,
+ * ky swapped when it is negative, to keep the winding), and the shear. Compute once per
+ * ray with `setTriangleRay`, then test any number of triangles.
+ */
+export class TriangleRay {
+  kx = 0;
+  ky = 1;
+  kz = 2;
+  sx = 0;
+  sy = 0;
+  sz = 1;
+  /** The origin, permuted: its kx, ky and kz components. */
+  o0 = 0;
+  o1 = 0;
+  o2 = 0;
+}
+
+export function setTriangleRay(
+  ox: number,
+  oy: number,
+  oz: number,
+  dx: number,
+  dy: number,
+  dz: number,
+  out: TriangleRay,
+): void {
+  const ax = Math.abs(dx),
+    ay = Math.abs(dy),
+    az = Math.abs(dz);
+  const kz = ax > ay ? (ax > az ? 0 : 2) : ay > az ? 1 : 2;
+  let kx = kz === 2 ? 0 : kz + 1;
+  let ky = kx === 2 ? 0 : kx + 1;
+  const dkz = kz === 0 ? dx : kz === 1 ? dy : dz;
+  if (dkz < 0) {
+    const tmp = kx;
+    kx = ky;
+    ky = tmp;
+  }
+  const dkx = kx === 0 ? dx : kx === 1 ? dy : dz;
+  const dky = ky === 0 ? dx : ky === 1 ? dy : dz;
+  out.kx = kx;
+  out.ky = ky;
+  out.kz = kz;
+  out.sx = dkx / dkz;
+  out.sy = dky / dkz;
+  out.sz = 1 / dkz;
+  out.o0 = kx === 0 ? ox : kx === 1 ? oy : oz;
+  out.o1 = ky === 0 ? ox : ky === 1 ? oy : oz;
+  out.o2 = kz === 0 ? ox : kz === 1 ? oy : oz;
+}
+
+/** Barycentrics (of p0, p1, p2) of the last hit found by `intersectTriangleBary`. */
+export class TriangleHit {
+  b0 = 0;
+  b1 = 0;
+  b2 = 0;
+}
+
+/** Index of the far bound in the scene's ray record (geometry/trace.ts R_T). */
+const R_T = 6;
+
+/**
+ * Whether the ray hits triangle `tri` closer than r[R_T], the far bound of the scene's
+ * ray record (tMax, or the nearest hit so far); if so, moves r[R_T] to the hit. `positions` holds x, y, z
+ * per vertex and `indices` three vertex indices per triangle. The ray enters only
+ * through `r` (setTriangleRay); its direction need not be unit length.
+ *
+ * The distance travels through the ray record rather than as a number argument and
+ * result: where V8 does not inline a call (this test is too long for V8's inlining
+ * budget), a double passed or returned is boxed on the heap, one allocation per test.
+ */
+export function hitTriangle(
+  positions: Float64Array,
+  indices: Uint32Array | Int32Array,
+  tri: number,
+  tr: TriangleRay,
+  record: Float64Array,
+): boolean {
+  // The common case, kept small so that V8 inlines it into the traversal loops: every
+  // edge function clearly non-zero. Anything closer to an edge takes the careful path
+  // (exact signs, the tie rule), which gives the same answer wherever both apply.
+  const kx = tr.kx,
+    ky = tr.ky,
+    kz = tr.kz;
+  const ia = indices[3 * tri] * 3,
+    ib = indices[3 * tri + 1] * 3,
+    ic = indices[3 * tri + 2] * 3;
+  const o0 = tr.o0,
+    o1 = tr.o1,
+    o2 = tr.o2;
+  const az = positions[ia + kz] - o2,
+    bz = positions[ib + kz] - o2,
+    cz = positions[ic + kz] - o2;
+  const sx = tr.sx,
+    sy = tr.sy;
+  const ax = positions[ia + kx] - o0 - sx * az,
+    ay = positions[ia + ky] - o1 - sy * az;
+  const bx = positions[ib + kx] - o0 - sx * bz,
+    by = positions[ib + ky] - o1 - sy * bz;
+  const cx = positions[ic + kx] - o0 - sx * cz,
+    cy = positions[ic + ky] - o1 - sy * cz;
+  const u1 = cx * by,
+    u2 = cy * bx;
+  const u = u1 - u2;
+  const eu = DIFF_OF_PRODUCTS_ERROR * (Math.abs(u1) + Math.abs(u2));
+  const v1 = ax * cy,
+    v2 = ay * cx;
+  const v = v1 - v2;
+  const ev = DIFF_OF_PRODUCTS_ERROR * (Math.abs(v1) + Math.abs(v2));
+  // Signs that are certain and differ: a miss (the usual exit, before W is computed).
+  if ((u < -eu && v > ev) || (u > eu && v < -ev)) return false;
+  const w1 = bx * ay,
+    w2 = by * ax;
+  const w = w1 - w2;
+  const ew = DIFF_OF_PRODUCTS_ERROR * (Math.abs(w1) + Math.abs(w2));
+  const tMax = record[R_T];
+  if (!(Math.abs(u) > eu && Math.abs(v) > ev && Math.abs(w) > ew)) {
+    const t = intersectTriangleBary(positions, indices, tri, tr, tMax, null);
+    if (!(t < tMax)) return false;
+    record[R_T] = t;
+    return true;
+  }
+  if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return false;
+  const det = u + v + w;
+  const tScaled = tr.sz * (u * az + v * bz + w * cz);
+  if (det > 0 ? tScaled <= 0 || tScaled >= tMax * det : tScaled >= 0 || tScaled <= tMax * det) {
+    return false;
+  }
+  const t = tScaled / det;
+  if (!(t > 0 && t < tMax)) return false;
+  record[R_T] = t;
+  return true;
+}
+
+/**
+ * Distance to triangle `tri` in (0, tMax), or Infinity, by the careful path alone (exact
+ * edge signs where rounding could decide them, the tie rule on edges); on a hit writes
+ * the barycentrics into `hit` (if given). `hitTriangle` answers the same, faster.
+ */
+export function intersectTriangleBary(
+  positions: Float64Array,
+  indices: Uint32Array | Int32Array,
+  tri: number,
+  r: TriangleRay,
+  tMax: number,
+  hit: TriangleHit | null,
+): number {
+  const kx = r.kx,
+    ky = r.ky,
+    kz = r.kz;
+  const ia = indices[3 * tri] * 3,
+    ib = indices[3 * tri + 1] * 3,
+    ic = indices[3 * tri + 2] * 3;
+  const o0 = r.o0,
+    o1 = r.o1,
+    o2 = r.o2;
+  // Vertices relative to the origin, permuted so the ray runs along the third axis.
+  const az = positions[ia + kz] - o2,
+    bz = positions[ib + kz] - o2,
+    cz = positions[ic + kz] - o2;
+  const sx = r.sx,
+    sy = r.sy;
+  const ax = positions[ia + kx] - o0 - sx * az,
+    ay = positions[ia + ky] - o1 - sy * az;
+  const bx = positions[ib + kx] - o0 - sx * bz,
+    by = positions[ib + ky] - o1 - sy * bz;
+  const cx = positions[ic + kx] - o0 - sx * cz,
+    cy = positions[ic + ky] - o1 - sy * cz;
+
+  let u = cx * by - cy * bx;
+  let v = ax * cy - ay * cx;
+  let w = bx * ay - by * ax;
+  // Recompute exactly any edge function whose sign rounding might have decided.
+  if (Math.abs(u) <= DIFF_OF_PRODUCTS_ERROR * (Math.abs(cx * by) + Math.abs(cy * bx))) {
+    u = exactDiffOfProducts(cx, by, cy, bx);
+  }
+  if (Math.abs(v) <= DIFF_OF_PRODUCTS_ERROR * (Math.abs(ax * cy) + Math.abs(ay * cx))) {
+    v = exactDiffOfProducts(ax, cy, ay, cx);
+  }
+  if (Math.abs(w) <= DIFF_OF_PRODUCTS_ERROR * (Math.abs(bx * ay) + Math.abs(by * ax))) {
+    w = exactDiffOfProducts(bx, ay, by, ax);
+  }
+  if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return Infinity;
+  const det = u + v + w;
+  if (det === 0) return Infinity; // edge-on: the ray lies in the triangle's plane
+  // A point exactly on an edge belongs to the triangle only if the edge, oriented as
+  // the triangle's boundary with positive orientation, points to +y (or along +x).
+  if (u === 0 || v === 0 || w === 0) {
+    const s = det > 0 ? 1 : -1;
+    if (u === 0 && !ownsEdge((cx - bx) * s, (cy - by) * s)) return Infinity;
+    if (v === 0 && !ownsEdge((ax - cx) * s, (ay - cy) * s)) return Infinity;
+    if (w === 0 && !ownsEdge((bx - ax) * s, (by - ay) * s)) return Infinity;
+  }
+  const szz = r.sz;
+  const tScaled = szz * (u * az + v * bz + w * cz);
+  // 0 < t = tScaled / det < tMax, without dividing on the way.
+  if (det > 0 ? tScaled <= 0 || tScaled >= tMax * det : tScaled >= 0 || tScaled <= tMax * det) {
+    return Infinity;
+  }
+  const t = tScaled / det;
+  if (!(t > 0 && t < tMax)) return Infinity; // underflow of a vanishing distance
+  if (hit !== null) {
+    const inv = 1 / det;
+    hit.b0 = u * inv;
+    hit.b1 = v * inv;
+    hit.b2 = w * inv;
+  }
+  return t;
+}
+
+function ownsEdge(ex: number, ey: number): boolean {
+  return ey > 0 || (ey === 0 && ex > 0);
+}
