@@ -75,6 +75,8 @@ interface Slot {
   inRound: boolean;
   /** The last error the thread reported, for the message should the render stop. */
   lastError: string | null;
+  /** Test hook: killWorker ended it; its exit has not come yet. */
+  killed: boolean;
 }
 
 export class RenderPool {
@@ -125,7 +127,13 @@ export class RenderPool {
     // the worker script) overlaps the compilation below.
     this.slots = Array.from({ length: threads }, (_, k) => {
       const journal = new SharedArrayBuffer(Film.byteLength(req.width, stripeRows));
-      return { worker: this.start(k, journal), journal, inRound: false, lastError: null };
+      return {
+        worker: this.start(k, journal),
+        journal,
+        inRound: false,
+        lastError: null,
+        killed: false,
+      };
     });
     // Compiled once here; every worker maps the same shared buffer.
     const scene = packScene(compileScene(req.scene), true);
@@ -195,6 +203,7 @@ export class RenderPool {
     }
     slot.worker = this.start(k, slot.journal);
     slot.lastError = null;
+    slot.killed = false;
     slot.inRound = false;
     this.faults.replaced++;
     // Messages are handled in order: the replacement initialises, then joins the round.
@@ -247,9 +256,14 @@ export class RenderPool {
   /**
    * Test hook, not API: terminates the worker of slot `k` (modulo the
    * thread count) now, wherever it is. It is replaced as any dead worker is.
+   * False when that worker was already killed and has not exited yet.
    */
-  killWorker(k: number): void {
-    void this.slots[Math.abs(Math.floor(k)) % this.threads].worker.terminate();
+  killWorker(k: number): boolean {
+    const slot = this.slots[Math.abs(Math.floor(k)) % this.threads];
+    if (slot.killed) return false;
+    slot.killed = true;
+    void slot.worker.terminate();
+    return true;
   }
 
   /**
