@@ -26,20 +26,27 @@ import * as Comlink from 'comlink';
 import {
   MAX_SLOTS,
   type JobConfig,
-  type RenderWorkerApi,
   type StripeResult,
   type StripeTask,
 } from '../../workers/render-protocol.ts';
+import {
+  CRASH_WINDOW_MS,
+  CrashWindow,
+  createWorker,
+  defaultWorkerCount,
+  newPoolWorker,
+  type PoolWorker,
+  type WorkerSource,
+} from './pool-worker.ts';
 import { faults, markDead, newWorkerToken } from './worker-deaths.ts';
-import { startModuleWorker } from './worker-source.ts';
+
+export type { WorkerSource } from './pool-worker.ts';
 
 /**
  * Without Web Locks a death cannot be confirmed, only waited out: Chromium
  * stops a terminated worker that is busy within two seconds.
  */
 const DEATH_GRACE_MS = 3000;
-/** More crashes than this (2 per worker + 4) within CRASH_WINDOW_MS and the pool gives up. */
-const CRASH_WINDOW_MS = 10_000;
 /** Pause before trying a recovery again when a film's lock stayed busy. */
 const RECOVERY_RETRY_MS = 20;
 /** Names the page's life locks apart from other tabs' (Web Locks are per origin). */
@@ -62,53 +69,6 @@ export interface PoolClient {
   recover(): boolean;
 }
 
-interface PoolWorker {
-  worker: Worker;
-  api: Comlink.Remote<RenderWorkerApi>;
-  port: MessagePort;
-  busy: boolean;
-  retiring: boolean;
-  /** Its stop() has answered: no claim in hand, safe to terminate once no task is out. */
-  stopped: boolean;
-  /** Per job: the scene id this worker holds and the config version it acknowledged. */
-  sceneIds: Map<number, number>;
-  acked: Map<number, number>;
-  /** Its record in the control blocks, and its lock token. */
-  slot: number;
-  token: number;
-  /** init has answered: it started, and claims only from now on. */
-  ready: boolean;
-  lifeLock: string;
-  /** Out of service: terminated, or found dead. */
-  gone: boolean;
-  /** Ended by the pool on purpose (retired, pool closed): nothing to recover. */
-  ended: boolean;
-  /** Its death is certain and was recovered from. */
-  buried: boolean;
-  /** Transfer mode: the task it holds. */
-  task: StripeTask | null;
-  /** Settles a retire waiting on stop() should the worker die first. */
-  stopAnswered: (() => void) | null;
-}
-
-export interface WorkerSource {
-  workerUrl?: string | URL;
-  workerFactory?: () => Worker;
-}
-
-function defaultWorkerCount(): number {
-  const cores = typeof navigator !== 'undefined' ? navigator.hardwareConcurrency : 0;
-  return Math.max(1, Math.min(64, cores || 4));
-}
-
-/**
- * Starts the worker at `url` like `new Worker`, but through a same-origin
- * shim when the package was loaded from another origin (see createWorker).
- */
-const ModuleWorker = function (url: URL): Worker {
-  return startModuleWorker(url);
-} as unknown as new (url: URL, options: WorkerOptions) => Worker;
-
 export class WorkerPool {
   private readonly workers: PoolWorker[] = [];
   private readonly clients = new Map<number, PoolClient>();
@@ -117,9 +77,11 @@ export class WorkerPool {
   private target: number;
   /** Slots in use, by live workers and by dead ones not yet recovered from. */
   private readonly slots = new Uint8Array(MAX_SLOTS);
-  private crashTimes: number[] = [];
+  private readonly crashes = new CrashWindow(CRASH_WINDOW_MS);
   /** Workers crashed too often: no more replacements. */
   private halted = false;
+  /** Why workers could not start here, once that was reported (see failToStart). */
+  private startFailure: string | null = null;
   private closed = false;
 
   constructor(source: WorkerSource, size?: number) {
@@ -132,6 +94,10 @@ export class WorkerPool {
   }
 
   register(client: PoolClient): void {
+    const failure = this.startFailure;
+    if (failure !== null && !this.clients.has(client.id)) {
+      queueMicrotask(() => client.onWorkerError(failure));
+    }
     this.clients.set(client.id, client);
     void this.resize();
   }
@@ -327,13 +293,11 @@ export class WorkerPool {
 
   /** Counts a crash; too many too fast and the pool stops replacing workers. */
   private noteCrash(message: string): void {
-    const now = performance.now();
-    this.crashTimes = this.crashTimes.filter((t) => now - t < CRASH_WINDOW_MS);
-    this.crashTimes.push(now);
-    if (!this.halted && this.crashTimes.length > 2 * this.target + 4) {
+    const count = this.crashes.note(performance.now());
+    if (!this.halted && count > 2 * this.target + 4) {
       this.halted = true;
       this.fail(
-        `render workers keep crashing (${this.crashTimes.length} in ${CRASH_WINDOW_MS / 1000} s), so no more are started; the last: ${message}`,
+        `render workers keep crashing (${count} in ${CRASH_WINDOW_MS / 1000} s), so no more are started; the last: ${message}`,
       );
     }
   }
@@ -344,22 +308,19 @@ export class WorkerPool {
     return slot;
   }
 
-  private createWorker(): Worker {
-    if (this.source.workerFactory) return this.source.workerFactory();
-    if (this.source.workerUrl) return startModuleWorker(this.source.workerUrl);
-    // The package's own worker sits next to this module, which may have come
-    // from a CDN: `Worker` is shadowed so that the expression below stays
-    // written out in full (Vite recognises and bundles the worker by that
-    // pattern) while the URL goes through the same-origin shim.
-    const Worker = ModuleWorker;
-    return new Worker(new URL('../../workers/render-worker.ts', import.meta.url), {
-      type: 'module',
-    });
-  }
-
   /** Reports a failure to every client: each shows it through its controller's error event. */
   private fail(message: string): void {
     for (const c of this.clients.values()) c.onWorkerError(message);
+  }
+
+  /**
+   * Workers cannot start here: said once, however many fail the same way,
+   * and to clients that register later (they would wait for ever otherwise).
+   */
+  private failToStart(message: string): void {
+    if (this.startFailure !== null) return;
+    this.startFailure = message;
+    this.fail(message);
   }
 
   /** Starts a worker; false when it could not (reported) or no slot is free yet. */
@@ -369,7 +330,7 @@ export class WorkerPool {
     if (slot < 0) return false;
     let worker: Worker;
     try {
-      worker = this.createWorker();
+      worker = createWorker(this.source);
     } catch (e) {
       this.slots[slot] = 0;
       // Thrown synchronously (a SecurityError for a script the page may not
@@ -377,42 +338,26 @@ export class WorkerPool {
       // Reported a microtask later, like a worker's own error event: spawns
       // happen inside a restart, whose `load` event would hide the message.
       const message = `render worker could not start: ${e instanceof Error ? e.message : String(e)}`;
-      queueMicrotask(() => this.fail(message));
+      queueMicrotask(() => this.failToStart(message));
       return false;
     }
-    const api = Comlink.wrap<RenderWorkerApi>(worker);
     const channel = new MessageChannel();
     const token = newWorkerToken();
     const locks = typeof navigator !== 'undefined' ? navigator.locks : undefined;
-    const w: PoolWorker = {
-      worker,
-      api,
-      port: channel.port1,
-      busy: false,
-      retiring: false,
-      stopped: false,
-      sceneIds: new Map(),
-      acked: new Map(),
-      slot,
-      token,
-      ready: false,
-      lifeLock: locks ? `pathwise-render-worker-${PAGE_ID}-${token}` : '',
-      gone: false,
-      ended: false,
-      buried: false,
-      task: null,
-      stopAnswered: null,
-    };
+    const w = newPoolWorker(worker, channel.port1, slot, token, locks ? PAGE_ID : null);
     worker.addEventListener('error', (e) => {
       if (w.gone) return;
-      // A script that fails to load gives an ErrorEvent without a message.
-      const message = e.message || 'render worker failed to load or crashed';
       if (!w.ready) {
         // It never started (a bad URL, a CSP): say so, as before; no
-        // replacement, which would only fail the same way.
-        this.fail(message);
+        // replacement, which would only fail the same way. A script that
+        // fails to load gives an ErrorEvent without a message.
+        this.failToStart(
+          e.message ||
+            `render worker failed to load: its script could not be fetched or run on this page (a wrong worker URL, or a Content-Security-Policy whose worker-src forbids it)`,
+        );
         return;
       }
+      const message = e.message || 'render worker crashed';
       // It was running: a crash. Replace it; recover what it held.
       console.warn(`pathwise: ${message}; the render worker is replaced`);
       faults.crashed++;
@@ -423,8 +368,8 @@ export class WorkerPool {
     // shim, as in the benchmarks and tests) may say when its thread ended.
     worker.addEventListener('exit', () => this.bury(w));
     channel.port1.onmessage = (e: MessageEvent<StripeResult>) => this.onResult(w, e.data);
-    void api.setTaskPort(Comlink.transfer(channel.port2, [channel.port2]));
-    void api.init({ slot, token, lifeLock: w.lifeLock || null }).then(
+    void w.api.setTaskPort(Comlink.transfer(channel.port2, [channel.port2]));
+    void w.api.init({ slot, token, lifeLock: w.lifeLock || null }).then(
       (held) => {
         w.ready = true;
         if (!held) w.lifeLock = '';
@@ -437,7 +382,9 @@ export class WorkerPool {
       (e: unknown) => {
         // It loaded but cannot start: as a start-up failure, said once.
         if (!w.gone)
-          this.fail(`render worker could not start: ${e instanceof Error ? e.message : String(e)}`);
+          this.failToStart(
+            `render worker could not start: ${e instanceof Error ? e.message : String(e)}`,
+          );
       },
     );
     this.workers.push(w);
