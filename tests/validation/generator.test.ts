@@ -212,4 +212,17 @@ describe('consistency test power', () => {
       expect(caught.length, pair).toBeGreaterThan(0);
     }
   });
+
+  it('catches a 3 % bias in a mesh scene lit by an environment map alone', () => {
+    // Mesh scene 3004 (map-objects: meshes under a map, no other light), 3 % brighter for A.
+    const g = generateScene(3004, { family: 'mesh' });
+    expect(g.features).toContain('env-map-only');
+    const biased = checkConsistency(g.scene, MESH_OPTIONS, 100_003 * 3004, {
+      A: brighter(g.scene, 1.03),
+    });
+    for (const pair of ['nee-vs-bsdf', 'sobol-vs-independent']) {
+      const caught = biased.tests.filter((t) => t.pair === pair && t.p < ALPHA_PER_TEST);
+      expect(caught.length, pair).toBeGreaterThan(0);
+    }
+  });
 });

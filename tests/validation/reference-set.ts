@@ -22,7 +22,7 @@ const PER_ARCHETYPE: [string, number][] = [
 /** Mesh family: seeds 4001… of each archetype; how many of each. */
 const MESH_PER_ARCHETYPE: [string, number][] = [
   ['mesh-light', 4],
-  ['mesh-room', 4],
+  ['mesh-room', 5],
   ['mesh-ground', 4],
   ['map-objects', 4],
   ['mesh-glass', 2],
