@@ -32,6 +32,7 @@ import { describe, expect, it } from 'vitest';
 import {
   compileScene,
   decodePfm,
+  encodePfm,
   parseScene,
   resolveSceneFiles,
   type PfmImage,
@@ -94,29 +95,83 @@ export const KNOWN_REFERENCE_ERRORS: Record<string, { renderer: Renderer; reason
 };
 
 export const names = Object.keys(manifest).sort();
+
+/** A scene file as JSON (the reference scenes are generated, so their shape is known). */
+type SceneFileJson = {
+  shapes: { type: string; material: string; corner?: Vec3; u?: Vec3; v?: Vec3 }[];
+  environment?: unknown;
+};
+type Vec3 = [number, number, number];
+const sceneJson = (name: string) =>
+  JSON.parse(readFileSync(`${DIR}${manifest[name].scene}`, 'utf8')) as SceneFileJson;
+
+/** The file name the meshed variant gives its 1×1 white map (served from memory). */
+const MESHED_MAP = 'meshed-constant-environment.pfm';
+const hasConstantEnvironment = (json: SceneFileJson) =>
+  Array.isArray(json.environment) && (json.environment as number[]).some((x) => x > 0);
+
+/**
+ * The meshed variant of a scene: every quad a mesh of two triangles, (c, c+u, c+u+v)
+ * and (c, c+u+v, c+v), whose front side is the quad's (cross(u, u+v) = u × v),
+ * emissive or not; a constant environment a 1×1 map scaled by its colour. The
+ * image is the same, but pathwise renders it with other code: the watertight
+ * triangle test and its offsets, emissive triangles sampled by area in NEE, the
+ * map's importance sampling and MIS. So the classic scenes' references, the native
+ * anchor's among them, check triangles and maps at every scale and at grazing
+ * angles, where the mesh family has Mitsuba's reference alone.
+ */
+export function meshedJson(json: SceneFileJson): SceneFileJson {
+  const shapes = json.shapes.map((s) => {
+    if (s.type !== 'quad') return s;
+    const [c, u, v] = [s.corner!, s.u!, s.v!];
+    const p = (a: number, b: number) => [0, 1, 2].map((k) => c[k] + a * u[k] + b * v[k]);
+    return {
+      type: 'mesh',
+      material: s.material,
+      positions: [...p(0, 0), ...p(1, 0), ...p(1, 1), ...p(0, 1)],
+      indices: [0, 1, 2, 0, 2, 3],
+    };
+  });
+  const environment = hasConstantEnvironment(json)
+    ? { type: 'map', file: MESHED_MAP, scale: json.environment }
+    : json.environment;
+  return { ...json, shapes, environment };
+}
+
+/** The classic scenes the meshed variant re-renders: every one with a quad or a constant environment. */
+export const meshedNames = names.filter((n) => {
+  if (coverage[n]?.family === 'mesh') return false;
+  const json = sceneJson(n);
+  return json.shapes.some((s) => s.type === 'quad') || hasConstantEnvironment(json);
+});
+
 const regions = imageRegions(WIDTH, HEIGHT);
 // Per scene, region and channel: pathwise vs Mitsuba, pathwise vs native, Mitsuba vs native;
-// pathwise vs Mitsuba alone where the native anchor cannot render the scene.
-const comparisons = names.reduce(
-  (n, name) => n + (manifest[name].native ? 3 : 1) * regions.length * 3,
-  0,
-);
+// pathwise vs Mitsuba alone where the native anchor cannot render the scene; and for each
+// scene of the meshed variant, pathwise (meshed) vs Mitsuba and vs native.
+const comparisons =
+  names.reduce((n, name) => n + (manifest[name].native ? 3 : 1) * regions.length * 3, 0) +
+  meshedNames.length * 2 * regions.length * 3;
 const ALPHA_PER_TEST = ALPHA / comparisons;
 
-/** Reads the files a reference scene names from beside it, as the command line does. */
+/**
+ * Reads the files a reference scene names from beside it, as the command line does;
+ * the meshed variant's white map from memory.
+ */
 const folderReader = {
   read: async (path: string, maxBytes: number) => {
+    if (path === MESHED_MAP) return encodePfm(1, 1, Float32Array.of(1, 1, 1));
     if (statSync(`${DIR}${path}`).size > maxBytes) throw new Error('file too large');
     return new Uint8Array(readFileSync(`${DIR}${path}`));
   },
 };
 
-/** The reference scene as pathwise loads it: parsed, its mesh and map files read. */
-async function loadReferenceScene(name: string): Promise<Scene> {
-  return resolveSceneFiles(
-    parseScene(readFileSync(`${DIR}${manifest[name].scene}`, 'utf8')),
-    folderReader,
-  );
+/** The reference scene (or its meshed variant) as pathwise loads it: parsed, its files read. */
+async function loadReferenceScene(name: string, meshed = false): Promise<Scene> {
+  const text = meshed
+    ? JSON.stringify(meshedJson(sceneJson(name)))
+    : readFileSync(`${DIR}${manifest[name].scene}`, 'utf8');
+  return resolveSceneFiles(parseScene(text), folderReader);
 }
 
 /**
@@ -204,17 +259,21 @@ function describeFailure(
   );
 }
 
-/** Registers the reference tests of the scenes `list` (names of the manifest). */
-export function referenceSuite(list: string[]): void {
-  describe.each(list)('%s', (name) => referenceTests(name));
+/**
+ * Registers the reference tests of the scenes `list` (names of the manifest), as they
+ * are or, with `meshed`, their meshed variant (meshedJson) against the same references.
+ */
+export function referenceSuite(list: string[], meshed = false): void {
+  describe.each(list)(meshed ? '%s, meshed' : '%s', (name) => referenceTests(name, meshed));
 }
 
-function referenceTests(name: string): void {
+function referenceTests(name: string, meshed: boolean): void {
   const entry = manifest[name];
   const known = KNOWN_REFERENCE_ERRORS[name];
 
-  // Only where there are two references (a mesh-family scene has Mitsuba's alone).
-  if (entry.native) {
+  // Only where there are two references (a mesh-family scene has Mitsuba's alone), and
+  // once per scene (not again for its meshed variant).
+  if (entry.native && !meshed) {
     it('has two references that agree with each other (or a known, explained error)', async () => {
       const V = bound(await loadReferenceScene(name));
       const m = referenceRegions(name, 'mitsuba');
@@ -244,15 +303,16 @@ function referenceTests(name: string): void {
   const what = entry.native
     ? `Mitsuba 3 (${entry.mitsuba.parts} × ${entry.mitsuba.sppPerPart} spp) and the native anchor (${entry.native.parts} × ${entry.native.sppPerPart} spp)`
     : `Mitsuba 3 (${entry.mitsuba.parts} × ${entry.mitsuba.sppPerPart} spp; the native anchor renders no meshes or maps)`;
-  it(`pathwise matches ${what}`, async () => {
-    const loaded = await loadReferenceScene(name);
+  const how = meshed ? ', its quads as triangles and its environment a map,' : '';
+  it(`pathwise${how} matches ${what}`, async () => {
+    const loaded = await loadReferenceScene(name, meshed);
     const V = bound(loaded);
     const compiled = compileScene(loaded);
     const config = { estimator: 'nee-mis', sampler: 'sobol' } as const;
     const perPath = pilotSegments(loaded, compiled, config, WIDTH, HEIGHT) + 2;
     let spp = 1;
     while (spp * 2 * perPath * WIDTH * HEIGHT * SEEDS <= BUDGET) spp *= 2;
-    const seeds = Array.from({ length: SEEDS }, (_, k) => 424_242 + 7919 * k);
+    const seeds = Array.from({ length: SEEDS }, (_, k) => (meshed ? 515_151 : 424_242) + 7919 * k);
     const ours = renderReplicas(
       loaded,
       compiled,
