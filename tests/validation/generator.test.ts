@@ -170,6 +170,31 @@ describe('scene generator, mesh family', () => {
     );
   });
 
+  it('every committed mesh reference scene and its files are what the generator makes', () => {
+    const dir = fileURLToPath(new URL('./references/', import.meta.url));
+    const set = JSON.parse(readFileSync(`${dir}set.json`, 'utf8')) as Record<
+      string,
+      { seed?: number; archetype?: string; family?: string; files?: string[] }
+    >;
+    let checked = 0;
+    for (const [name, e] of Object.entries(set)) {
+      if (e.family !== 'mesh') continue;
+      const made = generateScene(e.seed!, {
+        archetype: e.archetype,
+        family: 'mesh',
+        filePrefix: name,
+      });
+      expect(JSON.stringify(made.json, null, 2) + '\n', name).toBe(
+        readFileSync(`${dir}${name}.json`, 'utf8'),
+      );
+      expect(Object.keys(made.files).sort(), name).toEqual(e.files);
+      for (const [file, bytes] of Object.entries(made.files))
+        expect(Buffer.compare(readFileSync(`${dir}${file}`), Buffer.from(bytes)), file).toBe(0);
+      checked++;
+    }
+    expect(checked).toBe(19);
+  });
+
   it('covers every mesh feature and archetype over the consistency suite’s seeds', () => {
     const seen = new Set(scenes.flatMap((g) => g.features));
     for (const f of MESH_FEATURES) expect(seen.has(f), f).toBe(true);
