@@ -65,6 +65,12 @@ export interface GltfLoadOptions {
   textureLimitBytes?: number;
   /** Put the texels in a SharedArrayBuffer (when the platform has one). */
   sharedTextures?: boolean;
+  /**
+   * Triangles the file may instance, when fewer than the file limit remain (a scene's
+   * other meshes count against the scene's limit); checked from the accessor counts,
+   * before any geometry is read.
+   */
+  maxTriangles?: number;
   onProgress?: (stage: GltfStage, done: number, total: number) => void;
 }
 
@@ -116,6 +122,12 @@ export async function loadGltf(
     throw new GltfError(`JSON: ${messageOf(e)}`);
   }
   const summary = validateGltfJson(json);
+  if (options.maxTriangles !== undefined && summary.triangles > options.maxTriangles) {
+    throw new GltfError(
+      `scene: instances ${summary.triangles} triangles, more than the ${options.maxTriangles} ` +
+        `left of the scene's limit`,
+    );
+  }
   for (const name of (json.extensionsUsed as unknown[] | undefined) ?? []) {
     if (typeof name === 'string' && !HONOURED_EXTENSIONS.has(name)) {
       warn(`extension ${quote(name)} is not supported; its content is ignored`);
