@@ -8,16 +8,23 @@
  * - an emissive texture (with KHR_materials_emissive_strength): next-event
  *   estimation, which looks the texture up at the light sample, agrees with BSDF
  *   sampling alone, which finds it at hits;
+ * - a rough transmissive solid: next-event estimation of its rough reflection, also
+ *   from inside, agrees with BSDF sampling alone;
  * - a normal map tilts the diffuse lobe: a plane under a white upper hemisphere reads
  *   ρ(1 + cos α)/2 with α the tilt the texel encodes (both estimators).
  * Block tests as in gltf-reductions.test.ts (independent samples, 4×4 blocks, χ² at
  * p = 0.001, no |z| over 5); the closed form within 4 standard errors.
  */
 import { Document } from '@gltf-transform/core';
-import { KHRMaterialsEmissiveStrength, KHRMaterialsSpecular } from '@gltf-transform/extensions';
+import {
+  KHRMaterialsEmissiveStrength,
+  KHRMaterialsSpecular,
+  KHRMaterialsTransmission,
+} from '@gltf-transform/extensions';
 import { describe, expect, it } from 'vitest';
 import type { EnvironmentMapDesc, Estimator, Scene } from '../../src/core/index.ts';
 import { docWith, meshPrimitive, png, sceneWithFiles, toGlb } from '../helpers/gltf.ts';
+import { cube } from '../helpers/mesh-gen.ts';
 import {
   blockChiSquarePair,
   chiSquareQuantile,
@@ -63,6 +70,7 @@ function room(lamp: boolean, shapes: unknown[] = []) {
       floor: { type: 'diffuse', albedo: [0.7, 0.7, 0.7] },
       grey: { type: 'diffuse', albedo: [0.8, 0.8, 0.8] },
       lamp: { type: 'diffuse', albedo: [0, 0, 0], emission: [1.5, 1.5, 1.5] },
+      bright: { type: 'diffuse', albedo: [0, 0, 0], emission: [8, 8, 8] },
     },
     shapes: [
       { type: 'quad', corner: [-2, 0, 2], u: [4, 0, 0], v: [0, 0, -4], material: 'floor' },
@@ -162,6 +170,36 @@ describe('emissive textures', () => {
     const scene = await withGltf(doc, room(false));
     scene.environment = [0.02, 0.02, 0.02];
     expectSame(render(scene, 5, 'nee-mis'), render(scene, 6, 'bsdf'));
+  });
+});
+
+describe('rough transmissive glTF surfaces', () => {
+  it('light sampling from inside and outside agrees with BSDF sampling alone', async () => {
+    // A closed glass-like box (transmission 1, roughness 0.4) with a small lamp inside:
+    // its rough reflection is light-sampled on both sides of the surface (from inside
+    // toward the inner lamp), the refraction is not.
+    const doc = new Document();
+    const tr = doc
+      .createExtension(KHRMaterialsTransmission)
+      .createTransmission()
+      .setTransmissionFactor(1);
+    const mat = doc
+      .createMaterial()
+      .setBaseColorFactor([0.9, 0.8, 0.7, 1])
+      .setMetallicFactor(0)
+      .setRoughnessFactor(0.4)
+      .setExtension('KHR_materials_transmission', tr);
+    const c = cube();
+    const box = meshPrimitive(
+      doc,
+      Array.from(c.positions, (v, i) => (i % 3 === 1 ? v * 0.8 + 0.2 : v * 1.2 - 0.6)),
+      c.indices,
+    );
+    docWith(doc, box.setMaterial(mat));
+    const inner = { type: 'quad', corner: [-0.3, 0.4, 0.3], u: [0.6, 0, 0], v: [0, 0, -0.6] };
+    // The only lamp (the environment aside), so that light sampling matters.
+    const scene = await withGltf(doc, room(false, [{ ...inner, material: 'bright' }]));
+    expectSame(render(scene, 7, 'nee-mis'), render(scene, 8, 'bsdf'));
   });
 });
 
