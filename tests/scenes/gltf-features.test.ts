@@ -40,7 +40,7 @@ function lambert(doc: Document, base: number[] = [0.8, 0.8, 0.8, 1]) {
   const spec = doc.createExtension(KHRMaterialsSpecular).createSpecular().setSpecularFactor(0);
   return doc
     .createMaterial()
-    .setBaseColorFactor(base)
+    .setBaseColorFactor(base as [number, number, number, number])
     .setMetallicFactor(0)
     .setRoughnessFactor(1)
     .setExtension('KHR_materials_specular', spec);

@@ -112,7 +112,7 @@ const BASE = [0.9, 0.6, 0.3] as const;
 const metal = (base: readonly number[]) => (doc: Document) =>
   doc
     .createMaterial()
-    .setBaseColorFactor([...base, 1])
+    .setBaseColorFactor([base[0], base[1], base[2], 1])
     .setMetallicFactor(1)
     .setRoughnessFactor(0.3);
 
@@ -139,7 +139,7 @@ describe('glTF material reductions, rendered both ways', () => {
       gltfVersion(true, (doc) => {
         const m = doc
           .createMaterial()
-          .setBaseColorFactor([...BASE, 1])
+          .setBaseColorFactor([...BASE, 1] as [number, number, number, number])
           .setMetallicFactor(0)
           .setRoughnessFactor(0.5);
         const ext = doc.createExtension(KHRMaterialsSpecular);
@@ -153,7 +153,7 @@ describe('glTF material reductions, rendered both ways', () => {
       gltfVersion(false, (doc) => {
         const m = doc
           .createMaterial()
-          .setBaseColorFactor([...BASE, 1])
+          .setBaseColorFactor([...BASE, 1] as [number, number, number, number])
           .setMetallicFactor(0)
           .setRoughnessFactor(0);
         const tr = doc.createExtension(KHRMaterialsTransmission).createTransmission();
