@@ -35,8 +35,12 @@ import {
   encodePfm,
   estimateNoise,
   countSkippedTriangles,
+  isGlbBytes,
+  isModelFileName,
   isValidatedScene,
+  loadBareModel,
   parseScene,
+  sceneWarnings,
   resolveSceneFiles,
   sceneNeedsFiles,
   tonemapSums,
@@ -46,8 +50,11 @@ import {
   type CompiledScene,
   type PackedScene,
   type Scene,
+  type LoadStage,
+  type ResolveOptions,
   type SceneFileReader,
 } from '../core/index.ts';
+import { GLTF_FILE_BYTES } from '../core/gltf/load.ts';
 import { sceneSizeProblem } from '../core/scene/load.ts';
 import type { JobConfig } from '../../workers/render-protocol.ts';
 import { compositeBackdrop, type Backdrop } from './backdrop.ts';
@@ -73,6 +80,27 @@ import type {
 } from './types.ts';
 
 let nextJobId = 1;
+
+/** A model file's bytes, at most GLTF_FILE_BYTES (checked by its size before reading). */
+async function readModelBlob(blob: Blob, name: string): Promise<Uint8Array> {
+  if (blob.size > GLTF_FILE_BYTES) throw new Error(`${name}: ${modelSizeProblem(blob.size, true)}`);
+  return new Uint8Array(await blob.arrayBuffer());
+}
+
+/** The last component of a URL's path, as its file's name. */
+function fileNameOf(url: string): string {
+  const last = new URL(url).pathname.replace(/^.*\//, '');
+  try {
+    return decodeURIComponent(last) || 'model.glb';
+  } catch {
+    return last || 'model.glb';
+  }
+}
+
+function modelSizeProblem(size: number, exact: boolean): string {
+  const got = exact ? `${size}` : `at least ${size}`;
+  return `a glTF model must be at most ${GLTF_FILE_BYTES} bytes (1 GiB), got ${got} bytes`;
+}
 /** Noise is estimated at most this often (it reads the whole film). */
 const NOISE_INTERVAL_MS = 500;
 
@@ -215,23 +243,80 @@ export class Controller extends EventTarget implements PathTracerController {
   async setScene(value: unknown, files?: SceneFileReader): Promise<void> {
     this.sceneRequested = true;
     const request = ++this.sceneRequest;
+    // Mesh, glTF and environment-map files: fetched relative to the page unless the
+    // caller says how (a scene's URL, dropped files, a preset's assets).
+    const reader = files ?? this.options.files ?? urlSceneFiles(document.baseURI);
+    return this.install(request, () => this.readScene(value, reader));
+  }
+
+  /**
+   * Reads a scene: a File named `.glb` / `.gltf`, or bytes that are a GLB, is a bare
+   * model (core/gltf/bare-scene.ts), anything else a pathwise-scene/1 scene.
+   */
+  private async readScene(value: unknown, files: SceneFileReader): Promise<Scene> {
+    if (value instanceof Blob) {
+      const name = value instanceof File ? value.name : '';
+      if (isModelFileName(name)) {
+        return this.readModel(await readModelBlob(value, name), name, files);
+      }
+      // Bytes and files get the loader's byte bound and strict UTF-8, as on the command line.
+      value = await readBlobBounded(value, LIMITS.fileBytes);
+    }
+    if (value instanceof Uint8Array && isGlbBytes(value)) {
+      return this.readModel(value, 'model.glb', files);
+    }
+    const scene = isValidatedScene(value)
+      ? value
+      : typeof value === 'string' || value instanceof Uint8Array
+        ? parseScene(value)
+        : validateScene(value);
+    if (!sceneNeedsFiles(scene)) return scene;
+    const hasGltf = scene.shapes.some((s) => s.type === 'gltf' && s.data === null);
+    return resolveSceneFiles(scene, files, hasGltf ? await this.gltfPlatform() : {});
+  }
+
+  /** A bare model, framed at the aspect ratio of the picture it will be shown in. */
+  private async readModel(bytes: Uint8Array, name: string, files: SceneFileReader) {
+    const width = this.options.width ?? Math.round(this.canvas.clientWidth || 512);
+    const height = this.options.height ?? Math.round(this.canvas.clientHeight || 512);
+    // Only the aspect ratio matters here (the film follows the canvas).
+    const clamp = (n: number) => Math.min(4096, Math.max(1, n));
+    return loadBareModel(bytes, name, files, {
+      ...(await this.gltfPlatform()),
+      width: clamp(width),
+      height: clamp(height),
+    });
+  }
+
+  /**
+   * What loading glTF takes from the browser (gltf-browser.ts, imported only when a
+   * model is loaded): createImageBitmap for images, MikkTSpace's WebAssembly, texels
+   * in shared memory when the workers share it, and progress as `loadprogress` events.
+   */
+  private async gltfPlatform(): Promise<ResolveOptions> {
+    const { browserTangentGenerator, decodeImageBrowser } = await import('./gltf-browser.ts');
+    return {
+      decodeImage: decodeImageBrowser,
+      // Without it, normal maps of primitives that have no tangents are ignored with
+      // a warning (the loader says so) rather than failing the whole model.
+      generateTangents: await browserTangentGenerator().catch(() => null),
+      sharedTextures: this.mode.compute === 'shared',
+      onProgress: (stage, done, total) => this.progressLoad(stage, done, total),
+    };
+  }
+
+  private progressLoad(stage: LoadStage, done: number, total: number): void {
+    this.emit('loadprogress', { stage, done, total });
+  }
+
+  /**
+   * Installs the scene `read` gives, unless a later request came first; every failure
+   * is an `error` event and a rejection with the loader's message.
+   */
+  private async install(request: number, read: () => Promise<Scene>): Promise<void> {
     let scene: Scene;
     try {
-      // Bytes and files get the loader's byte bound and strict UTF-8, as on the command line.
-      if (value instanceof Blob) value = await readBlobBounded(value, LIMITS.fileBytes);
-      scene = isValidatedScene(value)
-        ? value
-        : typeof value === 'string' || value instanceof Uint8Array
-          ? parseScene(value)
-          : validateScene(value);
-      if (sceneNeedsFiles(scene)) {
-        // Mesh and environment-map files: fetched relative to the page unless the
-        // caller says how (a scene's URL, dropped files, a preset's assets).
-        scene = await resolveSceneFiles(
-          scene,
-          files ?? this.options.files ?? urlSceneFiles(document.baseURI),
-        );
-      }
+      scene = await read();
     } catch (e) {
       if (e instanceof ByteLimitError) e = new SceneError([sceneSizeProblem(e.size, e.exact)]);
       const message = e instanceof Error ? e.message : String(e);
@@ -241,8 +326,16 @@ export class Controller extends EventTarget implements PathTracerController {
     // A later call started while this one read its files: that one wins.
     if (request !== this.sceneRequest || this.destroyed) return;
     const first = this.currentScene === null;
+    const big = scene.shapes.some((s) => s.type === 'gltf' || s.type === 'mesh');
+    if (big) {
+      // The BVH build is synchronous: let the page show the stage first.
+      this.progressLoad('compile', 0, 1);
+      await new Promise((resolve) => setTimeout(resolve, 0));
+      if (request !== this.sceneRequest || this.destroyed) return;
+    }
     this.currentScene = scene;
     this.compiled = compileScene(scene);
+    if (big) this.progressLoad('compile', 1, 1);
     // Compiled once here (the picker uses it too) and shipped packed: the
     // workers neither parse nor compile nor build a BVH.
     this.packed = packScene(this.compiled, this.mode.compute === 'shared');
@@ -255,30 +348,44 @@ export class Controller extends EventTarget implements PathTracerController {
         : scene.settings.maxBounces;
     this.firstPass.sceneLoaded(performance.now());
     this.restart();
-    this.emit('load', { scene, skippedTriangles: countSkippedTriangles(scene) });
+    const warnings = sceneWarnings(scene);
+    this.emit('load', { scene, skippedTriangles: countSkippedTriangles(scene), warnings });
+    if (warnings.length > 0) this.emit('warning', { messages: warnings });
   }
 
   async load(url: string): Promise<void> {
     this.sceneRequested = true;
+    const request = ++this.sceneRequest;
     let bytes: Uint8Array;
     let base: string;
+    const model = isModelFileName(new URL(url, document.baseURI).pathname);
     try {
       const response = await fetch(url);
       if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
       base = response.url || new URL(url, document.baseURI).href;
-      bytes = await readResponseBounded(response, LIMITS.fileBytes);
+      bytes = await readResponseBounded(response, model ? GLTF_FILE_BYTES : LIMITS.fileBytes);
     } catch (e) {
       const message =
         e instanceof ByteLimitError
-          ? `${url}: ${sceneSizeProblem(e.size, e.exact)}`
+          ? `${url}: ${model ? modelSizeProblem(e.size, e.exact) : sceneSizeProblem(e.size, e.exact)}`
           : e instanceof Error
             ? e.message
             : String(e);
-      this.emit('error', { message });
+      if (request === this.sceneRequest) this.emit('error', { message });
       throw new Error(message);
     }
-    // The files the scene names live beside it.
-    await this.setScene(bytes, urlSceneFiles(base));
+    if (request !== this.sceneRequest) return;
+    // The files the scene (or the model) names live beside it.
+    const files = urlSceneFiles(base);
+    if (model || isGlbBytes(bytes)) {
+      const name = fileNameOf(base);
+      return this.install(request, () =>
+        this.readModel(bytes, name, files).catch((e: unknown) => {
+          throw new Error(`${name}: ${e instanceof Error ? e.message : String(e)}`);
+        }),
+      );
+    }
+    await this.setScene(bytes, files);
   }
 
   // ---- restart machinery -------------------------------------------------
