@@ -47,6 +47,7 @@ import {
   validateScene,
   type CameraDesc,
   packScene,
+  unpackScene,
   type CompiledScene,
   type PackedScene,
   type Scene,
@@ -68,7 +69,8 @@ import { dollyCamera, orbitCamera } from './orbit.ts';
 import { releasePool, sharedPool, type PoolClient, type WorkerPool } from './pool.ts';
 import { ByteLimitError, readBlobBounded, readResponseBounded } from './read-bounded.ts';
 import { RateMeter } from './rate-meter.ts';
-import { urlSceneFiles } from './scene-files.ts';
+import { loadModelInWorker, type LoadedModel, type ModelJob } from './model-load.ts';
+import { urlSceneFiles, type PortableReader } from './scene-files.ts';
 import { SharedFilmJob } from './shared-job.ts';
 import { TraceClock } from './trace-clock.ts';
 import type {
@@ -80,6 +82,9 @@ import type {
 } from './types.ts';
 
 let nextJobId = 1;
+
+/** A scene ready to install: compiled and packed already when the model worker loaded it. */
+type Loaded = { scene: Scene; packed?: LoadedModel['packed'] };
 
 /** A model file's bytes, at most GLTF_FILE_BYTES (checked by its size before reading). */
 async function readModelBlob(blob: Blob, name: string): Promise<Uint8Array> {
@@ -148,6 +153,8 @@ export class Controller extends EventTarget implements PathTracerController {
   private resizeObserver: ResizeObserver | null = null;
   private detachControls: (() => void) | null = null;
   private picker: PathTracer | null = null;
+  /** The model worker's current load, stopped when a newer scene or destroy() comes. */
+  private modelJob: ModelJob | null = null;
   private sceneRequested = false;
   /** Bumped by every setScene: one that finishes reading files after a newer one is dropped. */
   private sceneRequest = 0;
@@ -243,17 +250,20 @@ export class Controller extends EventTarget implements PathTracerController {
   async setScene(value: unknown, files?: SceneFileReader): Promise<void> {
     this.sceneRequested = true;
     const request = ++this.sceneRequest;
+    this.modelJob?.cancel();
     // Mesh, glTF and environment-map files: fetched relative to the page unless the
     // caller says how (a scene's URL, dropped files, a preset's assets).
     const reader = files ?? this.options.files ?? urlSceneFiles(document.baseURI);
     return this.install(request, () => this.readScene(value, reader));
   }
 
+  /** A scene from readScene: a bare model loaded in the model worker comes compiled and packed. */
+
   /**
    * Reads a scene: a File named `.glb` / `.gltf`, or bytes that are a GLB, is a bare
    * model (core/gltf/bare-scene.ts), anything else a pathwise-scene/1 scene.
    */
-  private async readScene(value: unknown, files: SceneFileReader): Promise<Scene> {
+  private async readScene(value: unknown, files: SceneFileReader): Promise<Loaded> {
     if (value instanceof Blob) {
       const name = value instanceof File ? value.name : '';
       if (isModelFileName(name)) {
@@ -270,22 +280,52 @@ export class Controller extends EventTarget implements PathTracerController {
       : typeof value === 'string' || value instanceof Uint8Array
         ? parseScene(value)
         : validateScene(value);
-    if (!sceneNeedsFiles(scene)) return scene;
+    if (!sceneNeedsFiles(scene)) return { scene };
+    // A scene file's glTF shapes load on the page (its reader may be any object).
     const hasGltf = scene.shapes.some((s) => s.type === 'gltf' && s.data === null);
-    return resolveSceneFiles(scene, files, hasGltf ? await this.gltfPlatform() : {});
+    return {
+      scene: await resolveSceneFiles(scene, files, hasGltf ? await this.gltfPlatform() : {}),
+    };
   }
 
-  /** A bare model, framed at the aspect ratio of the picture it will be shown in. */
-  private async readModel(bytes: Uint8Array, name: string, files: SceneFileReader) {
+  /**
+   * A bare model, framed at the aspect ratio of the picture it will be shown in: loaded,
+   * compiled and packed in the model worker (model-load.ts) when its files can be read
+   * there (a URL, dropped files), else on the page.
+   */
+  private async readModel(
+    bytes: Uint8Array,
+    name: string,
+    files: SceneFileReader,
+  ): Promise<Loaded> {
     const width = this.options.width ?? Math.round(this.canvas.clientWidth || 512);
     const height = this.options.height ?? Math.round(this.canvas.clientHeight || 512);
     // Only the aspect ratio matters here (the film follows the canvas).
     const clamp = (n: number) => Math.min(4096, Math.max(1, n));
-    return loadBareModel(bytes, name, files, {
+    const source = (files as Partial<PortableReader>).source;
+    if (source !== undefined && typeof Worker !== 'undefined') {
+      this.modelJob?.cancel();
+      const job = loadModelInWorker(
+        {
+          bytes,
+          name,
+          source,
+          width: clamp(width),
+          height: clamp(height),
+          shared: this.mode.compute === 'shared',
+        },
+        (stage, done, total) => this.progressLoad(stage, done, total),
+      );
+      this.modelJob = job;
+      const loaded = await job.promise;
+      if (loaded !== null) return loaded;
+    }
+    const scene = await loadBareModel(bytes, name, files, {
       ...(await this.gltfPlatform()),
       width: clamp(width),
       height: clamp(height),
     });
+    return { scene };
   }
 
   /**
@@ -294,7 +334,8 @@ export class Controller extends EventTarget implements PathTracerController {
    * in shared memory when the workers share it, and progress as `loadprogress` events.
    */
   private async gltfPlatform(): Promise<ResolveOptions> {
-    const { browserTangentGenerator, decodeImageBrowser } = await import('./gltf-browser.ts');
+    const { browserTangentGenerator, decodeImageBrowser } =
+      await import('../../workers/gltf-browser.ts');
     return {
       decodeImage: decodeImageBrowser,
       // Without it, normal maps of primitives that have no tangents are ignored with
@@ -313,10 +354,10 @@ export class Controller extends EventTarget implements PathTracerController {
    * Installs the scene `read` gives, unless a later request came first; every failure
    * is an `error` event and a rejection with the loader's message.
    */
-  private async install(request: number, read: () => Promise<Scene>): Promise<void> {
-    let scene: Scene;
+  private async install(request: number, read: () => Promise<Loaded>): Promise<void> {
+    let loaded: Loaded;
     try {
-      scene = await read();
+      loaded = await read();
     } catch (e) {
       if (e instanceof ByteLimitError) e = new SceneError([sceneSizeProblem(e.size, e.exact)]);
       const message = e instanceof Error ? e.message : String(e);
@@ -325,8 +366,10 @@ export class Controller extends EventTarget implements PathTracerController {
     }
     // A later call started while this one read its files: that one wins.
     if (request !== this.sceneRequest || this.destroyed) return;
+    const { scene, packed } = loaded;
     const first = this.currentScene === null;
-    const big = scene.shapes.some((s) => s.type === 'gltf' || s.type === 'mesh');
+    const big =
+      packed === undefined && scene.shapes.some((s) => s.type === 'gltf' || s.type === 'mesh');
     if (big) {
       // The BVH build is synchronous: let the page show the stage first.
       this.progressLoad('compile', 0, 1);
@@ -334,11 +377,17 @@ export class Controller extends EventTarget implements PathTracerController {
       if (request !== this.sceneRequest || this.destroyed) return;
     }
     this.currentScene = scene;
-    this.compiled = compileScene(scene);
-    if (big) this.progressLoad('compile', 1, 1);
-    // Compiled once here (the picker uses it too) and shipped packed: the
-    // workers neither parse nor compile nor build a BVH.
-    this.packed = packScene(this.compiled, this.mode.compute === 'shared');
+    if (packed !== undefined) {
+      // Compiled and packed by the model worker: views into its buffer.
+      this.compiled = unpackScene(packed);
+      this.packed = packed;
+    } else {
+      this.compiled = compileScene(scene);
+      if (big) this.progressLoad('compile', 1, 1);
+      // Compiled once here (the picker uses it too) and shipped packed: the
+      // workers neither parse nor compile nor build a BVH.
+      this.packed = packScene(this.compiled, this.mode.compute === 'shared');
+    }
     this.picker = null;
     this.sceneId++;
     this.camera = { ...scene.camera };
@@ -356,6 +405,7 @@ export class Controller extends EventTarget implements PathTracerController {
   async load(url: string): Promise<void> {
     this.sceneRequested = true;
     const request = ++this.sceneRequest;
+    this.modelJob?.cancel();
     let bytes: Uint8Array;
     let base: string;
     const model = isModelFileName(new URL(url, document.baseURI).pathname);
@@ -380,7 +430,7 @@ export class Controller extends EventTarget implements PathTracerController {
     if (model || isGlbBytes(bytes)) {
       const name = fileNameOf(base);
       return this.install(request, () =>
-        this.readModel(bytes, name, files).catch((e: unknown) => {
+        this.readModel(bytes, name, files).catch((e: unknown): never => {
           throw new Error(`${name}: ${e instanceof Error ? e.message : String(e)}`);
         }),
       );
@@ -832,6 +882,7 @@ export class Controller extends EventTarget implements PathTracerController {
     cancelAnimationFrame(this.raf);
     this.raf = 0;
     this.resizeObserver?.disconnect();
+    this.modelJob?.cancel();
     this.detachControls?.();
     this.films.park();
     this.pool.unregister(this.client);

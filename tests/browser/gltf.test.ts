@@ -5,7 +5,8 @@
  * MikkTSpace tangents from the same WebAssembly), with its load stages reported and
  * the extension it ignores shown as a note; a `.glb` given as the widget's `src`
  * renders on pages with and without cross-origin isolation (shared and transferred
- * textures); a broken model is one message naming the file.
+ * textures); a broken model is one message naming the file. Models load in the model
+ * worker (parse, decode, BVH), not on the page's thread.
  */
 import { mkdtempSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -106,6 +107,8 @@ describe('glTF models in the demo and the widget (Chromium)', () => {
     const names = [...files.keys()];
     expect(names.length).toBe(4); // .gltf, .bin, two images
     const page = await openDemo(ctx.browser, ctx.url, `${fixed}&spp=${PASSES}`);
+    const workers: string[] = [];
+    page.on('worker', (w) => workers.push(w.url()));
     await waitForSpp(page, 1);
     await recordLoad(page);
     // Without its images the model cannot load, and the message says which file.
@@ -131,6 +134,8 @@ describe('glTF models in the demo and the widget (Chromium)', () => {
       'shapes[0] (chair.gltf): extension "KHR_materials_clearcoat" is not supported; its content is ignored',
     ]);
     expect(await page.textContent('#notice')).toContain('KHR_materials_clearcoat');
+    // Parsed, decoded and built off the page's thread: in the model worker.
+    expect(workers.filter((u) => u.includes('model-worker')).length).toBe(2);
     const reference = await nodeReference(dir, 'chair.gltf', files.get('chair.gltf')!);
     expect(bitDifferences((await readLinear(page)).rgb, reference)).toBe(0);
     await page.close();
@@ -139,6 +144,8 @@ describe('glTF models in the demo and the widget (Chromium)', () => {
   async function widgetOnPage(url: string) {
     const glb = await toGlb(model());
     const page = await ctx.browser.newPage();
+    const workers: string[] = [];
+    page.on('worker', (w) => workers.push(w.url()));
     // The model is served by the page's own origin (as the dev server would).
     await page.route('**/models/chair.glb', (route) =>
       route.fulfill({ body: Buffer.from(glb), contentType: 'model/gltf-binary' }),
@@ -190,7 +197,7 @@ describe('glTF models in the demo and the widget (Chromium)', () => {
       };
     });
     await page.close();
-    return result;
+    return { ...result, modelWorkers: workers.filter((u) => u.includes('model-worker')).length };
   }
 
   for (const isolated of [true, false]) {
@@ -203,6 +210,7 @@ describe('glTF models in the demo and the widget (Chromium)', () => {
         expect(r.name).toBe('chair.glb');
         expect(r.stages).toEqual(expect.arrayContaining(['parse', 'textures', 'compile']));
         expect(r.status).toBe(true); // the progress line is gone once loaded
+        expect(r.modelWorkers).toBe(2); // one per model, the broken one included
         expect(r.warnings).toEqual([
           'shapes[0] (chair.glb): extension "KHR_materials_clearcoat" is not supported; its content is ignored',
         ]);
