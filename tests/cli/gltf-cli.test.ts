@@ -100,6 +100,32 @@ describe('pathwise render MODEL.glb', () => {
     );
   });
 
+  it('textures over the memory limit: one line naming the image, before anything is decoded', async () => {
+    // A PNG whose header claims 16384 × 16384 texels (2 GiB decoded at 8 bytes each,
+    // over the 1 GiB limit) in a few dozen bytes: the limit is checked from the header.
+    const ihdr = Buffer.alloc(25);
+    ihdr.writeUInt32BE(13, 0);
+    ihdr.write('IHDR', 4, 'latin1');
+    ihdr.writeUInt32BE(16384, 8);
+    ihdr.writeUInt32BE(16384, 12);
+    ihdr.set([8, 6, 0, 0, 0], 16);
+    const huge = Buffer.concat([
+      Buffer.from([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a]),
+      ihdr,
+    ]);
+    const doc = new Document();
+    const tex = doc.createTexture().setImage(huge).setMimeType('image/png');
+    docWith(doc, quadPrimitive(doc).setMaterial(doc.createMaterial().setBaseColorTexture(tex)));
+    writeFileSync(join(dir, 'huge.glb'), await toGlb(doc));
+    const r = run(['render', 'huge.glb', '--spp', '1', '--out', 'x.pfm']);
+    expect(r.status).toBe(2);
+    expect(r.stderr.split('\n').length).toBe(2);
+    expect(r.stderr).toBe(
+      'pathwise: huge.glb: glTF: images[0] (materials[0].baseColorTexture): decoded textures ' +
+        'would need 2.00 GiB, over the texture memory limit of 1.00 GiB\n',
+    );
+  });
+
   it('a broken model is one line naming the file, exit status 2', async () => {
     const glb = await toGlb(model());
     writeFileSync(join(dir, 'cut.glb'), glb.subarray(0, glb.length - 100));
