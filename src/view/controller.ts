@@ -408,7 +408,12 @@ export class Controller extends EventTarget implements PathTracerController {
     this.modelJob?.cancel();
     let bytes: Uint8Array;
     let base: string;
-    const model = isModelFileName(new URL(url, document.baseURI).pathname);
+    let model = false;
+    try {
+      model = isModelFileName(new URL(url, document.baseURI).pathname);
+    } catch {
+      // Not a URL: fetch says so below.
+    }
     try {
       const response = await fetch(url);
       if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);

@@ -11,7 +11,7 @@
  */
 import { buildMeshData } from '../geometry/mesh-data.ts';
 import { GLTF_FILE_BYTES, type GltfStage, loadGltf } from '../gltf/load.ts';
-import type { TangentGenerator } from '../gltf/tangents.ts';
+import type { TangentGenerator } from '../gltf/model-types.ts';
 import { decodeImageJs } from '../texture/decode-js.ts';
 import type { ImageDecoder } from '../texture/decoded-image.ts';
 import { decodeHdr } from '../io/hdr.ts';
