@@ -3,7 +3,8 @@
  * buffer and images renders bit for bit what the Node core renders for the same bare
  * model (images decoded by createImageBitmap there, by the pure-JS decoders here;
  * MikkTSpace tangents from the same WebAssembly), with its load stages reported and
- * the extension it ignores shown as a note; a `.glb` given as the widget's `src`
+ * the extension it ignores shown as a note; a `.glb`, and the same model as a `.gltf`
+ * with its buffer and images fetched relative to it (the same bits), given as the widget's `src`
  * renders on pages with and without cross-origin isolation (shared and transferred
  * textures); a broken model is one message naming the file. Models load in the model
  * worker (parse, decode, BVH), not on the page's thread.
@@ -150,6 +151,13 @@ describe('glTF models in the demo and the widget (Chromium)', () => {
     await page.route('**/models/chair.glb', (route) =>
       route.fulfill({ body: Buffer.from(glb), contentType: 'model/gltf-binary' }),
     );
+    // The same model as a .gltf with its buffer and images beside it.
+    const gltf = await toGltfFiles(model(), 'chair');
+    await page.route('**/models/gltf/**', (route) => {
+      const name = decodeURIComponent(new URL(route.request().url()).pathname.split('/').pop()!);
+      const body = gltf.get(name);
+      return body ? route.fulfill({ body: Buffer.from(body) }) : route.fulfill({ status: 404 });
+    });
     await page.route('**/models/broken.glb', (route) =>
       route.fulfill({ body: Buffer.from(glb.subarray(0, 100)), contentType: 'model/gltf-binary' }),
     );
@@ -173,6 +181,7 @@ describe('glTF models in the demo and the widget (Chromium)', () => {
         return { el, events };
       };
       const good = view('models/chair.glb');
+      const separate = view('models/gltf/chair.gltf');
       const bad = view('models/broken.glb');
       const until = (v: typeof good, type: string) =>
         new Promise<void>((resolve) => {
@@ -180,10 +189,17 @@ describe('glTF models in the demo and the widget (Chromium)', () => {
             v.events.some((e) => e.type === type) ? resolve() : setTimeout(poll, 50);
           poll();
         });
-      await Promise.all([until(good, 'converged'), until(bad, 'error')]);
+      await Promise.all([
+        until(good, 'converged'),
+        until(separate, 'converged'),
+        until(bad, 'error'),
+      ]);
       const pixels = good.el.controller.readLinear();
       let sum = 0;
       for (const x of pixels.rgb) sum += x;
+      const other = separate.el.controller.readLinear().rgb;
+      let same = other.length === pixels.rgb.length;
+      for (let i = 0; same && i < other.length; i++) same = other[i] === pixels.rgb[i];
       return {
         isolated: crossOriginIsolated,
         compute: good.el.mode.compute,
@@ -192,6 +208,8 @@ describe('glTF models in the demo and the widget (Chromium)', () => {
         warnings: good.events.find((e) => e.type === 'warning')?.detail.messages,
         status: good.el.shadowRoot.querySelector('[part=status]').hidden,
         mean: sum / pixels.rgb.length,
+        gltfName: separate.events.find((e) => e.type === 'load')?.detail.scene.name,
+        gltfSameBits: same,
         error: bad.events.find((e) => e.type === 'error')!.detail.message,
         shown: bad.el.shadowRoot.querySelector('[part=message]').textContent,
       };
@@ -210,7 +228,10 @@ describe('glTF models in the demo and the widget (Chromium)', () => {
         expect(r.name).toBe('chair.glb');
         expect(r.stages).toEqual(expect.arrayContaining(['parse', 'textures', 'compile']));
         expect(r.status).toBe(true); // the progress line is gone once loaded
-        expect(r.modelWorkers).toBe(2); // one per model, the broken one included
+        expect(r.modelWorkers).toBe(3); // one per model, the broken one included
+        // The .gltf with its files beside it (fetched relative to it) is the same scene.
+        expect(r.gltfName).toBe('chair.gltf');
+        expect(r.gltfSameBits).toBe(true);
         expect(r.warnings).toEqual([
           'shapes[0] (chair.glb): extension "KHR_materials_clearcoat" is not supported; its content is ignored',
         ]);
