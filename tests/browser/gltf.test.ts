@@ -174,9 +174,16 @@ describe('glTF models in the demo and the widget (Chromium)', () => {
         el.style.width = '48px';
         el.style.height = '32px';
         const events: { type: string; detail: any }[] = [];
+        const shown: string[] = [];
         for (const t of ['load', 'loadprogress', 'warning', 'converged', 'error']) {
           el.addEventListener(t, (e: CustomEvent) => events.push({ type: t, detail: e.detail }));
         }
+        // What the element's status line says while the model loads.
+        el.addEventListener('loadprogress', () => {
+          const status = el.shadowRoot.querySelector('[part=status]');
+          if (!status.hidden) shown.push(status.textContent);
+        });
+        (el as any).shown = shown;
         document.body.append(el);
         return { el, events };
       };
@@ -207,11 +214,12 @@ describe('glTF models in the demo and the widget (Chromium)', () => {
         stages: good.events.filter((e) => e.type === 'loadprogress').map((e) => e.detail.stage),
         warnings: good.events.find((e) => e.type === 'warning')?.detail.messages,
         status: good.el.shadowRoot.querySelector('[part=status]').hidden,
+        shown: good.el.shown as string[],
         mean: sum / pixels.rgb.length,
         gltfName: separate.events.find((e) => e.type === 'load')?.detail.scene.name,
         gltfSameBits: same,
         error: bad.events.find((e) => e.type === 'error')!.detail.message,
-        shown: bad.el.shadowRoot.querySelector('[part=message]').textContent,
+        message: bad.el.shadowRoot.querySelector('[part=message]').textContent,
       };
     });
     await page.close();
@@ -227,6 +235,10 @@ describe('glTF models in the demo and the widget (Chromium)', () => {
         expect(r.compute).toBe(isolated ? 'shared' : 'transfer');
         expect(r.name).toBe('chair.glb');
         expect(r.stages).toEqual(expect.arrayContaining(['parse', 'textures', 'compile']));
+        expect(r.shown).toEqual(
+          expect.arrayContaining(['Loading: parsing', 'Loading: building the BVH']),
+        );
+        expect(r.shown.some((t) => t.startsWith('Loading: decoding textures'))).toBe(true);
         expect(r.status).toBe(true); // the progress line is gone once loaded
         expect(r.modelWorkers).toBe(3); // one per model, the broken one included
         // The .gltf with its files beside it (fetched relative to it) is the same scene.
@@ -241,7 +253,7 @@ describe('glTF models in the demo and the widget (Chromium)', () => {
         expect(r.error).toMatch(
           /^broken\.glb: glTF: GLB header: says \d+ bytes, but the file has 100/,
         );
-        expect(r.shown).toBe(r.error);
+        expect(r.message).toBe(r.error);
       } finally {
         await plain?.server.close();
       }
