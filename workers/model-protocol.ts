@@ -22,6 +22,16 @@ export interface ModelRequest {
 
 export type ModelReply =
   | { type: 'progress'; stage: LoadStage; done: number; total: number }
-  /** The scene (its arrays transferred) and the same scene compiled and packed. */
-  | { type: 'done'; scene: Scene; packed: PackedScene }
+  /**
+   * The scene compiled and packed, and the scene itself without the model's arrays (its
+   * shape's `data` null, as before its file was read: they live on in `packed`, and the
+   * page need not hold them twice); the skipped-triangle count and warnings they gave.
+   */
+  | {
+      type: 'done';
+      scene: Scene;
+      packed: PackedScene;
+      skippedTriangles: number;
+      warnings: string[];
+    }
   | { type: 'error'; message: string };

@@ -6,8 +6,10 @@
  */
 import {
   compileScene,
+  countSkippedTriangles,
   loadBareModel,
   packScene,
+  sceneWarnings,
   type LoadStage,
   type Scene,
 } from '../src/core/index.ts';
@@ -18,22 +20,17 @@ import { readerOf } from './scene-files.ts';
 const post = (reply: ModelReply, transfer: Transferable[] = []) =>
   (self as unknown as Worker).postMessage(reply, transfer);
 
-/** Every ArrayBuffer (not shared memory) under the scene's shapes and environment map, once. */
-function transferables(scene: Scene): ArrayBuffer[] {
-  const found = new Set<ArrayBuffer>();
-  const seen = new Set<object>();
-  const walk = (v: unknown, depth: number): void => {
-    if (v === null || typeof v !== 'object' || depth > 6 || seen.has(v)) return;
-    seen.add(v);
-    if (ArrayBuffer.isView(v)) {
-      if (v.buffer instanceof ArrayBuffer) found.add(v.buffer);
-      return;
-    }
-    for (const x of Object.values(v)) walk(x, depth + 1);
+/**
+ * The scene as the page keeps it: the model's arrays left out (`data: null`, as before
+ * the file was read), so that they are not held twice — the packed scene has them. A
+ * page that hands this scene back to setScene reads the file again; compileScene
+ * refuses it rather than rendering nothing.
+ */
+function withoutModelData(scene: Scene): Scene {
+  return {
+    ...scene,
+    shapes: scene.shapes.map((s) => (s.type === 'gltf' ? { ...s, data: null } : s)),
   };
-  walk(scene.shapes, 0);
-  walk(scene.environmentMap, 0);
-  return [...found];
 }
 
 self.onmessage = async (e: MessageEvent<ModelRequest>) => {
@@ -54,9 +51,18 @@ self.onmessage = async (e: MessageEvent<ModelRequest>) => {
     onProgress('compile', 0, 1);
     const packed = packScene(compileScene(scene), req.shared);
     onProgress('compile', 1, 1);
-    const transfer: Transferable[] = transferables(scene);
+    const transfer: Transferable[] = [];
     if (packed.buffer instanceof ArrayBuffer) transfer.push(packed.buffer);
-    post({ type: 'done', scene, packed }, transfer);
+    post(
+      {
+        type: 'done',
+        scene: withoutModelData(scene),
+        packed,
+        skippedTriangles: countSkippedTriangles(scene),
+        warnings: sceneWarnings(scene),
+      },
+      transfer,
+    );
   } catch (err) {
     post({ type: 'error', message: err instanceof Error ? err.message : String(err) });
   }

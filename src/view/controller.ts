@@ -83,8 +83,11 @@ import type {
 
 let nextJobId = 1;
 
-/** A scene ready to install: compiled and packed already when the model worker loaded it. */
-type Loaded = { scene: Scene; packed?: LoadedModel['packed'] };
+/**
+ * A scene ready to install; compiled and packed already when the model worker loaded it
+ * (which also counted what the model's arrays, left out of `scene`, said).
+ */
+type Loaded = { scene: Scene } | LoadedModel;
 
 /** A model file's bytes, at most GLTF_FILE_BYTES (checked by its size before reading). */
 async function readModelBlob(blob: Blob, name: string): Promise<Uint8Array> {
@@ -366,7 +369,8 @@ export class Controller extends EventTarget implements PathTracerController {
     }
     // A later call started while this one read its files: that one wins.
     if (request !== this.sceneRequest || this.destroyed) return;
-    const { scene, packed } = loaded;
+    const { scene } = loaded;
+    const packed = 'packed' in loaded ? loaded.packed : undefined;
     const first = this.currentScene === null;
     const big =
       packed === undefined && scene.shapes.some((s) => s.type === 'gltf' || s.type === 'mesh');
@@ -397,8 +401,10 @@ export class Controller extends EventTarget implements PathTracerController {
         : scene.settings.maxBounces;
     this.firstPass.sceneLoaded(performance.now());
     this.restart();
-    const warnings = sceneWarnings(scene);
-    this.emit('load', { scene, skippedTriangles: countSkippedTriangles(scene), warnings });
+    const warnings = 'warnings' in loaded ? loaded.warnings : sceneWarnings(scene);
+    const skippedTriangles =
+      'skippedTriangles' in loaded ? loaded.skippedTriangles : countSkippedTriangles(scene);
+    this.emit('load', { scene, skippedTriangles, warnings });
     if (warnings.length > 0) this.emit('warning', { messages: warnings });
   }
 

@@ -16,8 +16,11 @@ const ModuleWorker = function (url: URL): Worker {
 } as unknown as new (url: URL, options: WorkerOptions) => Worker;
 
 export interface LoadedModel {
+  /** Without the model's arrays (see model-protocol.ts). */
   scene: Scene;
   packed: PackedScene;
+  skippedTriangles: number;
+  warnings: string[];
 }
 
 export interface ModelJob {
@@ -52,8 +55,10 @@ export function loadModelInWorker(
         return;
       }
       w.terminate();
-      if (reply.type === 'done') resolve({ scene: reply.scene, packed: reply.packed });
-      else reject(new Error(reply.message));
+      if (reply.type === 'done') {
+        const { scene, packed, skippedTriangles, warnings } = reply;
+        resolve({ scene, packed, skippedTriangles, warnings });
+      } else reject(new Error(reply.message));
     };
     w.onerror = (e: ErrorEvent) => {
       e.preventDefault();

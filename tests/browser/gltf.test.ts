@@ -135,6 +135,10 @@ describe('glTF models in the demo and the widget (Chromium)', () => {
       'shapes[0] (chair.gltf): extension "KHR_materials_clearcoat" is not supported; its content is ignored',
     ]);
     expect(await page.textContent('#notice')).toContain('KHR_materials_clearcoat');
+    // The page keeps the scene without the model's arrays: the packed scene has them.
+    expect(
+      await page.evaluate(() => (window as any).__pathwise.controller.scene.shapes[0].data),
+    ).toBe(null);
     // Parsed, decoded and built off the page's thread: in the model worker.
     expect(workers.filter((u) => u.includes('model-worker')).length).toBe(2);
     const reference = await nodeReference(dir, 'chair.gltf', files.get('chair.gltf')!);
