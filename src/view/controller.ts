@@ -421,6 +421,7 @@ export class Controller extends EventTarget implements PathTracerController {
       // Not a URL: fetch says so below.
     }
     try {
+      if (model) this.progressLoad('read', 0, 1);
       const response = await fetch(url);
       if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
       base = response.url || new URL(url, document.baseURI).href;
@@ -436,6 +437,7 @@ export class Controller extends EventTarget implements PathTracerController {
       throw new Error(message);
     }
     if (request !== this.sceneRequest) return;
+    if (model) this.progressLoad('read', 1, 1);
     // The files the scene (or the model) names live beside it.
     const files = urlSceneFiles(base);
     if (model || isGlbBytes(bytes)) {

@@ -238,7 +238,10 @@ describe('glTF models in the demo and the widget (Chromium)', () => {
         expect(r.isolated).toBe(isolated);
         expect(r.compute).toBe(isolated ? 'shared' : 'transfer');
         expect(r.name).toBe('chair.glb');
-        expect(r.stages).toEqual(expect.arrayContaining(['parse', 'textures', 'compile']));
+        expect(r.stages).toEqual(
+          expect.arrayContaining(['read', 'parse', 'textures', 'geometry', 'compile']),
+        );
+        expect(r.stages[0]).toBe('read');
         expect(r.shown).toEqual(
           expect.arrayContaining(['Loading: parsing', 'Loading: building the BVH']),
         );
