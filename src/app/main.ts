@@ -4,7 +4,7 @@
  * around one controller from src/view.
  */
 import { validateScene } from '../core/index.ts';
-import { createPathTracer } from '../view/index.ts';
+import { createPathTracer, type LoadProgressInfo } from '../view/index.ts';
 import { currentPool } from '../view/pool.ts';
 import { faults } from '../view/worker-deaths.ts';
 import { BENCHMARK_SECONDS, BENCHMARK_WARMUP_S, runBenchmark } from './benchmark.ts';
@@ -45,6 +45,13 @@ function showError(message: string | null): void {
   errorBox.textContent = message ?? '';
 }
 errorBox.addEventListener('click', () => showError(null));
+/** Load progress of a model, then what its files use that pathwise ignores. */
+const noticeBox = document.getElementById('notice') as HTMLElement;
+function showNotice(message: string | null): void {
+  noticeBox.hidden = message === null;
+  noticeBox.textContent = message ?? '';
+}
+noticeBox.addEventListener('click', () => showNotice(null));
 if (unknownScene !== null) {
   showError(
     `There is no scene "${unknownScene}" (the scene URL parameter takes ${Object.keys(PRESETS).join(', ')}); showing the Cornell box.`,
@@ -85,7 +92,20 @@ const presetKeys = new Map(
 
 const controls = attachControls(controller);
 controls.sync();
-controller.addEventListener('load', () => {
+const STAGES: Record<LoadProgressInfo['stage'], string> = {
+  read: 'reading files',
+  parse: 'parsing',
+  textures: 'decoding textures',
+  geometry: 'building geometry',
+  compile: 'building the BVH',
+};
+controller.addEventListener('loadprogress', (e) => {
+  const { stage, done, total } = (e as CustomEvent<LoadProgressInfo>).detail;
+  showNotice(`Loading: ${STAGES[stage]}${total > 1 ? ` ${done}/${total}` : ''}`);
+});
+controller.addEventListener('load', (e) => {
+  const { warnings } = (e as CustomEvent<{ warnings: string[] }>).detail;
+  showNotice(warnings.length > 0 ? `Note: ${warnings.join('; ')}` : null);
   const scene = controller.scene;
   const name = scene ? (presetKeys.get(sceneKey(scene)) ?? null) : null;
   // Before the quick first pass ends and sizes the film.
@@ -96,9 +116,10 @@ controller.addEventListener('load', () => {
   document.title = title ? `${title} — pathwise` : 'pathwise';
   canvas.setAttribute('aria-label', `${title || 'Scene'}, path-traced image`);
 });
-controller.addEventListener('error', (e) =>
-  showError((e as CustomEvent<{ message: string }>).detail.message),
-);
+controller.addEventListener('error', (e) => {
+  showNotice(null);
+  showError((e as CustomEvent<{ message: string }>).detail.message);
+});
 meter.start();
 
 const mode = document.getElementById('mode') as HTMLElement;

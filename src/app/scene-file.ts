@@ -1,9 +1,10 @@
 /**
  * Opening a scene by the file picker or by dropping it on the page, together with the
  * mesh and environment-map files it names (several files at once: the scene's `.json`
- * and its `.obj`, `.ply`, `.hdr`, `.pfm`). A bad file reports the loader's message; the
- * current scene keeps rendering because the controller only replaces it after
- * validation.
+ * and its `.obj`, `.ply`, `.hdr`, `.pfm`, `.glb`, `.gltf`), or a bare glTF model: a
+ * `.glb`, or a `.gltf` with its buffers and images. A bad file reports the loader's
+ * message; the current scene keeps rendering because the controller only replaces it
+ * after validation.
  */
 import type { Controller } from '../view/index.ts';
 import { droppedSceneFiles } from '../view/scene-files.ts';
@@ -17,12 +18,15 @@ export function attachSceneFiles(
   onError: (message: string) => void,
 ): void {
   const open = async (files: File[]): Promise<void> => {
-    const scenes = files.filter((f) => /\.json$/i.test(f.name));
+    // A scene file, else a model (a scene may name models dropped with it).
+    let scenes = files.filter((f) => /\.json$/i.test(f.name));
+    if (scenes.length === 0) scenes = files.filter((f) => /\.(glb|gltf)$/i.test(f.name));
     if (scenes.length !== 1) {
       onError(
         scenes.length === 0
-          ? 'no scene among the files: open a .json scene, with the files it names'
-          : `${scenes.length} scenes among the files: open one .json at a time`,
+          ? 'no scene among the files: open a .json scene with the files it names, ' +
+              'or a glTF model (.glb, or .gltf with its buffers and images)'
+          : `${scenes.length} scenes or models among the files: open one at a time`,
       );
       return;
     }

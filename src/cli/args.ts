@@ -42,6 +42,8 @@ export interface RenderArgs {
 export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png|FILE.film [options]
        pathwise merge PART.film... --out FILE.pfm|FILE.png|FILE.film (see pathwise merge --help)
   SCENE.json          a scene file, or - (or /dev/stdin) for standard input; at most 16 MiB
+                      or a glTF model (MODEL.glb, MODEL.gltf): framed by its bounds (or its
+                      first camera) in a studio environment
   --spp N             samples per pixel (default: the scene's settings.spp)
   --width W --height H  image size (default: the scene's settings)
   --bounces B         maximum scattering events per path (default: settings.maxBounces)

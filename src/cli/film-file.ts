@@ -36,6 +36,26 @@ function sha256(text: string): string {
 }
 
 /**
+ * SHA-256 of a loaded scene: its JSON, in which every typed array (decoded meshes,
+ * glTF models and their textures, environment maps) stands as its type and length, and
+ * then the arrays' bytes in the order the JSON names them — the same content gives the
+ * same hash, without turning millions of numbers into text.
+ */
+function sceneHash(value: unknown): string {
+  const arrays: ArrayBufferView[] = [];
+  const text = JSON.stringify(value, (_key, v: unknown) => {
+    if (ArrayBuffer.isView(v)) {
+      arrays.push(v);
+      return { typed: v.constructor.name, bytes: v.byteLength };
+    }
+    return v;
+  });
+  const hash = createHash('sha256').update(text);
+  for (const a of arrays) hash.update(new Uint8Array(a.buffer, a.byteOffset, a.byteLength));
+  return hash.digest('hex');
+}
+
+/**
  * The identity of a render. The scene hash covers the loaded scene (every
  * default filled in, so formatting and key order of the file do not
  * matter) without its name and settings, which change no pixel; the
@@ -43,7 +63,7 @@ function sha256(text: string): string {
  */
 export function filmIdentity(scene: Scene, settings: FilmSettings): FilmIdentity {
   const { name: _name, settings: _settings, ...pixels } = scene;
-  const scene_sha256 = sha256(JSON.stringify(pixels));
+  const scene_sha256 = sceneHash(pixels);
   const canonical: FilmSettings = {
     width: settings.width,
     height: settings.height,

@@ -7,6 +7,7 @@ import {
   FilmFileError,
   SceneError,
   countSkippedTriangles,
+  sceneWarnings,
   validateSettingsOverride,
 } from '../core/index.ts';
 import { printableLine, quote } from '../core/scene/message.ts';
@@ -22,7 +23,10 @@ async function render(argv: string[]): Promise<void> {
     return;
   }
   const args = parseRenderArgs(argv);
-  const scene = await loadSceneFile(args.scenePath);
+  const scene = await loadSceneFile(args.scenePath, { width: args.width, height: args.height });
+  for (const w of sceneWarnings(scene)) {
+    process.stderr.write(`pathwise: note: ${printableLine(w)}\n`);
+  }
   const skipped = countSkippedTriangles(scene);
   if (skipped > 0) {
     process.stderr.write(`pathwise: note: skipped ${skipped} triangles of zero area\n`);

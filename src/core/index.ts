@@ -14,8 +14,19 @@ export {
   loadScene,
   resolveSceneFiles,
   sceneNeedsFiles,
+  type LoadStage,
+  type ResolveOptions,
   type SceneFileReader,
 } from './scene/files.ts';
+export {
+  bareModelScene,
+  isGlbBytes,
+  isModelFileName,
+  loadBareModel,
+  type BareSceneOptions,
+} from './gltf/bare-scene.ts';
+export { studioEnvironment, STUDIO_FILE } from './lights/studio.ts';
+export { sceneWarnings } from './scene/warnings.ts';
 export { countSkippedTriangles } from './scene/mesh-desc.ts';
 export {
   compileScene,

@@ -1,38 +1,16 @@
 /**
- * The browser's SceneFileReaders (core/scene/files.ts): the files a scene names are
- * fetched relative to the scene's URL, or taken from the files dropped together with
- * the scene. Both refuse a file over the reader's byte limit before holding it whole:
- * by its declared size (Content-Length, File.size), and while streaming by the bytes
- * actually received.
+ * The page's SceneFileReaders: those that also work in a worker
+ * (workers/scene-files.ts), and files from a table of bundled asset URLs.
  */
 import type { SceneFileReader } from '../core/index.ts';
+import { urlSceneFiles } from '../../workers/scene-files.ts';
 
-/** Files relative to `base` (the scene's URL, or the page's for a scene given inline). */
-export function urlSceneFiles(base: string | URL): SceneFileReader {
-  return {
-    async read(path: string, maxBytes: number): Promise<Uint8Array> {
-      let url: URL;
-      try {
-        url = new URL(path, base);
-      } catch {
-        throw new Error('it is not a valid URL');
-      }
-      let response: Response;
-      try {
-        response = await fetch(url);
-      } catch (e) {
-        throw new Error(`cannot fetch ${url.href}: ${e instanceof Error ? e.message : String(e)}`);
-      }
-      if (!response.ok) throw new Error(`cannot fetch ${url.href}: HTTP ${response.status}`);
-      const declared = Number(response.headers.get('content-length') ?? NaN);
-      if (declared > maxBytes) {
-        void response.body?.cancel();
-        throw new Error(`the file has ${declared} bytes, more than the limit of ${maxBytes}`);
-      }
-      return readLimited(response, maxBytes);
-    },
-  };
-}
+export {
+  droppedSceneFiles,
+  urlSceneFiles,
+  type FileSource,
+  type PortableReader,
+} from '../../workers/scene-files.ts';
 
 /**
  * Files from a table of URLs, by the path the scene names them with: for scenes whose
@@ -47,75 +25,4 @@ export function mappedSceneFiles(urls: Record<string, string>): SceneFileReader 
       return byUrl.read(url, maxBytes);
     },
   };
-}
-
-async function readLimited(response: Response, maxBytes: number): Promise<Uint8Array> {
-  const body = response.body;
-  if (body === null) {
-    const bytes = new Uint8Array(await response.arrayBuffer());
-    if (bytes.length > maxBytes) {
-      throw new Error(`the file has ${bytes.length} bytes, more than the limit of ${maxBytes}`);
-    }
-    return bytes;
-  }
-  const reader = body.getReader();
-  const chunks: Uint8Array[] = [];
-  let total = 0;
-  for (;;) {
-    const { done, value } = await reader.read();
-    if (done) break;
-    total += value.length;
-    if (total > maxBytes) {
-      void reader.cancel();
-      throw new Error(`the file has more than the limit of ${maxBytes} bytes`);
-    }
-    chunks.push(value);
-  }
-  if (chunks.length === 1) return chunks[0];
-  const out = new Uint8Array(total);
-  let at = 0;
-  for (const c of chunks) {
-    out.set(c, at);
-    at += c.length;
-  }
-  return out;
-}
-
-/**
- * Files dropped (or picked) together with the scene. A scene's path matches a dropped
- * file by its relative path when the browser gives one (a dropped folder), else by its
- * last component, so `meshes/bunny.ply` finds a dropped `bunny.ply`.
- */
-export function droppedSceneFiles(files: Iterable<File>): SceneFileReader {
-  const list = Array.from(files);
-  return {
-    async read(path: string, maxBytes: number): Promise<Uint8Array> {
-      const wanted = normalise(path);
-      const name = wanted.slice(wanted.lastIndexOf('/') + 1);
-      let matches = list.filter((f) => {
-        const relative = normalise(f.webkitRelativePath || f.name);
-        return relative === wanted || relative.endsWith('/' + wanted);
-      });
-      if (matches.length === 0) matches = list.filter((f) => f.name === name);
-      if (matches.length === 0) {
-        throw new Error(`it was not among the dropped files; drop the scene together with ${name}`);
-      }
-      if (matches.length > 1) {
-        throw new Error(`${matches.length} dropped files are named ${name}; drop only one`);
-      }
-      const file = matches[0];
-      if (file.size > maxBytes) {
-        throw new Error(`the file has ${file.size} bytes, more than the limit of ${maxBytes}`);
-      }
-      return new Uint8Array(await file.arrayBuffer());
-    },
-  };
-}
-
-function normalise(path: string): string {
-  return path
-    .replace(/\\/g, '/')
-    .split('/')
-    .filter((part) => part !== '' && part !== '.')
-    .join('/');
 }

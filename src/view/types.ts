@@ -3,7 +3,7 @@
  * (src/widget): `createPathTracer(canvas, options)` returns a
  * PathTracerController. This file is the contract; src/view implements it.
  */
-import type { CameraDesc, Scene, SceneFileReader } from '../core/index.ts';
+import type { CameraDesc, LoadStage, Scene, SceneFileReader } from '../core/index.ts';
 
 export type DisplayMode = 'webgl2' | 'canvas2d';
 export type ComputeMode = 'shared' | 'transfer';
@@ -88,9 +88,24 @@ export interface PathTracerOptions {
   cameraControls?: boolean;
 }
 
+/** A stage of loading a scene or model (core/scene/files.ts LoadStage), `done` of `total`. */
+export interface LoadProgressInfo {
+  stage: LoadStage;
+  done: number;
+  total: number;
+}
+
 export interface PathTracerEventMap {
-  /** `skippedTriangles`: zero-area triangles the scene's meshes dropped (the spec asks for a report). */
-  load: CustomEvent<{ scene: Scene; skippedTriangles: number }>;
+  /**
+   * `skippedTriangles`: zero-area triangles the scene's meshes dropped (the spec asks for
+   * a report); `warnings`: what the scene's glTF files use that pathwise ignores or skips
+   * (extensions, primitive modes), one line each, also sent as a `warning` event.
+   */
+  load: CustomEvent<{ scene: Scene; skippedTriangles: number; warnings: string[] }>;
+  /** Loading a glTF model: reading, parse, textures, geometry, compile (the BVH build). */
+  loadprogress: CustomEvent<LoadProgressInfo>;
+  /** The loaded scene's warnings, when it has any (see `load`). */
+  warning: CustomEvent<{ messages: string[] }>;
   progress: CustomEvent<ProgressInfo>;
   converged: CustomEvent<ProgressInfo>;
   error: CustomEvent<{ message: string }>;

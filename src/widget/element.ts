@@ -4,10 +4,12 @@
  * element, and the element decides *when* to trace: never while disconnected,
  * off screen, in a hidden tab or paused by the author.
  */
+import type { LoadStage } from '../core/index.ts';
 import { createPathTracer } from '../view/index.ts';
 import { attachCameraControls } from '../view/interaction.ts';
 import type {
   FallbackInfo,
+  LoadProgressInfo,
   PathTracerController,
   PathTracerEventMap,
   PathTracerOptions,
@@ -40,7 +42,24 @@ export interface PathwiseViewEventMap
 const ElementBase: typeof HTMLElement =
   typeof HTMLElement === 'undefined' ? (class {} as unknown as typeof HTMLElement) : HTMLElement;
 
-const FORWARDED_EVENTS = ['load', 'progress', 'converged', 'error', 'fallback'] as const;
+const FORWARDED_EVENTS = [
+  'load',
+  'progress',
+  'converged',
+  'error',
+  'fallback',
+  'loadprogress',
+  'warning',
+] as const;
+
+/** Words for a loading stage, shown while a model loads. */
+const STAGE_WORDS: Record<LoadStage, string> = {
+  read: 'reading files',
+  parse: 'parsing',
+  textures: 'decoding textures',
+  geometry: 'building geometry',
+  compile: 'building the BVH',
+};
 
 export class PathwiseViewElement extends ElementBase {
   static get observedAttributes(): readonly string[] {
@@ -58,6 +77,8 @@ export class PathwiseViewElement extends ElementBase {
   /** Whether a tracer has drawn on `canvas` (a canvas keeps its first context for good). */
   private canvasUsed = false;
   private readonly messageBox: HTMLDivElement;
+  /** Load progress of a model (parse, textures, BVH), shown until it loads or fails. */
+  private readonly statusBox: HTMLDivElement;
   private readonly visibility: VisibilityWatcher;
   private readonly a11y: ViewAccessibility;
   private tracer: ReturnType<typeof createPathTracer> | null = null;
@@ -82,14 +103,22 @@ export class PathwiseViewElement extends ElementBase {
     this.messageBox.setAttribute('part', 'message');
     this.messageBox.setAttribute('role', 'alert');
     this.messageBox.hidden = true;
-    root.append(style, this.canvas, this.messageBox);
+    this.statusBox = document.createElement('div');
+    this.statusBox.setAttribute('part', 'status');
+    this.statusBox.setAttribute('role', 'status');
+    this.statusBox.hidden = true;
+    root.append(style, this.canvas, this.statusBox, this.messageBox);
     this.a11y = new ViewAccessibility(this, this.canvas, root);
     this.visibility = new VisibilityWatcher(this, () => this.applyRunState());
   }
 
   // ---- attribute-backed properties -------------------------------------
 
-  /** URL of a pathwise-scene/1 JSON file; ignored while `scene` is set. */
+  /**
+   * URL of a pathwise-scene/1 JSON file, or of a glTF model (`.glb`, or `.gltf` with its
+   * buffers and images beside it: framed by its bounds in a studio environment);
+   * ignored while `scene` is set.
+   */
   get src(): string {
     return this.getAttribute('src') ?? '';
   }
@@ -390,7 +419,15 @@ export class PathwiseViewElement extends ElementBase {
   private readonly forward = (event: Event) => {
     const detail = (event as CustomEvent<unknown>).detail;
     switch (event.type) {
+      case 'loadprogress': {
+        const p = detail as LoadProgressInfo;
+        const count = p.total > 1 ? ` ${p.done}/${p.total}` : '';
+        this.statusBox.textContent = `Loading: ${STAGE_WORDS[p.stage] ?? p.stage}${count}`;
+        this.statusBox.hidden = false;
+        break;
+      }
       case 'load':
+        this.statusBox.hidden = true;
         this.hideMessage();
         this.a11y.setSceneName((detail as { scene: { name?: string } }).scene.name ?? '');
         break;
@@ -401,6 +438,7 @@ export class PathwiseViewElement extends ElementBase {
       case 'error':
         // A bad scene or URL, or a worker failure: never leave a blank box.
         this.errorEvents++;
+        this.statusBox.hidden = true;
         this.showMessage((detail as { message: string }).message);
         break;
     }

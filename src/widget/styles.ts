@@ -52,4 +52,16 @@ canvas:focus-visible {
 [part='message'][hidden] {
   display: none;
 }
+[part='status'] {
+  position: absolute;
+  left: 0;
+  bottom: 0;
+  padding: 0.25em 0.5em;
+  font: 12px/1.4 system-ui, sans-serif;
+  color: #f5f5f5;
+  background: rgba(0, 0, 0, 0.6);
+}
+[part='status'][hidden] {
+  display: none;
+}
 `;

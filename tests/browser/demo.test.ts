@@ -17,6 +17,7 @@ import {
   readDisplay,
   readLinear,
   spp,
+  waitForPauseSettled,
   waitForSpp,
 } from './harness.ts';
 import { nodePick, nodeRender } from './node-reference.ts';
@@ -95,7 +96,7 @@ describe('browser demo (Chromium)', () => {
     await page.click('#pause');
     expect(await page.locator('#pause').textContent()).toBe('Resume');
     // Stripes already in hand may still finish their pass; after that nothing moves.
-    await page.waitForTimeout(500);
+    await waitForPauseSettled(page);
     const paused = await spp(page);
     await page.waitForTimeout(1000);
     expect(await spp(page)).toBe(paused);
@@ -205,6 +206,7 @@ describe('browser demo (Chromium)', () => {
     const page = await openDemo(ctx.browser, ctx.url, `${fixed}&spp=100000&${WEBGL}`);
     await waitForSpp(page, 2);
     await page.click('#pause');
+    await waitForPauseSettled(page);
     const shown = await readDisplay(page);
     const box = (await page.locator('#view').boundingBox())!;
     // Click (no drag) a quarter of the way in: the pinhole keeps its samples.

@@ -9,6 +9,7 @@ import { nodeTangentGenerator } from '../../src/cli/gltf-node.ts';
 import { PreloadedIO } from '../../src/core/gltf/io.ts';
 import { type GltfLoadOptions, type GltfModel, loadGltf } from '../../src/core/gltf/load.ts';
 import { decodeImageJs } from '../../src/core/texture/decode-js.ts';
+import { resolveSceneFiles, validateScene, type Scene } from '../../src/core/index.ts';
 
 export function io(): PreloadedIO {
   return new PreloadedIO().registerExtensions(ALL_EXTENSIONS);
@@ -105,4 +106,65 @@ export function quadPrimitive(
       doc.createAccessor().setType('SCALAR').setArray(new Uint16Array(order)).setBuffer(buffer),
     );
   return prim;
+}
+
+/** A triangle primitive from flat arrays (positions rounded to float32, as glTF stores them). */
+export function meshPrimitive(
+  doc: Document,
+  positions: ArrayLike<number>,
+  indices: ArrayLike<number>,
+  extra: { normals?: ArrayLike<number>; uv?: ArrayLike<number> } = {},
+) {
+  const buffer = doc.getRoot().listBuffers()[0] ?? doc.createBuffer();
+  const prim = doc
+    .createPrimitive()
+    .setAttribute(
+      'POSITION',
+      doc.createAccessor().setType('VEC3').setArray(Float32Array.from(positions)).setBuffer(buffer),
+    )
+    .setIndices(
+      doc.createAccessor().setType('SCALAR').setArray(Uint32Array.from(indices)).setBuffer(buffer),
+    );
+  if (extra.normals) {
+    prim.setAttribute(
+      'NORMAL',
+      doc
+        .createAccessor()
+        .setType('VEC3')
+        .setArray(Float32Array.from(extra.normals))
+        .setBuffer(buffer),
+    );
+  }
+  if (extra.uv) {
+    prim.setAttribute(
+      'TEXCOORD_0',
+      doc.createAccessor().setType('VEC2').setArray(Float32Array.from(extra.uv)).setBuffer(buffer),
+    );
+  }
+  return prim;
+}
+
+/** A document whose default scene holds one node per primitive given. */
+export function docWith(
+  doc: Document,
+  ...prims: ReturnType<Document['createPrimitive']>[]
+): Document {
+  const scene = doc.createScene();
+  for (const p of prims) scene.addChild(doc.createNode().setMesh(doc.createMesh().addPrimitive(p)));
+  doc.getRoot().setDefaultScene(scene);
+  return doc;
+}
+
+/**
+ * A scene (pathwise-scene/1 JSON) whose files (`name` → bytes) are in memory, read
+ * and resolved like the command line does (pure-JS images, MikkTSpace).
+ */
+export async function sceneWithFiles(
+  json: unknown,
+  files: Map<string, Uint8Array>,
+): Promise<Scene> {
+  const options = await memoryOptions(files);
+  return resolveSceneFiles(validateScene(json), options.reader, {
+    generateTangents: options.generateTangents,
+  });
 }

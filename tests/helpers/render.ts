@@ -15,6 +15,7 @@ import {
   parseScene,
   type Estimator,
   type PfmImage,
+  type SamplerKind,
   type Scene,
 } from '../../src/core/index.ts';
 
@@ -47,6 +48,11 @@ export interface RenderOptions {
   estimator?: Estimator;
   /** Force or forbid the BVH (default: by the compiler's threshold). */
   bvh?: boolean;
+  /**
+   * The sampler (default the tracer's). Sample variances estimate the error of the
+   * mean exactly only for independent samples; Sobol's mean is better than s²/n says.
+   */
+  sampler?: SamplerKind;
 }
 
 /** Renders with the core tracer, keeping per-pixel sums and sums of squares in doubles. */
@@ -59,6 +65,7 @@ export function renderSampled(scene: Scene, options: RenderOptions): SampledImag
     maxBounces: options.maxBounces ?? scene.settings.maxBounces,
     seed: options.seed ?? 1,
     estimator: options.estimator,
+    sampler: options.sampler,
     camera: scene.camera,
   });
   const n = options.spp;
@@ -202,4 +209,45 @@ export function downsample(ref: PfmImage, k: number): PfmImage {
     }
   }
   return { width, height, rgb };
+}
+
+/**
+ * Block test between two independent renders of the same image (two ways of
+ * modelling one scene, two estimators): block averages z-scored by both renders' own
+ * per-pixel sample variances; returns Σz², its degrees of freedom and the largest |z|.
+ */
+export function blockChiSquarePair(
+  a: SampledImage,
+  b: SampledImage,
+  block: number,
+): { chi2: number; dof: number; maxAbsZ: number } {
+  let chi2 = 0;
+  let dof = 0;
+  let maxAbsZ = 0;
+  for (let by = 0; by < a.height; by += block) {
+    for (let bx = 0; bx < a.width; bx += block) {
+      for (let c = 0; c < 3; c++) {
+        let sa = 0,
+          sb = 0,
+          variance = 0;
+        for (let y = by; y < Math.min(a.height, by + block); y++) {
+          for (let x = bx; x < Math.min(a.width, bx + block); x++) {
+            const i = (y * a.width + x) * 3 + c;
+            sa += a.mean[i];
+            sb += b.mean[i];
+            variance += a.varianceOfMean[i] + b.varianceOfMean[i];
+          }
+        }
+        if (variance === 0) {
+          if (sa !== sb) return { chi2: Infinity, dof, maxAbsZ: Infinity };
+          continue;
+        }
+        const z = (sa - sb) / Math.sqrt(variance);
+        chi2 += z * z;
+        dof++;
+        maxAbsZ = Math.max(maxAbsZ, Math.abs(z));
+      }
+    }
+  }
+  return { chi2, dof, maxAbsZ };
 }

@@ -440,7 +440,7 @@ describe('shapes', () => {
     s.shapes[1] = null;
     const problems = problemsOf(s);
     expect(problems).toContain(
-      'shapes[0].type must be one of "sphere", "quad", "mesh", got "cube"',
+      'shapes[0].type must be one of "sphere", "quad", "mesh", "gltf", got "cube"',
     );
     expect(problems).toContain('shapes[1] must be an object, got null');
   });

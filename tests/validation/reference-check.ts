@@ -4,10 +4,13 @@
  * (reference-set.ts: the four scenes of the issue, 42 generated classic ones
  * and the generated mesh-family ones), rendered by
  * references/make-references.py at 32×24. Shared by references.test.ts
- * (classic) and references-mesh.test.ts (meshes and maps), so vitest runs
- * them on both cores. The native anchor renders no meshes and no maps: a
- * mesh-family scene has the Mitsuba reference alone (and the consistency
- * suite's mesh scenes as its second check).
+ * (classic), references-mesh.test.ts (meshes and maps) and
+ * references-meshed.test.ts (the classic scenes with quads as triangles and
+ * a constant environment as a map, `meshedJson`), so vitest runs them on
+ * both cores. The native anchor renders no meshes and no maps: a mesh-family
+ * scene has the Mitsuba reference alone (and the consistency suite's mesh
+ * scenes as its second check); the meshed variant brings triangles and maps
+ * before the anchor.
  *
  * Each reference is the mean of P parts rendered with different seeds,
  * with its per-pixel variance of the mean s²/P (P − 1 dof per pixel), so
@@ -16,11 +19,12 @@
  * seeds (NEE+MIS, Sobol: the defaults); its variance is their spread.
  * Every region (whole image, quadrants, 8×8 blocks) and channel is three
  * Welch tests (pathwise vs Mitsuba, pathwise vs native, Mitsuba vs native,
- * each with the rare-sample floor of `compare`), or one where Mitsuba is the
- * only reference; each rejects at p < ALPHA / (all tests of both files)
- * (Bonferroni), so a correct renderer fails either file with probability
- * ≤ ALPHA = 1e-3 over fresh seeds, both together too. The seeds are fixed:
- * it cannot flake.
+ * each with the rare-sample floor of `compare`), one where Mitsuba is the
+ * only reference, two for a meshed variant (pathwise vs each reference);
+ * each rejects at p < ALPHA / (all tests of the three files) (Bonferroni),
+ * so a correct renderer fails any of them, or all three together, with
+ * probability ≤ ALPHA = 1e-3 over fresh seeds. The seeds are fixed: it
+ * cannot flake.
  *
  * A reference that is itself wrong for a known reason is listed in
  * KNOWN_REFERENCE_ERRORS with the reason (docs/validation.md); pathwise is

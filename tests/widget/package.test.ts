@@ -306,6 +306,36 @@ async function expectWorkersTerminatedAfterRemoving(page: Page, selectors: strin
   await expect.poll(() => page.workers().length, { timeout: EVENT_WAIT_MS }).toBe(0);
 }
 
+/**
+ * A glTF model as `src`, from the installed package: loaded in the package's model
+ * worker (its own file, next to the render worker), framed and lit, converged.
+ */
+async function expectModelRendered(server: StaticServer, compute: 'shared' | 'transfer') {
+  const { page, errors, close } = await openPage(server, 'blank.html');
+  try {
+    const workers: string[] = [];
+    page.on('worker', (w) => workers.push(w.url()));
+    const view = await addView(
+      page,
+      'model',
+      { src: 'models/showcase.glb', spp: '2' },
+      'width: 80px; height: 50px',
+    );
+    await waitForEvent(page, view, 'converged');
+    const log = await eventLog(page, view);
+    expect(log.find((e) => e.type === 'load')!.detail).toEqual({ name: 'showcase.glb' });
+    expect((log.find((e) => e.type === 'fallback')!.detail as FallbackInfo).compute).toBe(compute);
+    expect(workers.some((u) => /\/model-worker\.js$/.test(u))).toBe(true);
+    const img = await readPfm(page, view);
+    let sum = 0;
+    for (const v of img.rgb) sum += v;
+    expect(sum / img.rgb.length).toBeGreaterThan(0.05);
+    expect(errors).toEqual([]);
+  } finally {
+    await close();
+  }
+}
+
 describe('<pathwise-view> on a page without cross-origin isolation', () => {
   let server: StaticServer;
   beforeAll(async () => {
@@ -329,6 +359,10 @@ describe('<pathwise-view> on a page without cross-origin isolation', () => {
     } finally {
       await close();
     }
+  });
+
+  test('renders a glTF model given as src (transferred textures)', async () => {
+    await expectModelRendered(server, 'transfer');
   });
 
   test('a bad src or scene yields an error event and a readable message in the element', async () => {
@@ -693,6 +727,10 @@ describe('<pathwise-view> on a cross-origin isolated page (COOP/COEP)', () => {
     } finally {
       await close();
     }
+  });
+
+  test('renders a glTF model given as src (shared textures)', async () => {
+    await expectModelRendered(server, 'shared');
   });
 
   test('removing the element terminates its workers', async () => {

@@ -30,39 +30,12 @@ import {
   TEX_NORMAL,
   hasTexture,
 } from './material-table.ts';
-import { generatePrimitiveTangents, type TangentGenerator, weldCorners } from './tangents.ts';
+import type { GltfGeometry, TangentGenerator } from './model-types.ts';
+import { generatePrimitiveTangents, weldCorners } from './tangents.ts';
 import { det3, identity, type Mat4, multiply, nodeMatrix, normalMatrix } from './transforms.ts';
 import { MODE_TRIANGLE_FAN, MODE_TRIANGLE_STRIP, MODE_TRIANGLES } from './validate.ts';
 
-export type { GltfCamera };
-
-export interface GltfGeometry {
-  /** World-space x, y, z per vertex. */
-  positions: Float64Array;
-  /** Three vertex indices per triangle. */
-  indices: Uint32Array;
-  /** Unit shading normal per vertex, (0, 0, 0) where the primitive has none; null if none has. */
-  normals: Float32Array | null;
-  /** TEXCOORD_0 / TEXCOORD_1 per vertex (0 where absent), or null when no primitive has the set. */
-  uv0: Float32Array | null;
-  uv1: Float32Array | null;
-  /** COLOR_0 as linear RGBA per vertex (white where absent), or null. */
-  colors: Float32Array | null;
-  /**
-   * World-space unit tangent and handedness (x, y, z, w) per vertex, for
-   * normal maps (from the file, or MikkTSpace); (0, 0, 0, 0) where a vertex
-   * has none. Null when no material has a normal map.
-   */
-  tangents: Float32Array | null;
-  /** Material (row of the glTF material table) per triangle. */
-  triangleMaterial: Uint32Array;
-  /** Zero-area triangles skipped. */
-  skipped: number;
-  /** Axis-aligned bounds of the positions (min x, y, z, max x, y, z); empty: +∞, −∞. */
-  bounds: Float64Array;
-  /** Perspective cameras of the scene, in traversal order. */
-  cameras: GltfCamera[];
-}
+export type { GltfCamera, GltfGeometry };
 
 type Json = Record<string, unknown>;
 

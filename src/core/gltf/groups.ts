@@ -32,6 +32,25 @@ function pick(src: Float32Array | null, size: number, order: Uint32Array): Float
 export function groupByMaterial(g: GltfGeometry): GltfGroup[] {
   const triCount = g.triangleMaterial.length;
   const vertexCount = g.positions.length / 3;
+  if (triCount === 0) return [];
+  // One material (the common case for big scanned models): the arrays as they are, no copy.
+  const first = g.triangleMaterial[0];
+  let single = true;
+  for (let t = 1; t < triCount && single; t++) single = g.triangleMaterial[t] === first;
+  if (single) {
+    return [
+      {
+        material: first,
+        positions: g.positions,
+        indices: g.indices,
+        normals: g.normals,
+        uv0: g.uv0,
+        uv1: g.uv1,
+        colors: g.colors,
+        tangents: g.tangents,
+      },
+    ];
+  }
   // Triangles per material, by counting sort (stable: file order within a group).
   let materials = 0;
   for (let t = 0; t < triCount; t++) materials = Math.max(materials, g.triangleMaterial[t] + 1);

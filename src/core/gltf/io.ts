@@ -8,10 +8,9 @@ import { PlatformIO } from '@gltf-transform/core';
 import { quote } from '../scene/message.ts';
 import { GltfError } from './errors.ts';
 
-/** Reads the file at `path` (relative to the scene), refusing files longer than maxBytes. */
-export interface GltfFileReader {
-  read(path: string, maxBytes: number): Promise<Uint8Array>;
-}
+import type { GltfFileReader } from './model-types.ts';
+
+export type { GltfFileReader };
 
 /**
  * glTF-Transform I/O over resources that are already in memory: every

@@ -28,11 +28,12 @@ import { quote } from '../scene/message.ts';
 import type { ImageDecoder } from '../texture/decoded-image.ts';
 import { DEFAULT_TEXTURE_LIMIT_BYTES, type TextureStore } from '../texture/texture-store.ts';
 import { GltfError, messageOf } from './errors.ts';
-import { flattenGltf, type GltfCamera, type GltfGeometry } from './flatten.ts';
-import { decodeDataUri, type GltfFileReader, PreloadedIO, resolveUri } from './io.ts';
+import type { GltfCamera } from './cameras.ts';
+import { flattenGltf } from './flatten.ts';
+import { decodeDataUri, PreloadedIO, resolveUri } from './io.ts';
 import { isGlb, parseGlb } from './glb.ts';
 import { compileGltfMaterials } from './materials.ts';
-import type { TangentGenerator } from './tangents.ts';
+import type { GltfFileReader, GltfGeometry, TangentGenerator } from './model-types.ts';
 import { decodeGltfTextures } from './textures.ts';
 import { fromRowMajor } from './transforms.ts';
 import { validateGltfBuffers } from './validate-buffers.ts';
@@ -65,6 +66,12 @@ export interface GltfLoadOptions {
   textureLimitBytes?: number;
   /** Put the texels in a SharedArrayBuffer (when the platform has one). */
   sharedTextures?: boolean;
+  /**
+   * Triangles the file may instance, when fewer than the file limit remain (a scene's
+   * other meshes count against the scene's limit); checked from the accessor counts,
+   * before any geometry is read.
+   */
+  maxTriangles?: number;
   onProgress?: (stage: GltfStage, done: number, total: number) => void;
 }
 
@@ -116,6 +123,12 @@ export async function loadGltf(
     throw new GltfError(`JSON: ${messageOf(e)}`);
   }
   const summary = validateGltfJson(json);
+  if (options.maxTriangles !== undefined && summary.triangles > options.maxTriangles) {
+    throw new GltfError(
+      `scene: instances ${summary.triangles} triangles, more than the ${options.maxTriangles} ` +
+        `left of the scene's limit`,
+    );
+  }
   for (const name of (json.extensionsUsed as unknown[] | undefined) ?? []) {
     if (typeof name === 'string' && !HONOURED_EXTENSIONS.has(name)) {
       warn(`extension ${quote(name)} is not supported; its content is ignored`);

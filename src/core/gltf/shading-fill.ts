@@ -89,6 +89,49 @@ function clamp01(x: number): number {
   return x < 0 ? 0 : x > 1 ? 1 : x;
 }
 
+/** Coverage of material m at a hit (glTF alpha modes): 1 opaque, 0 cut away, else BLEND's alpha. */
+export function gltfOpacity(
+  table: Float64Array,
+  textures: TextureStore,
+  m: number,
+  hit: HitAttributes,
+): number {
+  const o = m * GM_STRIDE;
+  const mode = table[o + GM_ALPHA_MODE];
+  if (mode !== ALPHA_BLEND && mode !== ALPHA_MASK) return 1;
+  let a = table[o + GM_BASE + 3] * hit.a;
+  if (lookup(table, o, TEX_BASE_COLOR, textures, hit)) a *= T.a;
+  if (mode === ALPHA_MASK) return a >= table[o + GM_ALPHA_CUTOFF] ? 1 : 0;
+  return clamp01(a);
+}
+
+/**
+ * What a light sample on material m sees at a hit: the emitted radiance
+ * (factor × texture × strength) times the coverage — a surface that is only
+ * partly there emits in proportion (stochastic opacity's expected value).
+ */
+export function gltfEmission(
+  table: Float64Array,
+  textures: TextureStore,
+  m: number,
+  hit: HitAttributes,
+  out: { r: number; g: number; b: number },
+): void {
+  const o = m * GM_STRIDE;
+  let er = table[o + GM_EMISSIVE];
+  let eg = table[o + GM_EMISSIVE + 1];
+  let eb = table[o + GM_EMISSIVE + 2];
+  if ((er > 0 || eg > 0 || eb > 0) && lookup(table, o, TEX_EMISSIVE, textures, hit)) {
+    er *= T.r;
+    eg *= T.g;
+    eb *= T.b;
+  }
+  const opacity = gltfOpacity(table, textures, m, hit);
+  out.r = er * opacity;
+  out.g = eg * opacity;
+  out.b = eb * opacity;
+}
+
 export function fillGltfShading(
   table: Float64Array,
   textures: TextureStore,

@@ -11,15 +11,9 @@ import type { Primitive } from '@gltf-transform/core';
 import { readFloats } from './accessors.ts';
 import { GltfError, messageOf } from './errors.ts';
 
-/**
- * MikkTSpace over unindexed triangles: positions and normals (3 per corner),
- * uvs (2 per corner) in; tangents (x, y, z, w per corner) out.
- */
-export type TangentGenerator = (
-  positions: Float32Array,
-  normals: Float32Array,
-  uvs: Float32Array,
-) => Float32Array;
+import type { TangentGenerator } from './model-types.ts';
+
+export type { TangentGenerator };
 
 /**
  * Tangents (4 per corner, primitive space) for the corners `triangles`

@@ -16,11 +16,12 @@
  */
 import { bsdfEval, bsdfSample } from '../bsdf/bsdf.ts';
 import {
-  MATERIAL_DIELECTRIC,
+  MATERIAL_GLTF,
   MATERIAL_STRIDE,
   M_DELTA,
   M_EMISSION,
   M_EMISSIVE,
+  M_GEOMETRIC_SIDE,
   M_TYPE,
 } from '../bsdf/materials.ts';
 import { BsdfQuery, BsdfSample, BsdfValue } from '../bsdf/records.ts';
@@ -32,8 +33,19 @@ import { intersectScene, occluded } from '../geometry/trace.ts';
 import { EnvironmentSample } from '../lights/environment-map.ts';
 import { LightSample, environmentLightPdf, lightPdf, sampleLight } from '../lights/lights.ts';
 import { TriangleSurface, completeTriangleHit } from './triangle-surface.ts';
+import {
+  GltfWork,
+  MAX_ALPHA_CROSSINGS,
+  gltfLightEmission,
+  gltfRow,
+  shadeGltfHit,
+  shadowTransmittance,
+} from './gltf-surface.ts';
 import { Frame } from '../math/frame.ts';
 import {
+  DIM_ALPHA,
+  DIM_ALPHA_EXTRA,
+  DIM_ALPHA_STRIDE,
   DIM_BOUNCE,
   DIM_BSDF,
   DIM_BSDF_LOBE,
@@ -96,6 +108,9 @@ export class PathTracer {
   /** This bounce's random numbers (see Sampler.fill). */
   private readonly bq = new BsdfQuery();
   private readonly u = new Float64Array(DIM_PER_BOUNCE);
+  /** glTF scratch (gltf-surface.ts) and the number deciding alpha pass-through. */
+  private readonly gw = new GltfWork();
+  private readonly au = new Float64Array(1);
 
   constructor(scene: CompiledScene, options: TracerOptions) {
     this.scene = scene;
@@ -163,6 +178,10 @@ export class PathTracer {
     const fv = this.fv;
     const nee = this.estimator === 'nee-mis' && lights !== null;
     const maxBounces = this.maxBounces;
+    // glTF: null in scenes without glTF shapes, which then never take its branches.
+    const gltf = scene.gltf;
+    const alphaShadows = gltf !== null && gltf.hasAlpha;
+    const sp = this.bq.shading;
 
     const u = this.u;
     sampler.startPixelSample(py * this.width + px, sampleIndex, this.camera.aperture > 0);
@@ -184,6 +203,8 @@ export class PathTracer {
     let prevX = 0,
       prevY = 0,
       prevZ = 0;
+    // Alpha surfaces the current segment passed through (see gltf-surface.ts).
+    let crossings = 0;
 
     for (let depth = 0; ; depth++) {
       if (!intersectScene(scene, ray, hit)) {
@@ -220,6 +241,8 @@ export class PathTracer {
       let m: number;
       let light: number;
       let shapeScale: number;
+      // The hit's material is glTF: its parameters are in sp (this.bq.shading).
+      let isGltf = false;
       if (hit.kind === SHAPE_SPHERE) {
         const o = index * SPHERE_STRIDE;
         const cx = spheres[o],
@@ -256,6 +279,39 @@ export class PathTracer {
         m = ts.material;
         light = ts.light;
         shapeScale = ts.scale;
+        if (gltf !== null && materials[m * MATERIAL_STRIDE + M_TYPE] === MATERIAL_GLTF) {
+          shadeGltfHit(scene, gltf, index, hit.b1, hit.b2, gltfRow(materials, m), ts, sp, this.gw);
+          if (sp.opacity < 1 && crossings < MAX_ALPHA_CROSSINGS) {
+            // Stochastic opacity: the surface is there with probability `opacity`.
+            const au = this.au;
+            sampler.fill(
+              crossings === 0
+                ? DIM_BOUNCE + depth * DIM_PER_BOUNCE + DIM_ALPHA
+                : DIM_ALPHA_EXTRA + depth * DIM_ALPHA_STRIDE + crossings,
+              1,
+              au,
+            );
+            if (au[0] >= sp.opacity) {
+              // Not there: the same ray goes on from the far side. No scattering
+              // event, so the depth stays (the loop's increment is undone).
+              crossings++;
+              const lift =
+                (ray.dx * nx + ray.dy * ny + ray.dz * nz >= 0 ? 1 : -1) *
+                Math.max(Math.abs(x), Math.abs(y), Math.abs(z), shapeScale) *
+                OFFSET_SCALE;
+              ray.ox = x + nx * lift;
+              ray.oy = y + ny * lift;
+              ray.oz = z + nz * lift;
+              segments++;
+              depth--;
+              continue;
+            }
+          }
+          isGltf = true;
+          snx = ts.snx;
+          sny = ts.sny;
+          snz = ts.snz;
+        }
       } else {
         const o = index * QUAD_STRIDE;
         nx = quads[o + Q_NORMAL];
@@ -285,12 +341,20 @@ export class PathTracer {
       if (materials[mo + M_EMISSIVE] !== 0 && cosO > 0) {
         let w = 1;
         if (nee && !specular) {
-          const pl = lightPdf(lights!, spheres, quads, light, prevX, prevY, prevZ, t, cosO);
+          // Past alpha surfaces the light is farther than this last segment.
+          const d = crossings === 0 ? t : Math.hypot(x - prevX, y - prevY, z - prevZ);
+          const pl = lightPdf(lights!, spheres, quads, light, prevX, prevY, prevZ, d, cosO);
           w = (prevPdf * prevPdf) / (prevPdf * prevPdf + pl * pl);
         }
-        lr += br * materials[mo + M_EMISSION] * w;
-        lg += bg * materials[mo + M_EMISSION + 1] * w;
-        lb += bb * materials[mo + M_EMISSION + 2] * w;
+        if (isGltf) {
+          lr += br * sp.emR * w;
+          lg += bg * sp.emG * w;
+          lb += bb * sp.emB * w;
+        } else {
+          lr += br * materials[mo + M_EMISSION] * w;
+          lg += bg * materials[mo + M_EMISSION + 1] * w;
+          lb += bb * materials[mo + M_EMISSION + 2] * w;
+        }
       }
       if (depth >= maxBounces) break;
 
@@ -303,7 +367,9 @@ export class PathTracer {
       let sx = snx,
         sy = sny,
         sz = snz;
-      if (materials[mo + M_TYPE] !== MATERIAL_DIELECTRIC && snx * wox + sny * woy + snz * woz < 0) {
+      // Glass (and transmissive glTF) keeps its outward normal: M_GEOMETRIC_SIDE.
+      const geometricSide = materials[mo + M_GEOMETRIC_SIDE] !== 0;
+      if (!geometricSide && snx * wox + sny * woy + snz * woz < 0) {
         sx = -snx;
         sy = -sny;
         sz = -snz;
@@ -338,7 +404,9 @@ export class PathTracer {
             wiy = ls.wy,
             wiz = ls.wz;
           const lwiz = wix * sx + wiy * sy + wiz * sz;
-          if (lwiz > 0) {
+          // A frame facing wo sees light only above it; a transmissive glTF surface
+          // (geometric side) reflects below it too when the path is inside.
+          if (geometricSide ? lwiz !== 0 : lwiz > 0) {
             bq.wix = wix * frame.sx + wiy * frame.sy + wiz * frame.sz;
             bq.wiy = wix * frame.tx + wiy * frame.ty + wiz * frame.tz;
             bq.wiz = lwiz;
@@ -372,21 +440,47 @@ export class PathTracer {
               sr.oz = oz;
               sr.tMax = len;
               segments++;
-              if (len > 0 && !occluded(scene, sr)) {
+              const visible =
+                len > 0
+                  ? alphaShadows
+                    ? shadowTransmittance(scene, gltf!, sr, this.gw)
+                    : occluded(scene, sr)
+                      ? 0
+                      : 1
+                  : 0;
+              if (visible > 0) {
                 let er: number, eg: number, eb: number;
                 if (lights!.kind[l] === LIGHT_ENVIRONMENT) {
                   er = ls.r;
                   eg = ls.g;
                   eb = ls.b;
                 } else {
-                  const lm = lights!.material[l] * MATERIAL_STRIDE;
-                  er = materials[lm + M_EMISSION];
-                  eg = materials[lm + M_EMISSION + 1];
-                  eb = materials[lm + M_EMISSION + 2];
+                  const lmi = lights!.material[l];
+                  const lm = lmi * MATERIAL_STRIDE;
+                  if (materials[lm + M_TYPE] === MATERIAL_GLTF) {
+                    // Emission varies over the mesh: looked up at the sampled point.
+                    const gw = this.gw;
+                    gltfLightEmission(
+                      scene,
+                      gltf!,
+                      ls.triangle,
+                      ls.b1,
+                      ls.b2,
+                      gltfRow(materials, lmi),
+                      gw,
+                    );
+                    er = gw.emission.r;
+                    eg = gw.emission.g;
+                    eb = gw.emission.b;
+                  } else {
+                    er = materials[lm + M_EMISSION];
+                    eg = materials[lm + M_EMISSION + 1];
+                    eb = materials[lm + M_EMISSION + 2];
+                  }
                 }
                 const pb = fv.pdf;
                 const pl = ls.pdf;
-                const w = (pl / (pl * pl + pb * pb)) * lwiz;
+                const w = (pl / (pl * pl + pb * pb)) * Math.abs(lwiz) * visible;
                 lr += br * fv.r * er * w;
                 lg += bg * fv.g * eg * w;
                 lb += bb * fv.b * eb * w;
@@ -441,6 +535,7 @@ export class PathTracer {
       ray.dz = wiz * inv;
       ray.tMax = Infinity;
       segments++;
+      crossings = 0;
     }
     stats.paths++;
     stats.segments += segments;

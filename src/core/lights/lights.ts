@@ -63,6 +63,13 @@ export class LightSample {
   pdf = 0;
   /** Index of the chosen light in the light list. */
   light = -1;
+  /**
+   * On a mesh light: the triangle and the point's barycentrics (weights of its
+   * vertices 1 and 2), for emission that varies over the mesh (glTF textures).
+   */
+  triangle = -1;
+  b1 = 0;
+  b2 = 0;
   /** Radiance arriving from the environment map (`distance` is then Infinity). */
   r = 0;
   g = 0;
@@ -150,6 +157,9 @@ export function sampleLight(
     const mesh = lights.meshLights[s]!;
     const ms = lights.meshSample;
     mesh.sample(u0, u1, ms);
+    out.triangle = ms.triangle;
+    out.b1 = ms.b1;
+    out.b2 = ms.b2;
     return finishAreaSample(
       x,
       y,

@@ -25,6 +25,9 @@ export class MeshLightSample {
   ny = 0;
   nz = 1;
   triangle = -1;
+  /** Barycentrics of the point: weights of the triangle's vertices 1 and 2. */
+  b1 = 0;
+  b2 = 0;
 }
 
 export class MeshLight {
@@ -78,6 +81,8 @@ export class MeshLight {
     out.pz = b0 * p[i0 + 2] + b1 * p[i1 + 2] + b2 * p[i2 + 2];
     triangleNormal(p, i0, i1, i2, out);
     out.triangle = t;
+    out.b1 = b1;
+    out.b2 = b2;
   }
 
   /** The (u0, u1) that `sample` takes to the point of triangle t with barycentrics (b0, b1). */

@@ -9,7 +9,7 @@
  * the numbers of later bounces:
  *   0–1 film position, 2–3 lens position,
  *   per bounce b, from DIM_BOUNCE + b·DIM_PER_BOUNCE: light choice, light
- *   point (2), BSDF direction (2), BSDF lobe, Russian roulette.
+ *   point (2), BSDF direction (2), BSDF lobe, Russian roulette, alpha.
  */
 import { INV_2_32, hashToUnit, sampleKeyBits } from '../rng/pcg.ts';
 import {
@@ -29,6 +29,14 @@ export const DIM_LIGHT_POINT = 1;
 export const DIM_BSDF = 3;
 export const DIM_BSDF_LOBE = 5;
 export const DIM_ROULETTE = 6;
+/**
+ * Whether a path passes through a surface with alpha (glTF MASK/BLEND): the first
+ * such surface after bounce b uses this dimension of the bounce; further ones in the
+ * same segment use DIM_ALPHA_EXTRA + b·DIM_ALPHA_STRIDE + k (hashed numbers).
+ */
+export const DIM_ALPHA = 7;
+export const DIM_ALPHA_EXTRA = 1 << 24;
+export const DIM_ALPHA_STRIDE = 4096;
 
 export type SamplerKind = 'independent' | 'sobol';
 export const SAMPLER_KINDS: readonly SamplerKind[] = ['independent', 'sobol'];

@@ -24,7 +24,10 @@ import { LightList } from '../lights/lights.ts';
 import { MeshLight } from '../lights/mesh-light.ts';
 import { sceneRadius } from './bounds.ts';
 import { CompiledMeshes, compileMeshArrays, type MeshArrays } from './compile-meshes.ts';
-import type { MeshDesc, QuadDesc, Scene, SphereDesc } from './types.ts';
+import { compileGltfShapes } from './compile-gltf.ts';
+import { GltfScene } from './gltf-scene.ts';
+import { gltfMeshPower } from '../gltf/light-power.ts';
+import type { GltfDesc, MeshDesc, QuadDesc, Scene, SphereDesc } from './types.ts';
 
 /**
  * Shape count from which a BVH beats the plain loop over all shapes,
@@ -82,6 +85,14 @@ export interface SceneData extends MeshArrays {
    */
   envTexels: Float32Array;
   envParams: Float64Array;
+  /**
+   * glTF materials (GM_STRIDE numbers per row, src/core/gltf/material-table.ts) and
+   * their textures (texels and per-image offset, width, height, texture-store.ts); all
+   * empty without glTF shapes.
+   */
+  gltfMaterials: Float64Array;
+  texels: Uint16Array;
+  textureInfo: Int32Array;
   /** The BVH's nodes (as 32-bit words) and references; empty without a BVH. */
   bvhNodes: Int32Array;
   bvhRefs: Int32Array;
@@ -115,6 +126,13 @@ export const SCENE_ARRAYS = [
   'meshHasNormals',
   'meshScale',
   'meshLight',
+  'triUV0',
+  'triUV1',
+  'triColors',
+  'triTangents',
+  'gltfMaterials',
+  'texels',
+  'textureInfo',
   'bvhNodes',
   'bvhRefs',
 ] as const satisfies readonly (keyof SceneData)[];
@@ -142,6 +160,8 @@ export class CompiledScene {
   readonly triIndices: Int32Array;
   /** Light index of each mesh, −1 when it does not emit. */
   readonly meshLight: Int32Array;
+  /** glTF materials, textures and vertex attributes, or null without glTF shapes. */
+  readonly gltf: GltfScene | null;
   /** Per-ray constants of the triangle test and the barycentrics of the kept hit (trace.ts). */
   readonly triRay = new TriangleRay();
   readonly triHit = new TriangleHit();
@@ -182,6 +202,7 @@ export class CompiledScene {
     this.triPositions = data.triPositions;
     this.triIndices = data.triIndices;
     this.meshLight = data.meshLight;
+    this.gltf = data.gltfMaterials.length > 0 ? new GltfScene(data) : null;
     const p = data.envParams;
     this.envMap =
       p.length > 0
@@ -241,15 +262,27 @@ export class CompiledScene {
 
 export function compileScene(scene: Scene, options: CompileOptions = {}): CompiledScene {
   const meshDescs = scene.shapes.filter((s): s is MeshDesc => s.type === 'mesh');
+  const gltfDescs = scene.shapes.filter((s): s is GltfDesc => s.type === 'gltf');
   const map = scene.environmentMap ?? null;
-  if (meshDescs.some((m) => m.data === null) || (map !== null && map.image === null)) {
+  if (
+    meshDescs.some((m) => m.data === null) ||
+    gltfDescs.some((m) => m.data === null) ||
+    (map !== null && map.image === null)
+  ) {
     throw new Error(
       'the scene names files that were not read: load it with loadScene or resolveSceneFiles',
     );
   }
   const names = Object.keys(scene.materials);
   const materialIndex = new Map(names.map((n, i) => [n, i]));
-  const materials = compileMaterials(names.map((n) => scene.materials[n]));
+  const named = compileMaterials(names.map((n) => scene.materials[n]));
+  const gltf = gltfDescs.length > 0 ? compileGltfShapes(gltfDescs, names.length) : null;
+  let materials = named;
+  if (gltf !== null) {
+    materials = new Float64Array(named.length + gltf.materials.length);
+    materials.set(named);
+    materials.set(gltf.materials, named.length);
+  }
   const sphereDescs = scene.shapes.filter((s): s is SphereDesc => s.type === 'sphere');
   const quadDescs = scene.shapes.filter((s): s is QuadDesc => s.type === 'quad');
   const sphereCount = sphereDescs.length;
@@ -265,7 +298,10 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
   const quadScale = new Float64Array(quadCount);
   for (let i = 0; i < quadCount; i++) quadScale[i] = quadScaleOf(quads, i);
 
-  const mesh = compileMeshArrays(meshDescs, (n) => materialIndex.get(n)!);
+  const mesh = compileMeshArrays([
+    ...meshDescs.map((m) => ({ data: m.data!, material: materialIndex.get(m.material)! })),
+    ...(gltf?.meshes ?? []),
+  ]);
   const meshCount = mesh.meshMaterial.length;
   const triCount = mesh.triIndices.length / 3;
   const meshLight = new Int32Array(meshCount).fill(-1);
@@ -318,7 +354,18 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
     meshLight[k] = kinds.length;
     kinds.push(SHAPE_TRIANGLE);
     shapes.push(k);
-    power.push(lum * area);
+    // glTF: emission varies over the mesh (emissive texture, alpha); the selection
+    // weight follows it (light-power.ts), but never drops to 0.
+    const m = mesh.meshMaterial[k];
+    const gm = m >= names.length ? m - names.length : -1;
+    power.push(
+      gm < 0
+        ? lum * area
+        : Math.max(
+            gltfMeshPower(mesh, first, count, gltf!.table, gm, gltf!.textures),
+            1e-6 * lum * area,
+          ),
+    );
     scale.push(mesh.meshScale[k]);
     material.push(mesh.meshMaterial[k]);
   }
@@ -373,6 +420,9 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
     envParams,
     ...mesh,
     meshLight,
+    gltfMaterials: gltf?.table ?? new Float64Array(0),
+    texels: gltf?.textures.texels ?? new Uint16Array(0),
+    textureInfo: gltf?.textures.info ?? new Int32Array(0),
     bvhNodes: bvh ? bvh.words : new Int32Array(0),
     bvhRefs: bvh ? bvh.refs : new Int32Array(0),
     bvhDepth: bvh ? bvh.depth : 0,

@@ -10,6 +10,10 @@
  * and check image sizes before they allocate.
  */
 import { buildMeshData } from '../geometry/mesh-data.ts';
+import { GLTF_FILE_BYTES, type GltfStage, loadGltf } from '../gltf/load.ts';
+import type { TangentGenerator } from '../gltf/model-types.ts';
+import { decodeImageJs } from '../texture/decode-js.ts';
+import type { ImageDecoder } from '../texture/decoded-image.ts';
 import { decodeHdr } from '../io/hdr.ts';
 import { parseObj } from '../io/obj.ts';
 import { decodePfm } from '../io/pfm.ts';
@@ -31,17 +35,39 @@ export interface SceneFileReader {
   read(path: string, maxBytes: number): Promise<Uint8Array>;
 }
 
+/**
+ * Stages of loading a scene, for progress reports: reading files, parsing a glTF,
+ * decoding its textures, flattening its geometry; `compile` (the BVH) follows in the
+ * caller (compile.ts).
+ */
+export type LoadStage = 'read' | GltfStage | 'compile';
+
+/** What loading glTF models needs from the platform, and where progress goes. */
+export interface ResolveOptions {
+  /** PNG/JPEG decoder; default the pure-JavaScript one (decode-js.ts). */
+  decodeImage?: ImageDecoder;
+  /** MikkTSpace for normal-mapped primitives without tangents; without it such normal maps are ignored (with a warning). */
+  generateTangents?: TangentGenerator | null;
+  /** Texels in a SharedArrayBuffer where the platform has one. */
+  sharedTextures?: boolean;
+  onProgress?: (stage: LoadStage, done: number, total: number) => void;
+}
+
 /** Whether the scene names files that `resolveSceneFiles` must read. */
 export function sceneNeedsFiles(scene: Scene): boolean {
   return (
-    scene.shapes.some((s) => s.type === 'mesh' && s.data === null) ||
+    scene.shapes.some((s) => (s.type === 'mesh' || s.type === 'gltf') && s.data === null) ||
     (scene.environmentMap != null && scene.environmentMap.image === null)
   );
 }
 
 /** Parses a scene and reads every file it names. Throws SceneError. */
-export async function loadScene(text: string, files: SceneFileReader | null): Promise<Scene> {
-  return resolveSceneFiles(parseScene(text), files);
+export async function loadScene(
+  text: string,
+  files: SceneFileReader | null,
+  options: ResolveOptions = {},
+): Promise<Scene> {
+  return resolveSceneFiles(parseScene(text), files, options);
 }
 
 /**
@@ -51,20 +77,47 @@ export async function loadScene(text: string, files: SceneFileReader | null): Pr
 export async function resolveSceneFiles(
   scene: Scene,
   files: SceneFileReader | null,
+  options: ResolveOptions = {},
 ): Promise<Scene> {
   if (!sceneNeedsFiles(scene)) return scene;
+  const progress = options.onProgress ?? (() => {});
   const shapes = scene.shapes.slice();
   let triangles = 0;
   for (const s of shapes) {
-    if (s.type === 'mesh' && s.data !== null)
+    if ((s.type === 'mesh' || s.type === 'gltf') && s.data !== null)
       triangles += s.data.indices.length / 3 + s.data.skipped;
   }
   for (let i = 0; i < shapes.length; i++) {
     const shape = shapes[i];
+    if (shape.type === 'gltf' && shape.data === null) {
+      const where = `shapes[${i}].file ${describe(shape.file)}`;
+      progress('read', 0, 1);
+      const bytes = await readFile(files, shape.file, GLTF_FILE_BYTES, where);
+      progress('read', 1, 1);
+      let data;
+      try {
+        data = await loadGltf(bytes, shape.file, {
+          reader: files,
+          decodeImage: options.decodeImage ?? decodeImageJs,
+          generateTangents: options.generateTangents ?? null,
+          transform: shape.transform,
+          sharedTextures: options.sharedTextures,
+          maxTriangles: LIMITS.triangles - triangles,
+          onProgress: progress,
+        });
+      } catch (e) {
+        throw new SceneError([`${where}: ${oneLine(e)}`]);
+      }
+      triangles += data.indices.length / 3 + data.skipped;
+      shapes[i] = { ...shape, data };
+      continue;
+    }
     if (shape.type !== 'mesh' || shape.data !== null) continue;
     const file = shape.file!;
     const where = `shapes[${i}].file ${describe(file)}`;
+    progress('read', 0, 1);
     const bytes = await readFile(files, file, LIMITS.meshFileBytes, where);
+    progress('read', 1, 1);
     const limits = {
       maxTriangles: LIMITS.triangles - triangles,
       sceneTriangles: LIMITS.triangles,
@@ -80,6 +133,7 @@ export async function resolveSceneFiles(
   if (environmentMap !== null && environmentMap.image === null) {
     const map = environmentMap;
     const where = `environment.file ${describe(map.file)}`;
+    progress('read', 0, 1);
     const bytes = await readFile(files, map.file, envMapByteLimit(map.file), where);
     const image = decodeEnvironmentImage(bytes, map, where);
     environmentMap = { ...map, image };

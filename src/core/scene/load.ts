@@ -44,6 +44,7 @@ import { JsonError, parseJson } from './json.ts';
 import { RADIANCE } from './radiance.ts';
 import { Q_NORMAL, QUAD_STRIDE, writeQuadRecord } from '../geometry/shapes.ts';
 import { checkEnvironment } from './environment-desc.ts';
+import { GLTF_KEYS, checkGltfShape } from './gltf-desc.ts';
 import { MESH_KEYS, checkMesh } from './mesh-desc.ts';
 
 const FORMAT = 'pathwise-scene/1';
@@ -354,11 +355,12 @@ function checkMaterial(value: unknown, path: string, problems: Problems): Materi
   return problems.length > before ? undefined : material;
 }
 
-const SHAPE_TYPES = ['sphere', 'quad', 'mesh'] as const;
+const SHAPE_TYPES = ['sphere', 'quad', 'mesh', 'gltf'] as const;
 const SHAPE_KEYS: Record<ShapeDesc['type'], string[]> = {
   sphere: ['type', 'center', 'radius', 'material'],
   quad: ['type', 'corner', 'u', 'v', 'material'],
   mesh: MESH_KEYS,
+  gltf: GLTF_KEYS,
 };
 
 function checkShapes(
@@ -411,6 +413,8 @@ function checkShape(
   const type = expectOneOf(obj.type, `${path}.type`, SHAPE_TYPES, problems);
   if (type === undefined) return undefined; // the allowed keys depend on the type
   expectKnownKeys(obj, path, SHAPE_KEYS[type], problems);
+  // A glTF model brings its own materials.
+  if (type === 'gltf') return checkGltfShape(obj, path, problems);
   const material = checkMaterialRef(obj.material, `${path}.material`, materials, problems);
   if (type === 'mesh') return checkMesh(obj, path, material, problems);
   if (type === 'sphere') {

@@ -155,7 +155,8 @@ function indexArray(
   return out;
 }
 
-function checkTransform(value: unknown, path: string, problems: Problems): number[] | null {
+/** A shape's `transform`: 16 finite numbers, row-major, affine and invertible. */
+export function checkTransform(value: unknown, path: string, problems: Problems): number[] | null {
   const at = `${path}.transform`;
   if (!Array.isArray(value) || value.length !== 16) {
     problems.push(
@@ -181,6 +182,8 @@ function checkTransform(value: unknown, path: string, problems: Problems): numbe
 /** Zero-area triangles the scene's meshes skipped (the spec asks renderers to report it). */
 export function countSkippedTriangles(scene: Scene): number {
   let n = 0;
-  for (const s of scene.shapes) if (s.type === 'mesh' && s.data !== null) n += s.data.skipped;
+  for (const s of scene.shapes) {
+    if ((s.type === 'mesh' || s.type === 'gltf') && s.data !== null) n += s.data.skipped;
+  }
   return n;
 }

@@ -19,8 +19,33 @@ export interface PackedScene {
   format: 'pathwise-packed/1';
   buffer: ArrayBuffer | SharedArrayBuffer;
   /** Per array of SCENE_ARRAYS: byte offset, element count and element type. */
-  arrays: { name: ArrayName; offset: number; length: number; type: 'f64' | 'f32' | 'i32' }[];
+  arrays: {
+    name: ArrayName;
+    offset: number;
+    length: number;
+    type: 'f64' | 'f32' | 'i32' | 'u16';
+  }[];
   bvhDepth: number;
+}
+
+type ArrayView = Float64Array | Float32Array | Int32Array | Uint16Array;
+
+function view(
+  buffer: ArrayBuffer | SharedArrayBuffer,
+  offset: number,
+  length: number,
+  type: PackedScene['arrays'][number]['type'],
+): ArrayView {
+  switch (type) {
+    case 'f64':
+      return new Float64Array(buffer, offset, length);
+    case 'f32':
+      return new Float32Array(buffer, offset, length);
+    case 'u16':
+      return new Uint16Array(buffer, offset, length);
+    default:
+      return new Int32Array(buffer, offset, length);
+  }
 }
 
 /** Whether SharedArrayBuffer can be created and shared here (Node; an isolated page). */
@@ -46,19 +71,20 @@ export function packScene(scene: CompiledScene, shared = canShareMemory()): Pack
       name,
       offset: bytes,
       length: a.length,
-      type: a instanceof Float64Array ? 'f64' : a instanceof Float32Array ? 'f32' : 'i32',
+      type:
+        a instanceof Float64Array
+          ? 'f64'
+          : a instanceof Float32Array
+            ? 'f32'
+            : a instanceof Uint16Array
+              ? 'u16'
+              : 'i32',
     });
     bytes += Math.ceil(a.byteLength / 8) * 8;
   }
   const buffer = shared ? new SharedArrayBuffer(bytes) : new ArrayBuffer(bytes);
   for (const { name, offset, length, type } of arrays) {
-    const view =
-      type === 'f64'
-        ? new Float64Array(buffer, offset, length)
-        : type === 'f32'
-          ? new Float32Array(buffer, offset, length)
-          : new Int32Array(buffer, offset, length);
-    (view as Float64Array).set(data[name] as Float64Array);
+    (view(buffer, offset, length, type) as Float64Array).set(data[name] as Float64Array);
   }
   return { format: 'pathwise-packed/1', buffer, arrays, bvhDepth: data.bvhDepth };
 }
@@ -68,14 +94,9 @@ export function unpackScene(packed: PackedScene): CompiledScene {
   if (packed.format !== 'pathwise-packed/1') {
     throw new Error(`not a packed pathwise scene (format ${String(packed.format)})`);
   }
-  const views: Partial<Record<ArrayName, Float64Array | Float32Array | Int32Array>> = {};
+  const views: Partial<Record<ArrayName, ArrayView>> = {};
   for (const { name, offset, length, type } of packed.arrays) {
-    views[name] =
-      type === 'f64'
-        ? new Float64Array(packed.buffer, offset, length)
-        : type === 'f32'
-          ? new Float32Array(packed.buffer, offset, length)
-          : new Int32Array(packed.buffer, offset, length);
+    views[name] = view(packed.buffer, offset, length, type);
   }
   for (const name of SCENE_ARRAYS) {
     if (!views[name]) throw new Error(`packed scene lacks ${name}`);

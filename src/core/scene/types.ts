@@ -4,6 +4,8 @@
  * been filled with its documented default, so consumers never re-derive them.
  */
 
+import type { GltfModel } from '../gltf/load.ts';
+
 export type Vec3 = [number, number, number];
 
 export interface CameraDesc {
@@ -95,7 +97,21 @@ export interface MeshData {
   skipped: number;
 }
 
-export type ShapeDesc = SphereDesc | QuadDesc | MeshDesc;
+/**
+ * The triangles and materials of a glTF 2.0 file (docs/scene-format.md, Meshes from
+ * glTF; docs/gltf.md says what is read). `data` holds the loaded model in world space
+ * (after the file's node transforms and `transform`), filled by `resolveSceneFiles`.
+ */
+export interface GltfDesc {
+  type: 'gltf';
+  /** The `.gltf` or `.glb` file, relative to the scene file. */
+  file: string;
+  /** Row-major affine 4×4 applied on top of the file's node transforms, or null. */
+  transform: number[] | null;
+  data: GltfModel | null;
+}
+
+export type ShapeDesc = SphereDesc | QuadDesc | MeshDesc | GltfDesc;
 
 /** An equirectangular environment map (docs/scene-format.md, Environment maps). */
 export interface EnvironmentMapDesc {

@@ -1,0 +1,87 @@
+/**
+ * A bare glTF model (a `.glb` or `.gltf` given to the command line, the widget or the
+ * demo without a scene file) as a scene of pathwise-scene/1: the model as its one
+ * `gltf` shape, a camera from the file's first perspective camera or framing its
+ * bounds (framing.ts) at the image's aspect ratio, the studio environment
+ * (lights/studio.ts), and the format's default settings.
+ */
+import { studioEnvironment } from '../lights/studio.ts';
+import { type LoadStage, type ResolveOptions, type SceneFileReader } from '../scene/files.ts';
+import { markValidated, SceneError } from '../scene/load.ts';
+import { DEFAULT_SETTINGS, LIMITS, type Scene } from '../scene/types.ts';
+import { sanitize } from '../scene/message.ts';
+import { frameModel } from './framing.ts';
+import { isGlb } from './glb.ts';
+import { GLTF_FILE_BYTES, type GltfModel, loadGltf } from './load.ts';
+import { decodeImageJs } from '../texture/decode-js.ts';
+
+/** Whether `name` is a glTF model by its extension (`.glb`, `.gltf`). */
+export function isModelFileName(name: string): boolean {
+  return /\.(glb|gltf)$/i.test(name.split(/[?#]/)[0]);
+}
+
+/** Whether bytes are a GLB file (its magic), whatever the name they came with. */
+export function isGlbBytes(bytes: Uint8Array): boolean {
+  return isGlb(bytes);
+}
+
+export interface BareSceneOptions {
+  /** Image size; the format's defaults (512 × 512) when absent. */
+  width?: number;
+  height?: number;
+}
+
+/** The scene of a loaded model (`file`: its name, for the shape and the scene's name). */
+export function bareModelScene(
+  file: string,
+  model: GltfModel,
+  options: BareSceneOptions = {},
+): Scene {
+  const width = options.width ?? DEFAULT_SETTINGS.width;
+  const height = options.height ?? DEFAULT_SETTINGS.height;
+  const name = file.replace(/[?#].*$/, '').replace(/^.*[\\/]/, '');
+  return markValidated({
+    format: 'pathwise-scene/1',
+    name,
+    camera: frameModel(model.bounds, model.cameras, width / height),
+    settings: { ...DEFAULT_SETTINGS, width, height },
+    materials: {},
+    shapes: [{ type: 'gltf', file, transform: null, data: model }],
+    environment: [0, 0, 0],
+    environmentMap: studioEnvironment(),
+  });
+}
+
+/**
+ * Loads the model in `bytes` (the file `file`; its buffers and images are read through
+ * `files`, relative to it) and makes its scene. Throws SceneError, whose message the
+ * caller prefixes with the file's name as it knows it (a path, a URL).
+ */
+export async function loadBareModel(
+  bytes: Uint8Array,
+  file: string,
+  files: SceneFileReader | null,
+  options: ResolveOptions & BareSceneOptions = {},
+): Promise<Scene> {
+  const progress = options.onProgress ?? ((_s: LoadStage, _d: number, _t: number) => {});
+  if (bytes.length > GLTF_FILE_BYTES) {
+    throw new SceneError([
+      `the file has ${bytes.length} bytes, more than the limit of ${GLTF_FILE_BYTES}`,
+    ]);
+  }
+  let model: GltfModel;
+  try {
+    model = await loadGltf(bytes, file, {
+      reader: files,
+      decodeImage: options.decodeImage ?? decodeImageJs,
+      generateTangents: options.generateTangents ?? null,
+      sharedTextures: options.sharedTextures,
+      maxTriangles: LIMITS.triangles,
+      onProgress: progress,
+    });
+  } catch (e) {
+    const message = e instanceof Error ? e.message : String(e);
+    throw new SceneError([sanitize(message, 400)]);
+  }
+  return bareModelScene(file, model, options);
+}

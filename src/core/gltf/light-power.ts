@@ -1,0 +1,44 @@
+/**
+ * The selection weight of an emissive glTF mesh among the scene's lights
+ * (lights.ts chooses lights in proportion to power): Σ over its triangles of
+ * area × luminance of what a light sample sees at the triangle's centroid
+ * (emissive factor × texture × strength × coverage, shading-fill.ts). With an
+ * emissive texture that is mostly black, the factor alone would give the mesh
+ * far more light samples than it deserves.
+ *
+ * Only the choice among lights uses this estimate; within the mesh points are
+ * drawn uniformly by area (mesh-light.ts) and every sample is weighted by the
+ * exact emission at its point, so a rough estimate costs noise, never bias.
+ */
+import { triangleArea } from '../lights/mesh-light.ts';
+import type { MeshArrays } from '../scene/compile-meshes.ts';
+import type { TextureStore } from '../texture/texture-store.ts';
+import { interpolateAttributes, type VertexAttributes } from './hit-attributes.ts';
+import { gltfEmission, HitAttributes } from './shading-fill.ts';
+
+export function gltfMeshPower(
+  mesh: MeshArrays,
+  first: number,
+  count: number,
+  table: Float64Array,
+  material: number,
+  textures: TextureStore,
+): number {
+  const attributes: VertexAttributes = {
+    uv0: mesh.triUV0.length > 0 ? mesh.triUV0 : null,
+    uv1: mesh.triUV1.length > 0 ? mesh.triUV1 : null,
+    colors: mesh.triColors.length > 0 ? mesh.triColors : null,
+    tangents: null,
+  };
+  const hit = new HitAttributes();
+  const e = { r: 0, g: 0, b: 0 };
+  const ix = mesh.triIndices;
+  let power = 0;
+  for (let t = first; t < first + count; t++) {
+    interpolateAttributes(attributes, ix[3 * t], ix[3 * t + 1], ix[3 * t + 2], 1 / 3, 1 / 3, hit);
+    gltfEmission(table, textures, material, hit, e);
+    const lum = 0.2126 * e.r + 0.7152 * e.g + 0.0722 * e.b;
+    power += lum * triangleArea(mesh.triPositions, ix, t);
+  }
+  return power;
+}

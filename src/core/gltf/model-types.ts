@@ -1,0 +1,51 @@
+/**
+ * The types a loaded glTF model is made of, with no import of glTF-Transform: they are
+ * part of the public scene types (Scene, ResolveOptions), and the package's published
+ * declarations must compile for a consumer without glTF-Transform's own (whose
+ * declarations need a newer lib than ES2022). The modules that use glTF-Transform
+ * (flatten.ts, io.ts, tangents.ts) re-export them.
+ */
+import type { GltfCamera } from './cameras.ts';
+
+/**
+ * MikkTSpace over unindexed triangles: positions and normals (3 per corner),
+ * uvs (2 per corner) in; tangents (x, y, z, w per corner) out.
+ */
+export type TangentGenerator = (
+  positions: Float32Array,
+  normals: Float32Array,
+  uvs: Float32Array,
+) => Float32Array;
+
+/** Reads the file at `path` (relative to the scene), refusing files longer than maxBytes. */
+export interface GltfFileReader {
+  read(path: string, maxBytes: number): Promise<Uint8Array>;
+}
+
+export interface GltfGeometry {
+  /** World-space x, y, z per vertex. */
+  positions: Float64Array;
+  /** Three vertex indices per triangle. */
+  indices: Uint32Array;
+  /** Unit shading normal per vertex, (0, 0, 0) where the primitive has none; null if none has. */
+  normals: Float32Array | null;
+  /** TEXCOORD_0 / TEXCOORD_1 per vertex (0 where absent), or null when no primitive has the set. */
+  uv0: Float32Array | null;
+  uv1: Float32Array | null;
+  /** COLOR_0 as linear RGBA per vertex (white where absent), or null. */
+  colors: Float32Array | null;
+  /**
+   * World-space unit tangent and handedness (x, y, z, w) per vertex, for
+   * normal maps (from the file, or MikkTSpace); (0, 0, 0, 0) where a vertex
+   * has none. Null when no material has a normal map.
+   */
+  tangents: Float32Array | null;
+  /** Material (row of the glTF material table) per triangle. */
+  triangleMaterial: Uint32Array;
+  /** Zero-area triangles skipped. */
+  skipped: number;
+  /** Axis-aligned bounds of the positions (min x, y, z, max x, y, z); empty: +∞, −∞. */
+  bounds: Float64Array;
+  /** Perspective cameras of the scene, in traversal order. */
+  cameras: GltfCamera[];
+}

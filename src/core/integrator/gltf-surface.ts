@@ -1,0 +1,186 @@
+/**
+ * What the integrator does at triangles with a glTF material (docs/gltf.md), kept
+ * out of the main loop so scenes without glTF never run it:
+ * - `shadeGltfHit`: the vertex attributes at the hit (texture coordinates, colour,
+ *   tangent), the per-hit BSDF parameters from the material's factors and textures
+ *   (gltf/shading-fill.ts, pbr-book 4e §10.5: textures evaluated once per hit), and
+ *   the normal map applied to the shading normal (gltf/normal-map.ts);
+ * - `gltfLightEmission`: the emission a light sample sees at a point of an emissive
+ *   glTF mesh (emissive texture × coverage);
+ * - `shadowTransmittance`: the visibility of a shadow ray through alpha-blended or
+ *   alpha-masked surfaces.
+ *
+ * Alpha as stochastic opacity: a surface of coverage α is there with probability α
+ * (pbr-book 4e §7.1.1 "alpha masking" and §14.1.2 for the stochastic version). A path
+ * decides that with a random number (the integrator); a shadow ray instead takes the
+ * expected value, the product of (1 − α) of every surface it crosses — the same
+ * expectation with less noise, and it needs no random numbers. MASK's α is 0 or 1,
+ * so both are exact there.
+ *
+ * Everything here writes into caller-owned records: nothing is allocated per call.
+ */
+import { MATERIAL_GLTF, MATERIAL_STRIDE, M_GLTF_INDEX, M_TYPE } from '../bsdf/materials.ts';
+import type { ShadingParams } from '../bsdf/shading.ts';
+import { Hit, type Ray, SHAPE_TRIANGLE } from '../geometry/ray.ts';
+import { OFFSET_SCALE } from '../geometry/shapes.ts';
+import { intersectScene } from '../geometry/trace.ts';
+import { interpolateAttributes, interpolateTangent } from '../gltf/hit-attributes.ts';
+import { applyNormalMap } from '../gltf/normal-map.ts';
+import { fillGltfShading, gltfEmission, gltfOpacity, HitAttributes } from '../gltf/shading-fill.ts';
+import { triangleNormal } from '../lights/mesh-light.ts';
+import type { CompiledScene } from '../scene/compile.ts';
+import type { GltfScene } from '../scene/gltf-scene.ts';
+import type { TriangleSurface } from './triangle-surface.ts';
+
+/**
+ * Shadow rays give up after crossing this many alpha surfaces and count as blocked:
+ * a bound on the work of one query (a real model never stacks so many along one ray).
+ */
+export const MAX_ALPHA_CROSSINGS = 256;
+
+/** Scratch of the functions below; one per tracer. */
+export class GltfWork {
+  readonly attributes = new HitAttributes();
+  readonly tangent = new Float64Array(4);
+  readonly normal = { x: 0, y: 0, z: 1 };
+  readonly emission = { r: 0, g: 0, b: 0 };
+  /** The shadow ray's hits. */
+  readonly hit = new Hit();
+  readonly geometric = { nx: 0, ny: 0, nz: 1 };
+}
+
+/** Row of the glTF material table of scene material m. */
+export function gltfRow(materials: Float64Array, m: number): number {
+  return materials[m * MATERIAL_STRIDE + M_GLTF_INDEX];
+}
+
+/**
+ * Fills `sp` for the hit on triangle t at barycentrics (b1, b2) of its vertices 1 and
+ * 2, with glTF material row `row`, and replaces the shading normal of `ts` by the
+ * normal-mapped one where the material has a normal map and the vertices tangents.
+ */
+export function shadeGltfHit(
+  scene: CompiledScene,
+  gltf: GltfScene,
+  t: number,
+  b1: number,
+  b2: number,
+  row: number,
+  ts: TriangleSurface,
+  sp: ShadingParams,
+  work: GltfWork,
+): void {
+  const ix = scene.triIndices;
+  const i0 = ix[3 * t],
+    i1 = ix[3 * t + 1],
+    i2 = ix[3 * t + 2];
+  const a = work.attributes;
+  interpolateAttributes(gltf, i0, i1, i2, b1, b2, a);
+  fillGltfShading(gltf.table, gltf.textures, row, a, sp);
+  const tangents = gltf.tangents;
+  if (tangents !== null && (sp.nx !== 0 || sp.ny !== 0 || sp.nz !== 1)) {
+    const tg = work.tangent;
+    interpolateTangent(tangents, i0, i1, i2, b1, b2, tg);
+    const n = work.normal;
+    if (
+      applyNormalMap(
+        ts.snx,
+        ts.sny,
+        ts.snz,
+        tg[0],
+        tg[1],
+        tg[2],
+        tg[3],
+        sp.nx,
+        sp.ny,
+        sp.nz,
+        ts.nx,
+        ts.ny,
+        ts.nz,
+        n,
+      )
+    ) {
+      ts.snx = n.x;
+      ts.sny = n.y;
+      ts.snz = n.z;
+    }
+  }
+}
+
+/**
+ * Emission seen by a light sample on triangle t (barycentrics b1, b2) of a mesh with
+ * glTF material row `row`, into work.emission.
+ */
+export function gltfLightEmission(
+  scene: CompiledScene,
+  gltf: GltfScene,
+  t: number,
+  b1: number,
+  b2: number,
+  row: number,
+  work: GltfWork,
+): void {
+  const ix = scene.triIndices;
+  const a = work.attributes;
+  interpolateAttributes(gltf, ix[3 * t], ix[3 * t + 1], ix[3 * t + 2], b1, b2, a);
+  gltfEmission(gltf.table, gltf.textures, row, a, work.emission);
+}
+
+/**
+ * Visibility along `ray` (origin, unit direction, tMax; modified) through surfaces
+ * with alpha: 0 when something opaque lies on it, else the product of (1 − α) of the
+ * alpha surfaces it crosses. Only called for scenes that have such materials.
+ */
+export function shadowTransmittance(
+  scene: CompiledScene,
+  gltf: GltfScene,
+  ray: Ray,
+  work: GltfWork,
+): number {
+  const materials = scene.materials;
+  const meshes = scene.meshes!;
+  const hit = work.hit;
+  const p = scene.triPositions;
+  const ix = scene.triIndices;
+  // The far end stays where it is while the origin steps over the surfaces crossed.
+  const finite = ray.tMax < Infinity;
+  const ex = ray.ox + ray.tMax * ray.dx;
+  const ey = ray.oy + ray.tMax * ray.dy;
+  const ez = ray.oz + ray.tMax * ray.dz;
+  let transmittance = 1;
+  for (let k = 0; k < MAX_ALPHA_CROSSINGS; k++) {
+    if (!intersectScene(scene, ray, hit)) return transmittance;
+    if (hit.kind !== SHAPE_TRIANGLE) return 0;
+    const t = hit.index;
+    const m = meshes.material[meshes.meshOf(t)];
+    if (materials[m * MATERIAL_STRIDE + M_TYPE] !== MATERIAL_GLTF) return 0;
+    const a = work.attributes;
+    const i0 = ix[3 * t],
+      i1 = ix[3 * t + 1],
+      i2 = ix[3 * t + 2];
+    interpolateAttributes(gltf, i0, i1, i2, hit.b1, hit.b2, a);
+    const opacity = gltfOpacity(gltf.table, gltf.textures, gltfRow(materials, m), a);
+    transmittance *= 1 - opacity;
+    if (!(transmittance > 0)) return 0;
+    // Past the surface: the hit point, lifted to the side the ray leaves by.
+    const b0 = hit.b0,
+      b1 = hit.b1,
+      b2 = hit.b2;
+    const x = b0 * p[3 * i0] + b1 * p[3 * i1] + b2 * p[3 * i2];
+    const y = b0 * p[3 * i0 + 1] + b1 * p[3 * i1 + 1] + b2 * p[3 * i2 + 1];
+    const z = b0 * p[3 * i0 + 2] + b1 * p[3 * i1 + 2] + b2 * p[3 * i2 + 2];
+    const g = work.geometric;
+    triangleNormal(p, 3 * i0, 3 * i1, 3 * i2, g);
+    const scale =
+      Math.max(Math.abs(x), Math.abs(y), Math.abs(z), meshes.triangleScale(t)) * OFFSET_SCALE;
+    const lift = ray.dx * g.nx + ray.dy * g.ny + ray.dz * g.nz >= 0 ? scale : -scale;
+    ray.ox = x + g.nx * lift;
+    ray.oy = y + g.ny * lift;
+    ray.oz = z + g.nz * lift;
+    if (finite) {
+      ray.tMax = (ex - ray.ox) * ray.dx + (ey - ray.oy) * ray.dy + (ez - ray.oz) * ray.dz;
+      if (!(ray.tMax > 0)) return transmittance;
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,77 @@
+/**
+ * Loading a bare glTF model off the page's thread: one module worker
+ * (workers/model-worker.ts) parses it, decodes its images, flattens it, builds its BVH
+ * and packs the compiled scene; the page only unpacks views of the result, so it stays
+ * responsive however large the model. Where the worker cannot start (a host whose
+ * bundler or CDN breaks the worker's URL), the result is null and the caller loads the
+ * model on the page instead.
+ */
+import type { LoadStage, PackedScene, Scene } from '../core/index.ts';
+import type { ModelReply, ModelRequest } from '../../workers/model-protocol.ts';
+import { startModuleWorker } from './worker-source.ts';
+
+/** `new Worker` through the same-origin shim (see pool.ts: Vite bundles the worker by this pattern). */
+const ModuleWorker = function (url: URL): Worker {
+  return startModuleWorker(url);
+} as unknown as new (url: URL, options: WorkerOptions) => Worker;
+
+export interface LoadedModel {
+  /** Without the model's arrays (see model-protocol.ts). */
+  scene: Scene;
+  packed: PackedScene;
+  skippedTriangles: number;
+  warnings: string[];
+}
+
+export interface ModelJob {
+  /** The loaded model; null when the worker could not run at all; rejects with the loader's message. */
+  readonly promise: Promise<LoadedModel | null>;
+  /** Stops the worker (a newer scene superseded this one); the promise then never settles. */
+  cancel(): void;
+}
+
+export function loadModelInWorker(
+  request: ModelRequest,
+  onProgress: (stage: LoadStage, done: number, total: number) => void,
+): ModelJob {
+  let worker: Worker | null = null;
+  const promise = new Promise<LoadedModel | null>((resolve, reject) => {
+    try {
+      const Worker = ModuleWorker;
+      worker = new Worker(new URL('../../workers/model-worker.ts', import.meta.url), {
+        type: 'module',
+      });
+    } catch {
+      resolve(null);
+      return;
+    }
+    const w = worker;
+    let heard = false;
+    w.onmessage = (e: MessageEvent<ModelReply>) => {
+      heard = true;
+      const reply = e.data;
+      if (reply.type === 'progress') {
+        onProgress(reply.stage, reply.done, reply.total);
+        return;
+      }
+      w.terminate();
+      if (reply.type === 'done') {
+        const { scene, packed, skippedTriangles, warnings } = reply;
+        resolve({ scene, packed, skippedTriangles, warnings });
+      } else reject(new Error(reply.message));
+    };
+    w.onerror = (e: ErrorEvent) => {
+      e.preventDefault();
+      w.terminate();
+      // Nothing heard: the script did not load or start; the caller loads on the page.
+      if (!heard) resolve(null);
+      else reject(new Error(`the model worker failed: ${e.message || 'unknown error'}`));
+    };
+    // Copied, not transferred: the bytes must survive for the fallback.
+    w.postMessage(request);
+  });
+  return {
+    promise,
+    cancel: () => worker?.terminate(),
+  };
+}
