@@ -16,7 +16,9 @@ export default defineConfig({
   worker: { format: 'es' },
   // Pre-bundled at start-up: discovered later (in the worker) it would make
   // Vite re-optimise and reload the page under a running render.
-  optimizeDeps: { include: ['comlink'] },
+  // Only the demo page is scanned: examples/embed imports the published
+  // package by name (`pathwise`), which exists only in a consumer's install.
+  optimizeDeps: { include: ['comlink'], entries: ['index.html'] },
   // dist/cli holds the command line bundle; the web build must not empty it.
   build: { target: 'es2022', outDir: 'dist/web' },
 });
