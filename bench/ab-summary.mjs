@@ -17,9 +17,11 @@ for (const row of rows) {
   if (!by.has(key)) by.set(key, { paths: [], segs: [], digests: new Set() });
   const e = by.get(key);
   if (row.v === 'native') {
-    const [user, sys] = row.cpu.split(' ').map(Number);
-    e.paths.push(row.r.paths / (user + sys) / 1e6);
-    e.segs.push(row.r.segments / (user + sys) / 1e6);
+    // Process CPU time when measured, else the anchor's own render time.
+    const [user, sys] = (row.cpu || '').split(' ').map(Number);
+    const sec = user + sys > 0 ? user + sys : row.r.seconds;
+    e.paths.push(row.r.paths / sec / 1e6);
+    e.segs.push(row.r.segments / sec / 1e6);
   } else {
     e.paths.push(row.r.mpaths_per_cpu_s);
     e.segs.push(row.r.msegments_per_cpu_s);
