@@ -164,6 +164,54 @@ describe('shading normals', () => {
       }
     }
   });
+
+  it("flip to the back when wo is below the shading hemisphere, as Mitsuba 3's two-sided BSDFs do", () => {
+    // The same square, normals leaning by α = 60° toward +x, under a white map in every
+    // direction. Seen from the -x side at 20° elevation, wo is in front of the geometric
+    // surface but behind the shading normal: the BSDF is then looked up on the back, in
+    // the frame of the negated shading normal (Mitsuba 3's 'twosided'), where every
+    // direction of the cosine lobe sees white: the plane reads ρ. A frame from the
+    // negated geometric normal instead (the bug this guards) has wo below it: 0.
+    const alpha = Math.PI / 3;
+    const n = [Math.sin(alpha), Math.cos(alpha), 0];
+    for (const elevation of [20, -20, 70]) {
+      const e = (elevation * Math.PI) / 180;
+      const scene = validateScene({
+        format: 'pathwise-scene/1',
+        camera: {
+          position: [-3 * Math.cos(e), 3 * Math.sin(e), 0],
+          target: [0, 0, 0],
+          up: [0, 1, 0],
+          fovY: 10,
+        },
+        settings: { width: 8, height: 8, maxBounces: 1, spp: 1 },
+        materials: { m: { type: 'diffuse', albedo: [0.6, 0.6, 0.6] } },
+        shapes: [
+          {
+            type: 'mesh',
+            material: 'm',
+            positions: [-2, 0, -2, -2, 0, 2, 2, 0, 2, 2, 0, -2],
+            indices: [0, 1, 2, 0, 2, 3],
+            normals: [...n, ...n, ...n, ...n],
+          },
+        ],
+      });
+      scene.environmentMap = {
+        type: 'map',
+        file: 'white.pfm',
+        scale: [1, 1, 1],
+        rotationY: 0,
+        image: { width: 1, height: 1, rgb: Float32Array.from([1, 1, 1]) },
+      };
+      for (const estimator of ['bsdf', 'nee-mis'] as const) {
+        const img = renderSampled(scene, { spp: 64, estimator });
+        const { mean, stderr } = imageMean(img);
+        expect(Math.abs(mean[0] - 0.6), `elevation ${elevation} ${estimator}`).toBeLessThan(
+          4 * stderr[0] + 1e-9,
+        );
+      }
+    }
+  });
 });
 
 describe('meshes and maps in the packed scene', () => {

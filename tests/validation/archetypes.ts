@@ -30,28 +30,32 @@ export interface Archetype {
 }
 
 /** An axis-aligned region where objects and lights may go. */
-interface Region {
+export interface Region {
   lo: Vec3;
   hi: Vec3;
 }
 
-const center = (r: Region): Vec3 => mul(add(r.lo, r.hi), 0.5);
-const extent = (r: Region): number => length(sub(r.hi, r.lo));
+export const center = (r: Region): Vec3 => mul(add(r.lo, r.hi), 0.5);
+export const extent = (r: Region): number => length(sub(r.hi, r.lo));
 
-function pointIn(b: SceneBuilder, r: Region): Vec3 {
+export function pointIn(b: SceneBuilder, r: Region): Vec3 {
   const g = b.rng;
   return [g.uniform(r.lo[0], r.hi[0]), g.uniform(r.lo[1], r.hi[1]), g.uniform(r.lo[2], r.hi[2])];
 }
 
-/**
- * Environments. A new kind (an environment map) is one more entry; its
- * `make` returns the JSON value of `environment`.
- */
-export const ENVIRONMENT_MAKERS: {
+/** A way to fill a scene's `environment`, drawn by weight. */
+export interface EnvironmentMaker {
   name: string;
   weight: number;
   make(b: SceneBuilder): EnvironmentJson;
-}[] = [
+}
+
+/**
+ * Environments of the classic family. Frozen: an entry added here changes the
+ * random stream, and so every classic scene; a new kind (an environment map)
+ * goes into the mesh family's list (archetypes-mesh.ts).
+ */
+export const ENVIRONMENT_MAKERS: EnvironmentMaker[] = [
   { name: 'none', weight: 0.4, make: () => null },
   {
     name: 'constant',
@@ -64,23 +68,31 @@ export const ENVIRONMENT_MAKERS: {
   },
 ];
 
-function environment(b: SceneBuilder, weightOfNone = 0.4): void {
+export function environment(
+  b: SceneBuilder,
+  weightOfNone = 0.4,
+  makers: EnvironmentMaker[] = ENVIRONMENT_MAKERS,
+): void {
   const maker = b.rng.weighted(
-    ENVIRONMENT_MAKERS.map((m) => [m, m.name === 'none' ? weightOfNone : m.weight] as const),
+    makers.map((m) => [m, m.name === 'none' ? weightOfNone : m.weight] as const),
   );
   b.environment = maker.make(b);
   b.tag(b.environment === null ? 'no-environment' : 'environment');
 }
 
-/**
- * Objects placed in a region: random material. A new shape kind (a
- * triangle mesh) is one more entry here.
- */
-export const OBJECT_MAKERS: {
+/** A way to place one object in a region, clear of the point `avoid` (the eye), drawn by weight. */
+export interface ObjectMaker {
   name: string;
   weight: number;
   make(b: SceneBuilder, r: Region, avoid: Vec3): void;
-}[] = [
+}
+
+/**
+ * Objects of the classic family: random material. Frozen, like
+ * ENVIRONMENT_MAKERS: new shape kinds (triangle meshes) go into the mesh
+ * family's list (archetypes-mesh.ts).
+ */
+export const OBJECT_MAKERS: ObjectMaker[] = [
   {
     name: 'sphere',
     weight: 0.5,
@@ -120,9 +132,15 @@ export const OBJECT_MAKERS: {
   },
 ];
 
-function objects(b: SceneBuilder, r: Region, count: number, avoid: Vec3): void {
+export function objects(
+  b: SceneBuilder,
+  r: Region,
+  count: number,
+  avoid: Vec3,
+  makers: ObjectMaker[] = OBJECT_MAKERS,
+): void {
   for (let i = 0; i < count; i++) {
-    b.rng.weighted(OBJECT_MAKERS.map((m) => [m, m.weight] as const)).make(b, r, avoid);
+    b.rng.weighted(makers.map((m) => [m, m.weight] as const)).make(b, r, avoid);
   }
 }
 
@@ -133,7 +151,13 @@ function objects(b: SceneBuilder, r: Region, count: number, avoid: Vec3): void {
  * that. A quarter sit next to a receiver (d/r 1.01…1.5, or a quad light
  * 1e-3…0.1 of its size above the floor).
  */
-function lights(b: SceneBuilder, r: Region, floorY: number, count: number, avoid: Vec3): void {
+export function lights(
+  b: SceneBuilder,
+  r: Region,
+  floorY: number,
+  count: number,
+  avoid: Vec3,
+): void {
   const g = b.rng;
   const size0 = extent(r);
   const powers: number[] = [];
@@ -199,7 +223,7 @@ function lights(b: SceneBuilder, r: Region, floorY: number, count: number, avoid
   }
 }
 
-function lens(b: SceneBuilder, camera: CameraJson): CameraJson {
+export function lens(b: SceneBuilder, camera: CameraJson): CameraJson {
   if (!b.rng.chance(0.25)) return camera;
   const d = length(sub(camera.target, camera.position));
   b.tag('aperture');
@@ -210,7 +234,7 @@ function lens(b: SceneBuilder, camera: CameraJson): CameraJson {
   };
 }
 
-function bounces(b: SceneBuilder, lo: number, hi: number): number {
+export function bounces(b: SceneBuilder, lo: number, hi: number): number {
   const n = b.rng.int(lo, hi);
   if (n === 0) b.tag('bounces-0');
   if (n === 12) b.tag('bounces-12');
@@ -306,7 +330,9 @@ const glass: Archetype = {
         clearance,
         s.type === 'sphere'
           ? length(sub(s.center, eye)) - s.radius
-          : Math.abs(dot(sub(eye, s.corner), normalize(cross(s.u, s.v)))),
+          : s.type === 'quad'
+            ? Math.abs(dot(sub(eye, s.corner), normalize(cross(s.u, s.v))))
+            : Infinity, // the classic family has no meshes
       );
     }
     const size = clearance * b.rng.uniform(0.2, 0.6);

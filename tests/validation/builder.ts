@@ -46,7 +46,42 @@ export const FEATURES = [
   'dielectric',
   'emissive-non-diffuse',
 ] as const;
-export type Feature = (typeof FEATURES)[number];
+
+/**
+ * What the mesh family (archetypes-mesh.ts) adds; its own coverage list, checked over
+ * its consistency scenes and its references (the classic scenes have none of these).
+ */
+export const MESH_FEATURES = [
+  'mesh',
+  'closed-mesh',
+  'open-mesh',
+  'thin-sheet',
+  'shading-normals',
+  'mirrored',
+  'mirrored-inside-out',
+  'anisotropic',
+  'transform-scale-extreme',
+  'mesh-file-obj',
+  'mesh-file-ply',
+  'emissive-mesh',
+  'emissive-mesh-tiny',
+  'emissive-mesh-large',
+  'emissive-mesh-grazing',
+  'emissive-mesh-near-receiver',
+  'glass-mesh',
+  'camera-in-glass-mesh',
+  'bvh',
+  'env-map',
+  'env-map-constant',
+  'env-map-sun',
+  'env-map-gradient',
+  'env-map-rotated',
+  'env-map-rgb-scale',
+  'env-map-hdr',
+  'env-map-pfm',
+  'env-map-only',
+] as const;
+export type Feature = (typeof FEATURES)[number] | (typeof MESH_FEATURES)[number];
 
 export type MaterialJson =
   | { type: 'diffuse'; albedo: Vec3; emission?: Vec3 }
@@ -55,10 +90,43 @@ export type MaterialJson =
 
 export type ShapeJson =
   | { type: 'sphere'; center: Vec3; radius: number; material: string }
-  | { type: 'quad'; corner: Vec3; u: Vec3; v: Vec3; material: string };
+  | { type: 'quad'; corner: Vec3; u: Vec3; v: Vec3; material: string }
+  | MeshJson;
 
-/** `null`: no environment (black). Environment maps will be another variant. */
-export type EnvironmentJson = Vec3 | null;
+/**
+ * A mesh as the scene file has it: inline arrays, or a file written beside the
+ * scene (generate.ts writes it from the same arrays, after the similarity).
+ */
+export interface MeshJson {
+  type: 'mesh';
+  material: string;
+  positions?: number[];
+  indices?: number[];
+  normals?: number[];
+  file?: string;
+  /** Row-major 4×4, last row 0 0 0 1. */
+  transform?: number[];
+}
+
+/** How a mesh is stored in the scene file. */
+export type MeshStorage = 'inline' | 'obj' | 'ply-ascii' | 'ply-le' | 'ply-be';
+
+/** An equirectangular map as generated: texels (row 0 at the top) and how it is written. */
+export interface EnvironmentMapSpec {
+  width: number;
+  height: number;
+  rgb: Float32Array;
+  /** The file's bytes; `rgb` is what they decode to. */
+  bytes: Uint8Array;
+  format: 'hdr' | 'pfm';
+  scale: number | Vec3;
+  rotationY: number;
+  /** What it depicts, for bookkeeping: 'constant', 'gradient', 'sun'. */
+  kind: string;
+}
+
+/** `null`: no environment (black); a colour; or an environment map. */
+export type EnvironmentJson = Vec3 | EnvironmentMapSpec | null;
 
 export interface CameraJson {
   position: Vec3;
@@ -76,14 +144,14 @@ export interface SceneJson {
   settings: { width: number; height: number; maxBounces: number; spp: number };
   materials: Record<string, MaterialJson>;
   shapes: ShapeJson[];
-  environment?: Vec3;
+  environment?: Vec3 | { type: 'map'; file: string; scale?: number | Vec3; rotationY?: number };
 }
 
 export type MaterialKind = 'diffuse' | 'conductor' | 'dielectric';
 
 /** One emitter as placed, for the archetypes' own bookkeeping. */
 export interface LightInfo {
-  kind: 'sphere' | 'quad';
+  kind: 'sphere' | 'quad' | 'mesh';
   /** Radius, or the square root of the quad's area. */
   size: number;
   /** The radiance it was given. */
@@ -95,6 +163,8 @@ export class SceneBuilder {
   readonly shapes: ShapeJson[] = [];
   readonly features = new Set<Feature>();
   readonly lights: LightInfo[] = [];
+  /** Storage of each mesh shape, by its index in `shapes` (inline when absent). */
+  readonly meshStorage = new Map<number, MeshStorage>();
   environment: EnvironmentJson = null;
   private count = 0;
 
@@ -174,6 +244,22 @@ export class SceneBuilder {
   }
 
   /**
+   * A triangle mesh (world-space arrays, or local ones with a `transform`), stored
+   * inline or as a file; `area` is its world-space area, for the light bookkeeping.
+   */
+  mesh(
+    mesh: Omit<MeshJson, 'type' | 'material' | 'file'>,
+    material: string,
+    area: number,
+    storage: MeshStorage = 'inline',
+  ): void {
+    this.shapes.push({ type: 'mesh', material, ...mesh });
+    if (storage !== 'inline') this.meshStorage.set(this.shapes.length - 1, storage);
+    this.tag('mesh');
+    this.noteLight(material, 'mesh', Math.sqrt(area));
+  }
+
+  /**
    * An axis-aligned box of six quads from `lo` to `hi`, normals outward
    * (a closed solid: glass when the material is a dielectric) or inward
    * (a room). `skip` leaves out faces by name.
@@ -200,10 +286,10 @@ export class SceneBuilder {
     }
   }
 
-  private noteLight(material: string, kind: 'sphere' | 'quad', size: number): void {
+  private noteLight(material: string, kind: LightInfo['kind'], size: number): void {
     const e = this.materials[material].emission;
     if (e === undefined) return;
     this.lights.push({ kind, size, emission: Math.max(...e) });
-    this.tag(kind === 'sphere' ? 'sphere-light' : 'quad-light');
+    this.tag(kind === 'sphere' ? 'sphere-light' : kind === 'quad' ? 'quad-light' : 'emissive-mesh');
   }
 }

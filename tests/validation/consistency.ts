@@ -102,7 +102,9 @@ const CONFIGS: Record<'A' | 'B' | 'C', { estimator: Estimator; sampler: SamplerK
  * roulette's 1/(1−q) with q = max(0.05, 1 − max β·etaScale), which can
  * lift the largest channel by at most 1/0.95 per bounce from the third.
  * With a = the largest diffuse albedo (1 as soon as any conductor or
- * dielectric is present): V = (Le·Σₖ aᵏ + Lenv) · ηfactor · 0.95^−(B−2).
+ * dielectric is present): V = (Le·Σₖ aᵏ + Lenv) · ηfactor · 0.95^−(B−2),
+ * Lenv the constant environment or the brightest texel of the map times its
+ * scale.
  */
 export function bsdfSampleBound(scene: Scene): number {
   let le = 0;
@@ -117,8 +119,18 @@ export function bsdfSampleBound(scene: Scene): number {
   const B = scene.settings.maxBounces;
   let sum = 0;
   for (let k = 0; k <= B; k++) sum += a ** k;
-  const env = Math.max(...scene.environment);
+  const env = Math.max(...scene.environment, environmentMapMaximum(scene));
   return (le * sum + env) * eta * Math.pow(1 / 0.95, Math.max(0, B - 2));
+}
+
+/** The brightest radiance an environment map sends: largest texel times scale (0 without one). */
+export function environmentMapMaximum(scene: Scene): number {
+  const map = scene.environmentMap ?? null;
+  if (map === null) return 0;
+  const rgb = map.image!.rgb;
+  let max = 0;
+  for (let i = 0; i < rgb.length; i++) max = Math.max(max, rgb[i] * map.scale[i % 3]);
+  return max;
 }
 
 /** Powers of two keep each seed's Sobol points a whole (0,2)-net. */
@@ -225,6 +237,9 @@ export function checkConsistency(
 
 /** The suite's settings (consistency-suite.ts explains the false-alarm rate). */
 export const SCENE_COUNT = 120;
+/** Mesh-family scenes (generateScene(seed, { family: 'mesh' })), seeds MESH_FIRST_SEED…. */
+export const MESH_SCENE_COUNT = 40;
+export const MESH_FIRST_SEED = 3001;
 export const ALPHA_SUITE = 1e-3;
 export const OPTIONS: ConsistencyOptions = {
   width: 32,
@@ -233,6 +248,12 @@ export const OPTIONS: ConsistencyOptions = {
   budget: 2_700_000,
   maxSpp: 32,
 };
+/**
+ * The mesh family at half the work: a segment through the BVH of a few hundred
+ * triangles costs about twice one through a handful of spheres and quads.
+ */
+export const MESH_OPTIONS: ConsistencyOptions = { ...OPTIONS, budget: 1_350_000 };
 export const TESTS_PER_SCENE = 2 * imageRegions(OPTIONS.width, OPTIONS.height).length * 3;
-export const ALPHA_PER_TEST = ALPHA_SUITE / (SCENE_COUNT * TESTS_PER_SCENE);
+/** Bonferroni over every test of both families: the whole suite fails by chance with p ≤ ALPHA_SUITE. */
+export const ALPHA_PER_TEST = ALPHA_SUITE / ((SCENE_COUNT + MESH_SCENE_COUNT) * TESTS_PER_SCENE);
 const Z_PER_TEST = normalQuantileTwoSided(ALPHA_PER_TEST);

@@ -11,11 +11,21 @@ import { referenceSet } from './reference-set.ts';
 
 // run-ts bundles this file elsewhere; it sets argv[1] to this file's own path.
 const dir = join(dirname(process.argv[1]), 'references');
-const index: Record<string, { seed?: number; archetype?: string; features?: string[] }> = {};
-for (const { name, json, generated } of referenceSet()) {
+const index: Record<
+  string,
+  { seed?: number; archetype?: string; family?: string; features?: string[]; files?: string[] }
+> = {};
+for (const { name, json, generated, files } of referenceSet()) {
   writeFileSync(join(dir, `${name}.json`), JSON.stringify(json, null, 2) + '\n');
+  // Mesh and map files beside the scene, as it names them.
+  for (const [file, bytes] of Object.entries(files ?? {})) writeFileSync(join(dir, file), bytes);
   index[name] = generated
-    ? { seed: generated.seed, archetype: generated.archetype, features: generated.features }
+    ? {
+        seed: generated.seed,
+        archetype: generated.archetype,
+        ...(files ? { family: 'mesh', files: Object.keys(files).sort() } : {}),
+        features: generated.features,
+      }
     : {};
   process.stdout.write(`${name}\n`);
 }

@@ -8,14 +8,37 @@
  * the scene's size. Every scene goes through parseScene, so an invalid
  * one throws here rather than in a test.
  *
+ * Two families: 'classic' (archetypes.ts: spheres, quads, constant
+ * environments; the default, whose scenes never change for a seed) and 'mesh'
+ * (archetypes-mesh.ts: triangle meshes, emissive meshes and environment maps).
+ * A mesh-family scene may name files (OBJ / PLY meshes, an .hdr / .pfm map):
+ * their bytes come in `files`, and `scene` has them read and decoded already,
+ * by the core's own decoders.
+ *
  * Use: `generateScene(seed)`; `node scripts/run-ts.mjs
- * tests/validation/export-scenes.ts` writes the reference set as files.
+ * tests/validation/export-references.ts` writes the reference set as files.
  */
-import { parseScene, type Scene } from '../../src/core/index.ts';
+import { BVH_THRESHOLD, parseScene, type MeshDesc, type Scene } from '../../src/core/index.ts';
+import { buildMeshData } from '../../src/core/geometry/mesh-data.ts';
+import { parseObj } from '../../src/core/io/obj.ts';
+import { parsePly } from '../../src/core/io/ply.ts';
+import { decodeEnvironmentImage } from '../../src/core/scene/files.ts';
+import { compose, similarityMatrix, transformPositions } from './affine.ts';
 import { ARCHETYPES } from './archetypes.ts';
-import { SceneBuilder, type Feature, type SceneJson, type ShapeJson } from './builder.ts';
+import { MESH_ARCHETYPES } from './archetypes-mesh.ts';
+import {
+  SceneBuilder,
+  type Feature,
+  type MeshJson,
+  type MeshStorage,
+  type SceneJson,
+  type ShapeJson,
+} from './builder.ts';
+import { encodeMeshFile } from './mesh-files.ts';
 import { Rng } from './rng.ts';
 import { Similarity, normalize, type Vec3 } from './vec.ts';
+
+export type Family = 'classic' | 'mesh';
 
 export interface GeneratedScene {
   seed: number;
@@ -27,6 +50,8 @@ export interface GeneratedScene {
   features: Feature[];
   /** The similarity's scale factor. */
   scale: number;
+  /** Files the scene names, by their path relative to it (mesh family only). */
+  files: Record<string, Uint8Array>;
 }
 
 export interface GenerateOptions {
@@ -35,14 +60,18 @@ export interface GenerateOptions {
   height?: number;
   /** Restrict to one archetype by name. */
   archetype?: string;
+  /** Which family of archetypes (default 'classic'). */
+  family?: Family;
+  /** Prefix of the names of the files a scene names (default `s<seed>`). */
+  filePrefix?: string;
 }
 
 export function generateScene(seed: number, options: GenerateOptions = {}): GeneratedScene {
   const rng = new Rng(seed);
   const b = new SceneBuilder(rng);
-  const candidates = options.archetype
-    ? ARCHETYPES.filter((a) => a.name === options.archetype)
-    : ARCHETYPES;
+  const family = options.family ?? 'classic';
+  const all = family === 'mesh' ? MESH_ARCHETYPES : ARCHETYPES;
+  const candidates = options.archetype ? all.filter((a) => a.name === options.archetype) : all;
   if (candidates.length === 0) throw new Error(`unknown archetype ${options.archetype}`);
   const archetype = rng.weighted(candidates.map((a) => [a, a.weight] as const));
   const staged = archetype.build(b);
@@ -65,6 +94,28 @@ export function generateScene(seed: number, options: GenerateOptions = {}): Gene
   );
 
   const cam = staged.camera;
+  const prefix = options.filePrefix ?? `s${seed}`;
+  const files: Record<string, Uint8Array> = {};
+  const shapes = b.shapes.map((s, i) => {
+    const t = transformShape(s, sim);
+    const storage = b.meshStorage.get(i);
+    return t.type === 'mesh' && storage && storage !== 'inline'
+      ? meshFile(t, storage, `${prefix}-${i}`, files)
+      : t;
+  });
+  let environment: SceneJson['environment'];
+  const env = b.environment;
+  if (Array.isArray(env)) environment = env;
+  else if (env !== null) {
+    const file = `${prefix}-env.${env.format}`;
+    files[file] = env.bytes;
+    environment = {
+      type: 'map',
+      file,
+      ...(env.scale !== 1 ? { scale: env.scale } : {}),
+      ...(env.rotationY !== 0 ? { rotationY: env.rotationY } : {}),
+    };
+  }
   const json: SceneJson = {
     format: 'pathwise-scene/1',
     name: `generated ${seed} (${archetype.name})`,
@@ -84,10 +135,15 @@ export function generateScene(seed: number, options: GenerateOptions = {}): Gene
       spp: 64,
     },
     materials: b.materials,
-    shapes: b.shapes.map((s) => transformShape(s, sim)),
-    ...(b.environment !== null ? { environment: b.environment } : {}),
+    shapes,
+    ...(environment !== undefined ? { environment } : {}),
   };
-  const scene = parseScene(JSON.stringify(json));
+  const scene = readFiles(parseScene(JSON.stringify(json)), files);
+  const triangles = scene.shapes.reduce(
+    (n, s) => n + (s.type === 'mesh' ? s.data!.indices.length / 3 : 1),
+    0,
+  );
+  if (triangles >= BVH_THRESHOLD) b.tag('bvh');
   return {
     seed,
     archetype: archetype.name,
@@ -95,6 +151,49 @@ export function generateScene(seed: number, options: GenerateOptions = {}): Gene
     scene,
     features: [...b.features].sort(),
     scale,
+    files,
+  };
+}
+
+/**
+ * The scene with the files it names read from `files` and decoded, as
+ * resolveSceneFiles (src/core/scene/files.ts) does through a reader, but at once.
+ */
+function readFiles(scene: Scene, files: Record<string, Uint8Array>): Scene {
+  const limits = { maxTriangles: 10_000_000, sceneTriangles: 10_000_000 };
+  const shapes = scene.shapes.map((s): typeof s => {
+    if (s.type !== 'mesh' || s.data !== null) return s;
+    const bytes = files[s.file!];
+    const raw = s.file!.endsWith('.obj') ? parseObj(bytes, limits) : parsePly(bytes, limits);
+    return { ...s, data: buildMeshData(raw, s.transform) } satisfies MeshDesc;
+  });
+  const map = scene.environmentMap ?? null;
+  const environmentMap =
+    map === null ? null : { ...map, image: decodeEnvironmentImage(files[map.file], map, 'map') };
+  return { ...scene, shapes, environmentMap };
+}
+
+/** A mesh written to a file beside the scene; the JSON keeps its material and transform. */
+function meshFile(
+  m: MeshJson,
+  storage: Exclude<MeshStorage, 'inline'>,
+  name: string,
+  files: Record<string, Uint8Array>,
+): MeshJson {
+  const file = `${name}.${storage === 'obj' ? 'obj' : 'ply'}`;
+  files[file] = encodeMeshFile(
+    {
+      positions: m.positions!,
+      indices: m.indices ?? m.positions!.map((_, i) => i).slice(0, m.positions!.length / 3),
+      normals: m.normals,
+    },
+    storage,
+  );
+  return {
+    type: 'mesh',
+    material: m.material,
+    file,
+    ...(m.transform ? { transform: m.transform } : {}),
   };
 }
 
@@ -105,5 +204,20 @@ function transformShape(s: ShapeJson, sim: Similarity): ShapeJson {
       return { ...s, center: sim.point(s.center), radius: s.radius * sim.scale };
     case 'quad':
       return { ...s, corner: sim.point(s.corner), u: sim.vector(s.u), v: sim.vector(s.v) };
+    case 'mesh': {
+      // A transform takes the similarity on the left; positions without one are mapped
+      // (and their normals rotated: a similarity keeps unit normals unit).
+      const S = similarityMatrix(sim);
+      if (s.transform) return { ...s, transform: compose(S, s.transform) };
+      const out: MeshJson = { ...s, positions: transformPositions(S, s.positions!) };
+      if (s.normals) {
+        const n: number[] = [];
+        for (let i = 0; i < s.normals.length; i += 3) {
+          n.push(...normalize(sim.direction([s.normals[i], s.normals[i + 1], s.normals[i + 2]])));
+        }
+        out.normals = n;
+      }
+      return out;
+    }
   }
 }

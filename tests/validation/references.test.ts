@@ -1,110 +1,23 @@
 /**
- * Independent references (issue 8, deliverable 4): pathwise against
- * Mitsuba 3 and against the native anchor on the reference set
- * (reference-set.ts: the four scenes of the issue and 42 generated ones),
- * rendered by references/make-references.py at 32×24.
- *
- * Each reference is the mean of P parts rendered with different seeds,
- * with its per-pixel variance of the mean s²/P (P − 1 dof per pixel), so
- * its own noise enters the test: a region's variance is Σ var / n², on
- * Satterthwaite's degrees of freedom. pathwise renders SEEDS independent
- * seeds (NEE+MIS, Sobol: the defaults); its variance is their spread.
- * Every region (whole image, quadrants, 8×8 blocks) and channel is three
- * Welch tests (pathwise vs Mitsuba, pathwise vs native, Mitsuba vs native,
- * each with the rare-sample floor of `compare`); each rejects at p < ALPHA / (all tests of the file)
- * (Bonferroni), so a correct renderer fails this file with probability
- * ≤ ALPHA = 1e-3 over fresh seeds. The seeds are fixed: it cannot flake.
- *
- * A reference that is itself wrong for a known reason is listed in
- * KNOWN_REFERENCE_ERRORS with the reason (docs/validation.md); pathwise is
- * then checked against the other one only.
+ * Independent references for the classic family and the scenes of issue 8
+ * (issue 8, deliverable 4): pathwise against Mitsuba 3 and the native anchor,
+ * and the two references against each other. The tests and their
+ * false-alarm rate are in reference-check.ts.
  */
-import { readFileSync } from 'node:fs';
-import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
-import { compileScene, decodePfm, parseScene, type PfmImage } from '../../src/core/index.ts';
 import { FEATURES } from './builder.ts';
-import { bsdfSampleBound } from './consistency.ts';
-import { imageRegions, pilotSegments, renderReplicas, replicaMean } from './replicas.ts';
-import { welch } from './stats.ts';
+import { coverage, manifest, names, referenceSuite } from './reference-check.ts';
 
-const DIR = fileURLToPath(new URL('./references/', import.meta.url));
-const ALPHA = 1e-3;
-const SEEDS = 64;
-const WIDTH = 32;
-const HEIGHT = 24;
-/** Work per scene in segment-equivalents (a path = its segments + 2), as in consistency.ts. */
-const BUDGET = 1_400_000;
-/**
- * Float32 storage and Mitsuba's float32 accumulation: 1e-5 of the value,
- * as in tests/helpers/render.ts (a constant environment of 0.05 reads
- * 0.0500001274 in Mitsuba).
- */
-const FLOAT32_REL = 1e-5;
+export { KNOWN_REFERENCE_ERRORS } from './reference-check.ts';
 
-type Renderer = 'mitsuba' | 'native';
-interface ManifestEntry {
-  scene: string;
-  mitsuba: { parts: number; sppPerPart: number; notes: string[] };
-  native: { parts: number; sppPerPart: number };
-}
-
-const manifest = JSON.parse(readFileSync(`${DIR}references.json`, 'utf8')) as Record<
-  string,
-  ManifestEntry
->;
-const coverage = JSON.parse(readFileSync(`${DIR}set.json`, 'utf8')) as Record<
-  string,
-  { features?: string[] }
->;
-
-/**
- * References known to be wrong, and why (docs/validation.md): pathwise is
- * compared with the other one only, and the two must still disagree (so
- * the entry is removed once the reference is re-rendered right).
- */
-export const KNOWN_REFERENCE_ERRORS: Record<string, { renderer: Renderer; reason: string }> = {
-  // mitsuba_ref.py caps a huge sphere only when the bounding boxes of everything else lie
-  // outside it; here a small sphere's box dips below the ground, so the ground sphere
-  // (radius 1e5 × the scene's scale) stays a float32 sphere, whose hit points are off
-  // the surface by ~ulp(R): paths self-intersect and the ground reads dark (Mitsuba
-  // 0.040 and 0.024 against the native anchor's 0.067 and 0.066 for the image).
-  'gen-ground-2006': {
-    renderer: 'mitsuba',
-    reason: 'uncapped float32 ground sphere of radius 1e5',
-  },
-  'gen-ground-2009': {
-    renderer: 'mitsuba',
-    reason: 'uncapped float32 ground sphere of radius 1e5',
-  },
-};
-
-const names = Object.keys(manifest).sort();
-const regions = imageRegions(WIDTH, HEIGHT);
-// Per scene and region and channel: pathwise vs Mitsuba, pathwise vs native, Mitsuba vs native.
-const comparisons = names.length * 3 * regions.length * 3;
-const ALPHA_PER_TEST = ALPHA / comparisons;
-
-/**
- * A bound on any one sample of the three renderers: all are unidirectional
- * path tracers with NEE and power-heuristic MIS, whose light-sampled term
- * at a vertex is β·Le·(f cos/p_bsdf)·p_l p_bsdf/(p_l² + p_bsdf²) ≤ β·Le/2
- * (f cos/p_bsdf ≤ 1 for these BSDFs), plus at most β·Le where a path lands
- * on a light: 1.5 times the BSDF-only bound of consistency.ts.
- */
-function bound(name: string): number {
-  return 1.5 * bsdfSampleBound(parseScene(readFileSync(`${DIR}${manifest[name].scene}`, 'utf8')));
-}
-
-function load(name: string, renderer: Renderer, suffix = ''): PfmImage {
-  return decodePfm(readFileSync(`${DIR}${name}.${renderer}${suffix}.pfm`));
-}
+const classic = names.filter((n) => coverage[n]?.family !== 'mesh');
 
 describe('the reference set', () => {
   it('has at least 40 scenes, rendered by both references, covering every feature of the generator', () => {
-    expect(names.length).toBeGreaterThanOrEqual(40);
-    expect(names.sort()).toEqual(Object.keys(coverage).sort());
-    const features = new Set(Object.values(coverage).flatMap((c) => c.features ?? []));
+    expect(classic.length).toBeGreaterThanOrEqual(40);
+    expect(names).toEqual(Object.keys(coverage).sort());
+    for (const n of classic) expect(manifest[n].native, n).toBeDefined();
+    const features = new Set(classic.flatMap((n) => coverage[n].features ?? []));
     for (const f of FEATURES) expect(features.has(f), f).toBe(true);
     for (const issue of [
       'issue-sphere-floor',
@@ -112,132 +25,9 @@ describe('the reference set', () => {
       'issue-ground-sphere-1e5',
       'issue-grazing-quad',
     ]) {
-      expect(names).toContain(issue);
+      expect(classic).toContain(issue);
     }
   });
 });
 
-/** Per region and channel: mean and variance (with dof) of a reference image. */
-function referenceRegions(name: string, renderer: Renderer) {
-  const ref = load(name, renderer);
-  const refVar = load(name, renderer, '-var');
-  expect([ref.width, ref.height]).toEqual([WIDTH, HEIGHT]);
-  const parts = manifest[name][renderer].parts;
-  return regions.map((reg) =>
-    [0, 1, 2].map((c) => {
-      const n = (reg.x1 - reg.x0) * (reg.y1 - reg.y0);
-      let sum = 0;
-      let v = 0;
-      let v2 = 0;
-      for (let y = reg.y0; y < reg.y1; y++) {
-        for (let x = reg.x0; x < reg.x1; x++) {
-          const i = (y * WIDTH + x) * 3 + c;
-          sum += ref.rgb[i];
-          v += refVar.rgb[i];
-          v2 += refVar.rgb[i] * refVar.rgb[i];
-        }
-      }
-      const mean = sum / n;
-      const precision = FLOAT32_REL * Math.abs(mean);
-      return {
-        mean,
-        samples: n * parts * manifest[name][renderer].sppPerPart,
-        variance: v / (n * n) + precision * precision,
-        // Satterthwaite: a sum of per-pixel variances, each on parts − 1 dof.
-        dof: v2 > 0 ? (v * v) / (v2 / (parts - 1)) : Infinity,
-      };
-    }),
-  );
-}
-
-interface Estimate {
-  mean: number;
-  variance: number;
-  dof: number;
-  samples: number;
-}
-
-/**
- * Welch's test of two renders whose every sample lies in [0, V]. Heavy
- * tails (a tiny bright light seen directly or through glass) make the side
- * with fewer samples miss rare huge samples and read low with a small
- * spread; as in consistency.ts, the side that reads low by Δ gets the
- * variance floor ΔV/N (missed samples of size ≤ V), which rejects only when
- * ≥ z² ≈ 30 expected rare samples would all have been missed.
- */
-function compare(a: Estimate, b: Estimate, bound: number) {
-  const floor = (low: Estimate, high: Estimate) => ((high.mean - low.mean) * bound) / low.samples;
-  let [va, dfa, vb, dfb] = [a.variance, a.dof, b.variance, b.dof];
-  if (a.mean < b.mean && floor(a, b) > va) [va, dfa] = [floor(a, b), Infinity];
-  if (b.mean < a.mean && floor(b, a) > vb) [vb, dfb] = [floor(b, a), Infinity];
-  return welch(a.mean, va, dfa, b.mean, vb, dfb);
-}
-
-function describeFailure(
-  label: string,
-  region: string,
-  c: number,
-  a: number,
-  b: number,
-  w: { t: number; nu: number; p: number },
-): string {
-  return (
-    `${label} ${region} channel ${c}: ${a.toPrecision(6)} vs ${b.toPrecision(6)} ` +
-    `(${((a / b - 1) * 100).toFixed(2)} %), t = ${w.t.toFixed(1)}, ν = ${w.nu.toFixed(0)}, p = ${w.p.toExponential(1)}`
-  );
-}
-
-describe.each(names)('%s', (name) => {
-  const entry = manifest[name];
-  const known = KNOWN_REFERENCE_ERRORS[name];
-
-  const V = bound(name);
-
-  it('has two references that agree with each other (or a known, explained error)', () => {
-    const m = referenceRegions(name, 'mitsuba');
-    const n = referenceRegions(name, 'native');
-    const failures: string[] = [];
-    for (let r = 0; r < regions.length; r++) {
-      for (let c = 0; c < 3; c++) {
-        const w = compare(m[r][c], n[r][c], V);
-        if (!(w.p >= ALPHA_PER_TEST))
-          failures.push(
-            describeFailure('mitsuba vs native', regions[r].name, c, m[r][c].mean, n[r][c].mean, w),
-          );
-      }
-    }
-    if (known) expect(failures.length, `known: ${known.reason}`).toBeGreaterThan(0);
-    else expect(failures, `p < ${ALPHA_PER_TEST.toExponential(2)}`).toEqual([]);
-  });
-
-  it(`pathwise matches Mitsuba 3 (${entry.mitsuba.parts} × ${entry.mitsuba.sppPerPart} spp) and the native anchor (${entry.native.parts} × ${entry.native.sppPerPart} spp)`, () => {
-    const scene = parseScene(readFileSync(`${DIR}${entry.scene}`, 'utf8'));
-    const compiled = compileScene(scene);
-    const config = { estimator: 'nee-mis', sampler: 'sobol' } as const;
-    const perPath = pilotSegments(scene, compiled, config, WIDTH, HEIGHT) + 2;
-    let spp = 1;
-    while (spp * 2 * perPath * WIDTH * HEIGHT * SEEDS <= BUDGET) spp *= 2;
-    const seeds = Array.from({ length: SEEDS }, (_, k) => 424_242 + 7919 * k);
-    const ours = renderReplicas(scene, compiled, { ...config, spp }, seeds, WIDTH, HEIGHT, regions);
-    expect(ours.stats.rejected).toBe(0);
-
-    const failures: string[] = [];
-    for (const renderer of ['mitsuba', 'native'] as const) {
-      if (known?.renderer === renderer) continue;
-      const ref = referenceRegions(name, renderer);
-      for (let r = 0; r < regions.length; r++) {
-        for (let c = 0; c < 3; c++) {
-          const m = replicaMean(ours, r, c);
-          const a = { ...m, dof: SEEDS - 1, samples: ours.samples[r] };
-          const b = ref[r][c];
-          const w = compare(a, b, V);
-          if (!(w.p >= ALPHA_PER_TEST))
-            failures.push(
-              describeFailure(`pathwise vs ${renderer}`, regions[r].name, c, a.mean, b.mean, w),
-            );
-        }
-      }
-    }
-    expect(failures, `p < ${ALPHA_PER_TEST.toExponential(2)}`).toEqual([]);
-  });
-});
+referenceSuite(classic);

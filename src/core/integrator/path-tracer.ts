@@ -297,14 +297,16 @@ export class PathTracer {
       // Shading frame: glass needs the outward normal to know inside from
       // outside; every other surface scatters on both sides, so its frame
       // faces wo. With vertex normals the shading normal decides both, as in
-      // Mitsuba 3 (the geometric normal still decides emission and offsets).
+      // Mitsuba 3 (the geometric normal still decides emission and offsets):
+      // wo behind the shading normal flips it (Mitsuba's 'twosided' mirrors wi
+      // in the shading frame), even where wo is in front of the geometric one.
       let sx = snx,
         sy = sny,
         sz = snz;
       if (materials[mo + M_TYPE] !== MATERIAL_DIELECTRIC && snx * wox + sny * woy + snz * woz < 0) {
-        sx = -nx;
-        sy = -ny;
-        sz = -nz;
+        sx = -snx;
+        sy = -sny;
+        sz = -snz;
       }
       frame.nx = sx;
       frame.ny = sy;

@@ -15,7 +15,14 @@ reflected radiance do not), and Mitsuba is not scale invariant: it offsets
 spawned rays by (1 + max|p|) * RayEpsilon, an absolute ~1e-4 for coordinates
 below 1, which at scale 1e-3 moves a grazing light's shadow boundary by a
 visible amount (found on gen-grazing-2001 and -2004, see docs/validation.md).
-The native anchor renders the scene as it is.
+Meshes are moved and scaled by the same similarity, folded into their
+`transform` (positions and files stay as they are); mesh and environment-map
+files are named by absolute paths in the copy, which lives elsewhere. A mesh
+far larger than the rest (a ground sheet 100 times the size of the camera's
+surroundings) is left out of the bounds, as a huge sphere is.
+The native anchor renders the scene as it is; it renders only spheres and
+quads under a constant environment, so a scene with a mesh or an environment
+map (the generator's mesh family) has the Mitsuba reference alone.
 From the parts it writes, per renderer, the per-pixel mean (NAME.R.pfm) and
 the per-pixel variance of that mean, s^2 / P across the parts
 (NAME.R-var.pfm), so the test can account for the reference's own noise.
@@ -41,9 +48,16 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-def normalized(scene, huge_ratio):
+def needs_mitsuba_only(scene):
+    """Whether the scene has a mesh or an environment map: the native anchor has neither."""
+    return isinstance(scene.get("environment"), dict) or any(
+        sh["type"] not in ("sphere", "quad") for sh in scene["shapes"])
+
+
+def normalized(scene, huge_ratio, base_dir):
     """The scene moved and scaled so that its content (camera and every shape but
-    spheres huge_ratio times larger than the rest) spans ~10 around the origin."""
+    spheres and meshes huge_ratio times larger than the rest) spans ~10 around the
+    origin."""
     pts = [scene["camera"]["position"], scene["camera"]["target"]]
     for sh in scene["shapes"]:
         if sh["type"] == "quad":
@@ -54,6 +68,13 @@ def normalized(scene, huge_ratio):
     for sh in small:
         if sh["radius"] <= huge_ratio * max(ext0, 1e-300):
             pts += [[sh["center"][i] + d * sh["radius"] for i in range(3)] for d in (-1, 1)]
+    if any(sh["type"] == "mesh" for sh in scene["shapes"]):
+        import mitsuba_ref  # the reference's own mesh loader (transforms applied in float64)
+        meshes = mitsuba_ref.scene_meshes(scene, base_dir)
+        ext1 = np.ptp(np.array(pts), axis=0).max()
+        for m in meshes.values():
+            if m.lo is not None and np.max(m.hi - m.lo) <= huge_ratio * max(ext1, 1e-300):
+                pts += [list(m.lo), list(m.hi)]
     p = np.array(pts, dtype=np.float64)
     center = (p.min(0) + p.max(0)) / 2
     k = 10.0 / np.ptp(p, axis=0).max()
@@ -65,11 +86,25 @@ def normalized(scene, huge_ratio):
     for key in ("aperture", "focusDistance"):
         if key in cam:
             cam[key] = float(cam[key] * k)
+    # x -> k (x - center), as a row-major 4x4 on the left of each mesh's transform.
+    N = np.array([[k, 0, 0, -k * center[0]], [0, k, 0, -k * center[1]],
+                  [0, 0, k, -k * center[2]], [0, 0, 0, 1]], dtype=np.float64)
     for sh in out["shapes"]:
         if sh["type"] == "sphere":
             sh["center"], sh["radius"] = pt(sh["center"]), float(sh["radius"] * k)
-        else:
+        elif sh["type"] == "quad":
             sh["corner"], sh["u"], sh["v"] = pt(sh["corner"]), vec(sh["u"]), vec(sh["v"])
+        else:
+            M = np.array(sh.get("transform", np.eye(4).reshape(-1).tolist()),
+                         dtype=np.float64).reshape(4, 4)
+            T = N @ M
+            T[3] = [0, 0, 0, 1]
+            sh["transform"] = [float(x) for x in T.reshape(-1)]
+            if "file" in sh:
+                sh["file"] = os.path.abspath(os.path.join(base_dir, sh["file"]))
+    env = out.get("environment")
+    if isinstance(env, dict):
+        env["file"] = os.path.abspath(os.path.join(base_dir, env["file"]))
     return out, k, [float(x) for x in center]
 
 
@@ -86,7 +121,7 @@ def main():
     ap.add_argument("--renderers", default="mitsuba,native")
     ap.add_argument("names", nargs="*")
     args = ap.parse_args()
-    sys.path.insert(0, args.tools)
+    sys.path.insert(0, os.path.abspath(args.tools))
     from pfm import read_pfm, write_pfm  # noqa: E402
 
     manifest_path = os.path.join(HERE, "references.json")
@@ -101,11 +136,14 @@ def main():
         entry = manifest.get(name, {})
         entry["scene"] = name + ".json"
         scene = json.load(open(scene_path))
-        norm, norm_scale, center = normalized(scene, args.cap_ratio)
+        norm, norm_scale, center = normalized(scene, args.cap_ratio, HERE)
         norm_path = os.path.join(tmp, name + ".normalized.json")
         with open(norm_path, "w") as f:
             json.dump(norm, f)
         for renderer in args.renderers.split(","):
+            if renderer == "native" and needs_mitsuba_only(scene):
+                entry.pop("native", None)
+                continue
             parts, notes, seconds = [], [], 0.0
             for k in range(args.parts):
                 out = os.path.join(tmp, f"{name}.{renderer}.{k}.pfm")
@@ -147,6 +185,10 @@ def main():
         with open(manifest_path, "w") as f:
             json.dump(manifest, f, indent=2, sort_keys=True)
             f.write("\n")
+        if "mitsuba" in entry and needs_mitsuba_only(scene):
+            m = entry["mitsuba"]["mean"]
+            print(f"{name}: mitsuba {m[0]:.5g} {m[1]:.5g} {m[2]:.5g}  "
+                  f"({entry['mitsuba']['seconds']} s)", flush=True)
         if "mitsuba" not in entry or "native" not in entry:
             continue
         m, n = entry["mitsuba"]["mean"], entry["native"]["mean"]
