@@ -5,10 +5,15 @@
  * and prints the median M paths/s.
  *   node scripts/run-ts.mjs bench/inproc.ts SCENE.json [W H SPP BOUNCES REPS SAMPLER ACCEL]
  * (SAMPLER: independent | sobol, default the tracer's; ACCEL: bvh | list, default by size).
+ * SCENE `@million` or `@bunny`: the mesh scenes of bench/mesh-scenes.ts (the Cornell box
+ * with a generated 1,000,000-triangle mesh or the Stanford bunny in place of its boxes).
  */
 import { readFileSync } from 'node:fs';
+import { createRequire } from 'node:module';
+import { resolve } from 'node:path';
 import { Film, PathTracer, RenderStats, compileScene, parseScene } from '../src/core/index.ts';
-import type { SamplerKind } from '../src/core/index.ts';
+import type { SamplerKind, Scene } from '../src/core/index.ts';
+import { bunnyMesh, cornellWith, millionMesh } from './mesh-scenes.ts';
 
 const [file, w = '128', h = '128', sppArg = '8', bouncesArg = '6', repsArg = '5', sampler, accel] =
   process.argv.slice(2);
@@ -17,7 +22,18 @@ const height = Number(h);
 const spp = Number(sppArg);
 const reps = Number(repsArg);
 const t0 = performance.now();
-const scene = parseScene(readFileSync(file, 'utf8'));
+function loadScene(name: string): Scene {
+  if (name === '@million') {
+    const m = millionMesh();
+    return cornellWith(m.positions, m.indices);
+  }
+  if (name === '@bunny') {
+    const m = bunnyMesh(createRequire(resolve('package.json')));
+    return cornellWith(m.positions, m.indices);
+  }
+  return parseScene(readFileSync(name, 'utf8'));
+}
+const scene = loadScene(file);
 const t1 = performance.now();
 const compiled = compileScene(scene, {
   bvh: accel === 'bvh' ? true : accel === 'list' ? false : undefined,
@@ -32,8 +48,11 @@ const tracer = new PathTracer(compiled, {
   camera: scene.camera,
 });
 let sink = 0;
+/** FNV-1a over the film's bytes: equal digests mean bit-identical images (before/after checks). */
+let digest = 0;
 const rates: number[] = [];
 const cpuRates: number[] = [];
+const segCpuRates: number[] = [];
 for (let r = 0; r <= reps; r++) {
   const film = new Film(width, height);
   const stats = new RenderStats();
@@ -44,9 +63,11 @@ for (let r = 0; r <= reps; r++) {
   const cu = process.cpuUsage(c);
   const cpuSec = (cu.user + cu.system) / 1e6;
   sink += film.sums[(width * (height >> 1) + (width >> 1)) * 4];
+  if (r === 0) digest = fnv1a(new Uint8Array(film.buffer));
   if (r > 0) {
     rates.push(stats.paths / sec / 1e6);
     cpuRates.push(stats.paths / cpuSec / 1e6);
+    segCpuRates.push(stats.segments / cpuSec / 1e6);
   } else
     process.stderr.write(
       `first render ${sec.toFixed(3)} s, ${(stats.segments / stats.paths).toFixed(3)} segments/path\n`,
@@ -54,13 +75,22 @@ for (let r = 0; r <= reps; r++) {
 }
 rates.sort((a, b) => a - b);
 cpuRates.sort((a, b) => a - b);
+segCpuRates.sort((a, b) => a - b);
 process.stdout.write(
   JSON.stringify({
     parse_ms: t1 - t0,
     compile_ms: t2 - t1,
     mpaths_per_s: rates[rates.length >> 1],
     mpaths_per_cpu_s: cpuRates[cpuRates.length >> 1],
+    msegments_per_cpu_s: segCpuRates[segCpuRates.length >> 1],
     all: rates.map((r) => +r.toFixed(3)),
     sink,
+    film_fnv1a: digest.toString(16),
   }) + '\n',
 );
+
+function fnv1a(bytes: Uint8Array): number {
+  let h = 0x811c9dc5;
+  for (let i = 0; i < bytes.length; i++) h = Math.imul(h ^ bytes[i], 0x01000193);
+  return h >>> 0;
+}

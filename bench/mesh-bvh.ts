@@ -21,61 +21,13 @@ import {
   RenderStats,
   compileScene,
   parseScene,
-  validateScene,
   type Scene,
 } from '../src/core/index.ts';
+import { bunnyMesh, cornellWith, millionMesh } from './mesh-scenes.ts';
 
 const reps = Number(process.argv[2] ?? 5);
 const out = process.argv[3] ?? 'bench/results/mesh-bvh.json';
 const require = createRequire(resolve('package.json'));
-const bunny = require('bunny') as { positions: number[][]; cells: number[][] };
-
-/** A sphere of nu × nv quads (2·nu·nv triangles) with a bumpy radius. */
-function bumpySphere(nu: number, nv: number, radius: number, center: number[]) {
-  const positions = new Float64Array(nu * (nv + 1) * 3);
-  let k = 0;
-  for (let j = 0; j <= nv; j++) {
-    const theta = (Math.PI * j) / nv;
-    for (let i = 0; i < nu; i++) {
-      const phi = (2 * Math.PI * i) / nu;
-      const bump =
-        1 + 0.04 * Math.sin(7 * phi) * Math.sin(5 * theta) + 0.01 * Math.sin(40 * phi + 3 * theta);
-      const r = radius * bump;
-      positions[k++] = center[0] + r * Math.sin(theta) * Math.cos(phi);
-      positions[k++] = center[1] + r * Math.cos(theta);
-      positions[k++] = center[2] + r * Math.sin(theta) * Math.sin(phi);
-    }
-  }
-  const indices = new Uint32Array(nu * nv * 6);
-  k = 0;
-  for (let j = 0; j < nv; j++) {
-    for (let i = 0; i < nu; i++) {
-      const a = j * nu + i;
-      const b = j * nu + ((i + 1) % nu);
-      const c = (j + 1) * nu + ((i + 1) % nu);
-      const d = (j + 1) * nu + i;
-      indices.set([a, c, b, a, d, c], k);
-      k += 6;
-    }
-  }
-  return { positions, indices };
-}
-
-const cornell = parseScene(readFileSync('scenes/cornell.json', 'utf8'));
-
-/** The Cornell box's walls and light with one mesh in place of its two boxes. */
-function cornellWith(positions: Float64Array, indices: Uint32Array): Scene {
-  const scene = validateScene({
-    ...JSON.parse(readFileSync('scenes/cornell.json', 'utf8')),
-    shapes: [
-      ...JSON.parse(readFileSync('scenes/cornell.json', 'utf8')).shapes.slice(0, 6),
-      { type: 'mesh', material: 'white', positions: [0, 0, 0, 1, 0, 0, 0, 1, 0] },
-    ],
-  });
-  const mesh = scene.shapes[6];
-  if (mesh.type === 'mesh') mesh.data = { positions, indices, normals: null, skipped: 0 };
-  return scene;
-}
 
 const median = (xs: number[]) => [...xs].sort((a, b) => a - b)[xs.length >> 1];
 const cpuMs = (c: NodeJS.CpuUsage) => (c.user + c.system) / 1000;
@@ -133,15 +85,9 @@ function throughput(scene: Scene) {
   };
 }
 
-const bunnyPositions = Float64Array.from(bunny.positions.flat());
-const bunnyIndices = Uint32Array.from(bunny.cells.flat());
-// Bunny at the Cornell box's scale (as in scenes/cornell-bunny.json).
-for (let i = 0; i < bunnyPositions.length; i += 3) {
-  bunnyPositions[i] = 278 + 25 * bunnyPositions[i];
-  bunnyPositions[i + 1] = 0.08 + 25 * bunnyPositions[i + 1];
-  bunnyPositions[i + 2] = 290 + 25 * bunnyPositions[i + 2];
-}
-const big = bumpySphere(1000, 500, 150, [278, 160, 280]);
+const { positions: bunnyPositions, indices: bunnyIndices } = bunnyMesh(require);
+const cornell = parseScene(readFileSync('scenes/cornell.json', 'utf8'));
+const big = millionMesh();
 const bigTriangles = big.indices.length / 3;
 
 const results = {

@@ -11,6 +11,7 @@ await build({
     'pool-node': 'bench/pool-node.ts',
     'pool-node-worker': 'bench/pool-node-worker.ts',
     inproc: 'bench/inproc.ts',
+    rays: 'bench/rays.ts',
     'bvh-build': 'bench/bvh-build.ts',
   },
   outdir: 'dist/bench',

@@ -89,8 +89,23 @@ const R_T = 6;
  * through `r` (setTriangleRay); its direction need not be unit length.
  *
  * The distance travels through the ray record rather than as a number argument and
- * result: where V8 does not inline a call (this test is too long for V8's inlining
- * budget), a double passed or returned is boxed on the heap, one allocation per test.
+ * result: where V8 does not inline a call, a double passed or returned is boxed on the
+ * heap, one allocation per test.
+ *
+ * This is the common case: every edge function's sign certain. Anything closer to an
+ * edge takes the careful path out of line (exact signs, the tie rule), which gives the
+ * same answer wherever both apply. (The function is still a call from the BVH loops: at
+ * 679 bytes of bytecode it exceeds V8's inlining limit of 460; a version split to 448
+ * bytes was not inlined either, the loops' inlining budget being spent, and forcing the
+ * inlining with V8 flags gained nothing on the 1M-triangle mesh: docs/performance.md.)
+ *
+ * Certainty of a sign, without Math.abs (each call is ~14 bytes of bytecode): Shewchuk's
+ * bound for u = u1 − u2 is |u| > C·fl(|u1| + |u2|), and fl(|u1| + |u2|) = max(|u|, |s|)
+ * with s = fl(u1 + u2) (one of the two is the same rounded operation on the same
+ * magnitudes, the other is smaller), so the test is |u| > |C·s| for a finite u, i.e.
+ * u + C·s and u − C·s of one sign: their product positive (a product that underflows to
+ * 0 sends the triangle to the careful path, which is always right). The sign of a rounded
+ * sum is exact.
  */
 export function hitTriangle(
   positions: Float64Array,
@@ -99,9 +114,6 @@ export function hitTriangle(
   tr: TriangleRay,
   record: Float64Array,
 ): boolean {
-  // The common case, kept small so that V8 inlines it into the traversal loops: every
-  // edge function clearly non-zero. Anything closer to an edge takes the careful path
-  // (exact signs, the tie rule), which gives the same answer wherever both apply.
   const kx = tr.kx,
     ky = tr.ky,
     kz = tr.kz;
@@ -124,33 +136,46 @@ export function hitTriangle(
     cy = positions[ic + ky] - o1 - sy * cz;
   const u1 = cx * by,
     u2 = cy * bx;
-  const u = u1 - u2;
-  const eu = DIFF_OF_PRODUCTS_ERROR * (Math.abs(u1) + Math.abs(u2));
   const v1 = ax * cy,
     v2 = ay * cx;
-  const v = v1 - v2;
-  const ev = DIFF_OF_PRODUCTS_ERROR * (Math.abs(v1) + Math.abs(v2));
+  const u = u1 - u2,
+    v = v1 - v2;
+  const cu = DIFF_OF_PRODUCTS_ERROR * (u1 + u2),
+    cv = DIFF_OF_PRODUCTS_ERROR * (v1 + v2);
+  if (!((u + cu) * (u - cu) > 0 && (v + cv) * (v - cv) > 0)) {
+    return hitTriangleCareful(positions, indices, tri, tr, record);
+  }
   // Signs that are certain and differ: a miss (the usual exit, before W is computed).
-  if ((u < -eu && v > ev) || (u > eu && v < -ev)) return false;
+  if (u < 0 !== v < 0) return false;
   const w1 = bx * ay,
     w2 = by * ax;
   const w = w1 - w2;
-  const ew = DIFF_OF_PRODUCTS_ERROR * (Math.abs(w1) + Math.abs(w2));
-  const tMax = record[R_T];
-  if (!(Math.abs(u) > eu && Math.abs(v) > ev && Math.abs(w) > ew)) {
-    const t = intersectTriangleBary(positions, indices, tri, tr, tMax, null);
-    if (!(t < tMax)) return false;
-    record[R_T] = t;
-    return true;
-  }
-  if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return false;
+  const cw = DIFF_OF_PRODUCTS_ERROR * (w1 + w2);
+  if (!((w + cw) * (w - cw) > 0)) return hitTriangleCareful(positions, indices, tri, tr, record);
+  if (u < 0 !== w < 0) return false;
   const det = u + v + w;
   const tScaled = tr.sz * (u * az + v * bz + w * cz);
+  const tMax = record[R_T];
   if (det > 0 ? tScaled <= 0 || tScaled >= tMax * det : tScaled >= 0 || tScaled <= tMax * det) {
     return false;
   }
   const t = tScaled / det;
   if (!(t > 0 && t < tMax)) return false;
+  record[R_T] = t;
+  return true;
+}
+
+/** hitTriangle by the careful path (intersectTriangleBary), out of line. */
+function hitTriangleCareful(
+  positions: Float64Array,
+  indices: Uint32Array | Int32Array,
+  tri: number,
+  tr: TriangleRay,
+  record: Float64Array,
+): boolean {
+  const tMax = record[R_T];
+  const t = intersectTriangleBary(positions, indices, tri, tr, tMax, null);
+  if (!(t < tMax)) return false;
   record[R_T] = t;
   return true;
 }
