@@ -68,6 +68,7 @@ class NodeWebWorker {
   addEventListener(type: string, listener: (event: { data?: unknown; message?: string }) => void) {
     if (type === 'message') this.w.on('message', (data) => listener({ data }));
     if (type === 'error') this.w.on('error', (e) => listener({ message: e.message }));
+    if (type === 'exit') this.w.on('exit', () => listener({}));
   }
   removeEventListener(): void {}
   terminate(): void {
@@ -100,6 +101,7 @@ async function run(threads: number): Promise<{ seconds: number; hash: string }> 
     stripeRows,
     film: job instanceof SharedFilmJob ? job.filmBuffer : undefined,
     ctrl: job instanceof SharedFilmJob ? job.ctrlBuffer : undefined,
+    journal: job instanceof SharedFilmJob ? job.journalBuffer : undefined,
   };
   job.setVersion(1);
   job.setTarget(spp);
@@ -111,6 +113,8 @@ async function run(threads: number): Promise<{ seconds: number; hash: string }> 
     nextTask: () => job.nextTask?.(1) ?? null,
     onResult: (r) => job.onResult?.(r),
     onWorkerError: (m) => (failure = m),
+    onTaskLost: (t) => job.onTaskLost?.(t),
+    recover: () => job.recover?.() ?? true,
   };
   const t0 = performance.now();
   const pool = new WorkerPool(

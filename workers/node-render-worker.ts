@@ -2,10 +2,11 @@
  * worker_threads entry of the command line. The first message brings the
  * job and the scene the main thread compiled (shared memory, no parsing or
  * BVH build here); the worker then says when it was ready to trace. For
- * each round that follows ({ s0, s1 }) it claims stripes from the shared
- * counter until none are left, adds samples [s0, s1) of each into the
- * shared film, and replies with its counters for the round and its heap.
- * The film's sums are exact, so which worker renders which stripe, and in
+ * each round that follows ({ s0, s1 }) it claims stripes until none are
+ * left, adds samples [s0, s1) of each into the shared film through its
+ * journal (round-claims.ts: a worker may die anywhere, and its stripes are
+ * finished or rendered again by others), and replies with its heap. The
+ * film's sums are exact, so which worker renders which stripe, and in
  * which order, never changes a bit.
  */
 import { getHeapStatistics } from 'node:v8';
@@ -17,12 +18,21 @@ import {
   type PackedScene,
   type PathTracer,
 } from '../src/core/index.ts';
-import { createTracer, renderStripe, stripeCount, type StripeJob } from './stripes.ts';
+import { claimStripe, renderStripeRound, roundMemoryFrom, type Die } from './round-claims.ts';
+import { createTracer, type StripeJob } from './stripes.ts';
 
-interface WorkerInput {
+export interface WorkerInput {
   film: SharedArrayBuffer;
-  /** Int32Array[0]: next stripe to claim; [1]: stripes finished (both reset by the main thread per round). */
-  counter: SharedArrayBuffer;
+  /** The round memory's buffers (round-claims.ts roundBuffers). */
+  round: SharedArrayBuffer[];
+  /** This worker's slot and its journal (one stripe of film). */
+  slot: number;
+  journal: SharedArrayBuffer;
+  /**
+   * Test hook (RenderPool.crashWorker): per slot, a step of
+   * renderStripeRound at which to throw (0: none), read once per stripe.
+   */
+  faults: SharedArrayBuffer;
 }
 
 /** Sent once the main thread has compiled the scene (the worker starts before that). */
@@ -45,27 +55,24 @@ export interface ReadyReport {
   readyAt: number;
 }
 
+/** The round's counters are summed from its stripes (round-claims.ts), not sent here. */
 export interface RoundReport {
   type: 'done';
-  paths: number;
-  segments: number;
-  rejected: number;
   heapBytes: number;
 }
 
-const { film: filmBuffer, counter: counterBuffer } = workerData as WorkerInput;
-const counter = new Int32Array(counterBuffer);
+const input = workerData as WorkerInput;
+const memory = roundMemoryFrom(input.round);
+const faults = new Int32Array(input.faults);
 let tracer: PathTracer;
 let film: Film;
 let job: StripeJob;
-let stripes = 0;
 
 parentPort!.on('message', (m: InitMessage | RoundMessage) => {
   if (m.type === 'init') {
     job = m.job;
     tracer = createTracer(job, unpackScene(m.scene));
-    film = new Film(job.width, job.height, filmBuffer);
-    stripes = stripeCount(job.height, job.stripeRows);
+    film = new Film(job.width, job.height, input.film);
     const ready: ReadyReport = {
       type: 'ready',
       readyAt: performance.timeOrigin + performance.now(),
@@ -75,17 +82,30 @@ parentPort!.on('message', (m: InitMessage | RoundMessage) => {
   }
   const stats = new RenderStats();
   for (;;) {
-    const stripe = Atomics.add(counter, 0, 1);
-    if (stripe >= stripes) break;
-    renderStripe(tracer, film, job, stripe, m.s0, m.s1, stats);
-    Atomics.add(counter, 1, 1);
+    const stripe = claimStripe(memory, input.slot);
+    if (stripe < 0) break;
+    const crashAt = Atomics.load(faults, input.slot);
+    const die: Die | undefined = crashAt
+      ? (step) => {
+          if (step !== crashAt) return;
+          Atomics.store(faults, input.slot, 0);
+          throw new Error(`render worker crashed at step ${step} of a stripe (test hook)`);
+        }
+      : undefined;
+    renderStripeRound(
+      memory,
+      input.slot,
+      tracer,
+      film,
+      input.journal,
+      job.stripeRows,
+      stripe,
+      m.s0,
+      m.s1,
+      stats,
+      die,
+    );
   }
-  const done: RoundReport = {
-    type: 'done',
-    paths: stats.paths,
-    segments: stats.segments,
-    rejected: stats.rejected,
-    heapBytes: getHeapStatistics().used_heap_size,
-  };
+  const done: RoundReport = { type: 'done', heapBytes: getHeapStatistics().used_heap_size };
   parentPort!.postMessage(done);
 });

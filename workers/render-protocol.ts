@@ -17,7 +17,7 @@ export const C_LOCK = 0;
 export const C_GEN = 1;
 /** Bumped when the job's configuration changes; a worker renders only under the version it holds. */
 export const C_CONFIG = 2;
-/** Next claim: claim c is pass ⌊c / stripes⌋ of stripe c mod stripes. */
+/** Next new claim: claim c is pass ⌊c / stripes⌋ of stripe order[c mod stripes]. */
 export const C_CLAIM = 3;
 /** Target passes (samples per pixel). */
 export const C_TARGET = 4;
@@ -27,8 +27,36 @@ export const C_COMMITS = 6;
 /** Segments traced, modulo 2^32 (read as a difference). */
 export const C_SEGMENTS = 7;
 export const C_REJECTED = 8;
+/** Entries in the reclaim list (a hint for a quick look; the entries themselves are the truth). */
+export const C_RECLAIMS = 9;
+/**
+ * The commit journal (see shared-claims.ts): the row whose commit is under
+ * way (-1: none) and the pass that commit adds. The row's new samples sit
+ * in the job's journal buffer meanwhile, so a commit cut short by a dying
+ * worker can be finished by whoever breaks its lock.
+ */
+export const C_JOURNAL_ROW = 10;
+export const C_JOURNAL_PASS = 11;
+
+/**
+ * Workers a control block keeps records for: one slot per live worker of
+ * the pool (at most 64) plus the dead ones not yet recovered.
+ */
+export const MAX_SLOTS = 128;
+/**
+ * The reclaim list: MAX_SLOTS words, each an open claim that no live worker
+ * holds (its worker died) or -1. Open claims number at most the pool's
+ * workers (shared-claims.ts says why), so the list cannot overflow.
+ */
+export const RECLAIM_BASE = 16;
+/** Per slot: the token of the worker using it, the claim it holds (-1: none), and its generation. */
+export const SLOT_BASE = RECLAIM_BASE + MAX_SLOTS;
+export const SLOT_WORDS = 3;
 /** First of `stripes` words: passes finished per stripe in the current generation. */
-export const C_DONE = 16;
+export const C_DONE = SLOT_BASE + MAX_SLOTS * SLOT_WORDS;
+
+/** The main thread's lock token; a worker's is its own, ≥ 2, never reused on the page. */
+export const MAIN_TOKEN = 1;
 
 /**
  * After the stripe words, one word per image row: the C_COMMITS value of
@@ -38,16 +66,27 @@ export function rowStampBase(stripes: number): number {
   return C_DONE + stripes;
 }
 
-export function controlWords(stripes: number, height: number): number {
+/**
+ * After the stamps, one word per row: passes committed to the row in the
+ * current generation. A commit adds pass p only to a row that has exactly
+ * p, so no pass can count twice, whoever commits it and however often.
+ */
+export function rowPassBase(stripes: number, height: number): number {
   return rowStampBase(stripes) + height;
 }
 
+export function controlWords(stripes: number, height: number): number {
+  return rowPassBase(stripes, height) + height;
+}
+
 /**
- * Spin lock. Held only for a claim or a row copy (microseconds), so the
- * main thread, which may not block with Atomics.wait, can afford to spin.
+ * Spin lock holding the owner's token, so that a lock left held by a dead
+ * worker can be recognised and broken (shared-claims.ts). Held only for a
+ * claim or a row copy (microseconds), so the main thread, which may not
+ * block with Atomics.wait, can afford to spin.
  */
-export function lock(ctrl: Int32Array): void {
-  while (Atomics.compareExchange(ctrl, C_LOCK, 0, 1) !== 0) {
+export function lock(ctrl: Int32Array, token: number): void {
+  while (Atomics.compareExchange(ctrl, C_LOCK, 0, token) !== 0) {
     // Busy wait: the holder is copying one row at most.
   }
 }
@@ -114,6 +153,22 @@ export interface JobConfig {
   /** Shared mode: the film's buffer and its control block. */
   film?: SharedArrayBuffer;
   ctrl?: SharedArrayBuffer;
+  /** Shared mode: one row of film, where a commit puts its row first (see C_JOURNAL_ROW). */
+  journal?: SharedArrayBuffer;
+}
+
+/** What a worker learns from the pool before anything else. */
+export interface WorkerSetup {
+  /** Its record in every control block (shared mode). */
+  slot: number;
+  /** Its lock token (≥ 2, unique on the page). */
+  token: number;
+  /**
+   * Name of a Web Lock (navigator.locks) the worker holds for its whole
+   * life; the pool asks for it too and is granted it once the worker is
+   * really gone, however it died. Null where the page has no Web Locks.
+   */
+  lifeLock: string | null;
 }
 
 /** Transfer mode: one pass of one stripe, its rows of the film shipped both ways. */
@@ -140,6 +195,11 @@ export interface StripeResult extends Omit<StripeTask, 'type'> {
 
 /** The comlink API a render worker exposes. */
 export interface RenderWorkerApi {
+  /**
+   * Answers once the worker holds its life lock (true; false without Web
+   * Locks): from then on its death is noticed however it happens.
+   */
+  init(setup: WorkerSetup): Promise<boolean>;
   configure(job: number, config: JobConfig): void;
   removeJob(job: number): void;
   /** Shared mode: look for work now (after a reset, resume or new target). */
@@ -148,4 +208,17 @@ export interface RenderWorkerApi {
   stop(): Promise<void>;
   /** Transfer mode: the port that carries StripeTask/StripeResult messages. */
   setTaskPort(port: MessagePort): void;
+  /**
+   * Test hook (the pool's crashWorker): throw an uncaught error in the
+   * middle of the next stripe, after `rows` of its rows are committed (in
+   * transfer mode: instead of answering the next task).
+   */
+  crash(rows: number): void;
+  /**
+   * Test hook (the pool's hangWorker): stop dead, for good, at point `step`
+   * of the next row commit (shared-claims.ts commitRow), holding the lock,
+   * as a worker frozen by the system would; the test then terminates it,
+   * which Chromium completes two seconds later, wherever it stands.
+   */
+  hang(step: number): void;
 }

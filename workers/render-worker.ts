@@ -9,7 +9,9 @@
  * and no stale sample lands. Pass k+1 of a stripe waits until pass k of it
  * is done, so two commits of a row never overwrite each other's samples;
  * the film's sums are exact, so the image is bit-identical to the command
- * line's.
+ * line's. Claims and commits follow shared-claims.ts, so that the worker
+ * may die anywhere: the pool then hands what it held to the others, and
+ * nothing counts twice.
  *
  * Transfer mode (no SharedArrayBuffer): the main thread sends one pass of
  * one stripe with its rows of the film; the worker adds the pass and sends
@@ -22,24 +24,30 @@ import * as Comlink from 'comlink';
 import { Film, PathTracer, RenderStats, unpackScene } from '../src/core/index.ts';
 import type { CompiledScene } from '../src/core/index.ts';
 import {
-  C_CLAIM,
-  C_COMMITS,
   C_CONFIG,
   C_DONE,
   C_GEN,
   C_PAUSED,
   C_REJECTED,
   C_SEGMENTS,
-  C_TARGET,
   lock,
-  rowStampBase,
-  stripeOrder,
   unlock,
   type JobConfig,
   type RenderWorkerApi,
   type StripeResult,
   type StripeTask,
+  type WorkerSetup,
 } from './render-protocol.ts';
+import {
+  ControlLayout,
+  commitRow,
+  copyFilmRow,
+  finishClaim,
+  hasReclaims,
+  swapClaim,
+  takeClaim,
+  type Die,
+} from './shared-claims.ts';
 
 interface Job {
   config: JobConfig;
@@ -49,8 +57,9 @@ interface Job {
   ctrl?: Int32Array;
   /** One-row film the rows are rendered into before they are committed. */
   row?: Film;
-  /** Claim k of a pass renders stripe order[k] (see stripeOrder). */
-  order?: Int32Array;
+  /** The job's commit journal (one row, shared). */
+  journal?: Film;
+  layout?: ControlLayout;
 }
 
 const jobs = new Map<number, Job>();
@@ -58,6 +67,24 @@ const stats = new RenderStats();
 let running = false;
 let stopping = false;
 let stopped: (() => void) | undefined;
+/** Slot and lock token, from the pool's init. */
+let setup: WorkerSetup = { slot: 0, token: 2, lifeLock: null };
+/** Test hook (crash): rows still to commit before throwing; 0 when no crash is asked for. */
+let crashAfterRows = 0;
+/** An uncaught error happened: the pool is replacing this worker, which renders nothing more. */
+let broken = false;
+/** Test hook (hang): commitRow's `die`, which spins for ever at the chosen step. */
+let hangAt: Die | undefined;
+/** init has answered: shared-mode claims wait for it, so that a death is always noticed. */
+let initialised = false;
+
+/** Throws `error` out of the current task, so that the pool sees an `error` event. */
+function die(error: unknown): void {
+  broken = true;
+  setTimeout(() => {
+    throw error;
+  });
+}
 
 /**
  * Rebuilds only what the new configuration changes: the scene arrives
@@ -108,26 +135,46 @@ function configure(id: number, config: JobConfig): void {
     job.ctrl =
       old?.config.ctrl === config.ctrl && old?.ctrl ? old.ctrl : new Int32Array(config.ctrl!);
     job.row = old?.row && old.row.width === config.width ? old.row : new Film(config.width, 1);
-    const stripes = Math.ceil(config.height / config.stripeRows);
-    job.order = old?.order?.length === stripes ? old.order : stripeOrder(stripes);
+    job.journal =
+      old?.config.journal === config.journal && old?.journal
+        ? old.journal
+        : new Film(config.width, 1, config.journal!);
+    job.layout =
+      old?.layout &&
+      old.layout.height === config.height &&
+      old.layout.stripeRows === config.stripeRows
+        ? old.layout
+        : new ControlLayout(config.height, config.stripeRows);
   }
   jobs.set(id, job);
   kick();
 }
 
-/** Yields to the event loop (so control calls get through) without setTimeout's clamping. */
+/**
+ * Yields to the event loop (so control calls get through) without
+ * setTimeout's clamping. Every YIELD_TIMER_EVERY-th yield is a timer: an
+ * event loop that serves a port's own messages before other ports' (Node's
+ * worker_threads, behind the benchmarks' shim) would otherwise never
+ * deliver the pool's calls while there is work.
+ */
 const yieldChannel = new MessageChannel();
 const yieldWaiters: (() => void)[] = [];
 yieldChannel.port1.onmessage = () => yieldWaiters.shift()?.();
+const YIELD_TIMER_EVERY = 16;
+let yields = 0;
 function yieldToEvents(): Promise<void> {
   return new Promise((resolve) => {
+    if (++yields % YIELD_TIMER_EVERY === 0) {
+      setTimeout(resolve, 0);
+      return;
+    }
     yieldWaiters.push(resolve);
     yieldChannel.port2.postMessage(0);
   });
 }
 
 function kick(): void {
-  if (running || stopping) return;
+  if (running || stopping || broken || !initialised) return;
   running = true;
   void loop();
 }
@@ -143,6 +190,10 @@ async function loop(): Promise<void> {
       if (stopping || !worked) break;
       await yieldToEvents();
     }
+  } catch (e) {
+    // Whatever it held stays recorded in its slot: the pool replaces this
+    // worker and hands its claim to the others.
+    die(e);
   } finally {
     running = false;
     if (stopping) stopped?.();
@@ -152,56 +203,66 @@ async function loop(): Promise<void> {
 /** Claims and renders one pass of one stripe. Returns false when there was nothing to claim. */
 function renderOneStripe(job: Job): boolean {
   const ctrl = job.ctrl!;
-  const { width, height, stripeRows, version } = job.config;
-  const stripes = Math.ceil(height / stripeRows);
-  lock(ctrl);
-  if (
-    ctrl[C_CONFIG] !== version ||
-    ctrl[C_PAUSED] !== 0 ||
-    ctrl[C_CLAIM] >= stripes * ctrl[C_TARGET]
-  ) {
+  const layout = job.layout!;
+  const { width, version } = job.config;
+  const { slot, token } = setup;
+  lock(ctrl, token);
+  if (ctrl[C_CONFIG] !== version || ctrl[C_PAUSED] !== 0) {
     unlock(ctrl);
     return false;
   }
-  const claim = ctrl[C_CLAIM]++;
+  let claim = takeClaim(ctrl, layout, slot, token);
   const gen = ctrl[C_GEN];
   unlock(ctrl);
-  const pass = Math.floor(claim / stripes);
-  const stripe = job.order![claim - pass * stripes];
+  if (claim < 0) return false;
 
   // Pass `pass` of this stripe may start only once pass − 1 is committed.
   // Claims are taken in order, so the worker holding that pass is already
   // rendering it; the wait is short and rare when stripes outnumber workers.
+  // If that worker died, its claim is in the reclaim list: take it over.
+  let pass: number;
+  let stripe: number;
   for (;;) {
+    pass = layout.passOf(claim);
+    stripe = layout.stripeOf(claim);
     const done = Atomics.load(ctrl, C_DONE + stripe);
-    if (done === pass) break;
+    if (done >= pass) break;
     if (Atomics.load(ctrl, C_GEN) !== gen) return true;
+    if (hasReclaims(ctrl)) {
+      lock(ctrl, token);
+      const held = claim;
+      if (ctrl[C_GEN] === gen) claim = swapClaim(ctrl, claim, slot, token);
+      unlock(ctrl);
+      if (claim !== held) continue;
+    }
     Atomics.wait(ctrl, C_DONE + stripe, done, 2);
   }
 
   const film = job.film!;
+  const journal = job.journal!;
   const row = job.row!;
-  const y0 = stripe * stripeRows;
-  const y1 = Math.min(height, y0 + stripeRows);
-  const stamps = rowStampBase(stripes);
+  const y0 = stripe * layout.stripeRows;
+  const y1 = Math.min(layout.height, y0 + layout.stripeRows);
   for (let y = y0; y < y1; y++) {
     if (Atomics.load(ctrl, C_GEN) !== gen) return true;
+    // Committed already by a worker that held this claim and died.
+    if (Atomics.load(ctrl, layout.passBase + y) !== pass) continue;
     const rowFilm = new Film(width, 1, row.buffer, y);
-    rowFilm.copyRowsFrom(film);
+    copyFilmRow(rowFilm, 0, film, y);
     const segments = stats.segments;
     const rejected = stats.rejected;
     job.tracer.renderRow(rowFilm, y, pass, pass + 1, stats);
-    lock(ctrl);
-    if (ctrl[C_GEN] === gen) {
-      film.copyRowsFrom(rowFilm);
-      ctrl[stamps + y] = ++ctrl[C_COMMITS];
-    }
+    lock(ctrl, token);
+    commitRow(ctrl, layout, film, journal, rowFilm, y, pass, gen, hangAt);
     ctrl[C_SEGMENTS] = (ctrl[C_SEGMENTS] + (stats.segments - segments)) | 0;
     ctrl[C_REJECTED] += stats.rejected - rejected;
     unlock(ctrl);
+    if (crashAfterRows > 0 && --crashAfterRows === 0) {
+      throw new Error('render worker crashed (test hook)');
+    }
   }
-  lock(ctrl);
-  if (ctrl[C_GEN] === gen) ctrl[C_DONE + stripe]++;
+  lock(ctrl, token);
+  finishClaim(ctrl, stripe, pass, gen, slot);
   unlock(ctrl);
   Atomics.notify(ctrl, C_DONE + stripe);
   return true;
@@ -229,6 +290,26 @@ function renderTask(task: StripeTask, port: MessagePort): void {
 }
 
 const api: RenderWorkerApi = {
+  async init(given: WorkerSetup): Promise<boolean> {
+    setup = given;
+    const locks = typeof navigator !== 'undefined' ? navigator.locks : undefined;
+    let held = false;
+    if (given.lifeLock && locks) {
+      // Held until the worker is gone: the pool's request for the same lock
+      // is granted then, whether it was terminated, crashed or killed.
+      held = await new Promise<boolean>((resolve) => {
+        locks
+          .request(given.lifeLock!, () => {
+            resolve(true);
+            return new Promise<never>(() => {});
+          })
+          .catch(() => resolve(false));
+      });
+    }
+    initialised = true;
+    kick();
+    return held;
+  },
   configure,
   removeJob(id: number) {
     jobs.delete(id);
@@ -241,7 +322,24 @@ const api: RenderWorkerApi = {
   },
   setTaskPort(port: MessagePort) {
     port.onmessage = (e: MessageEvent<StripeTask>) => {
-      if (e.data.type === 'task') renderTask(e.data, port);
+      if (e.data.type !== 'task' || broken) return;
+      if (crashAfterRows > 0) {
+        crashAfterRows = 0;
+        die(new Error('render worker crashed (test hook)'));
+        return;
+      }
+      renderTask(e.data, port);
+    };
+  },
+  crash(rows: number) {
+    crashAfterRows = Math.max(1, Math.floor(rows));
+  },
+  hang(step: number) {
+    hangAt = (at) => {
+      if (at !== step) return;
+      for (;;) {
+        // Frozen inside the commit, holding the lock, until terminated.
+      }
     };
   },
 };

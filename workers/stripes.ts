@@ -8,9 +8,7 @@
  * samples.
  */
 import {
-  Film,
   PathTracer,
-  RenderStats,
   type CameraDesc,
   type CompiledScene,
   type Estimator,
@@ -44,19 +42,4 @@ export function createTracer(job: StripeJob, scene: CompiledScene): PathTracer {
     sampler: job.sampler,
     camera: job.camera,
   });
-}
-
-/** Renders samples [sampleStart, sampleEnd) of stripe `stripe` into `film`. */
-export function renderStripe(
-  tracer: PathTracer,
-  film: Film,
-  job: StripeJob,
-  stripe: number,
-  sampleStart: number,
-  sampleEnd: number,
-  stats: RenderStats,
-): void {
-  const y0 = stripe * job.stripeRows;
-  const y1 = Math.min(job.height, y0 + job.stripeRows);
-  tracer.renderRows(film, y0, y1, sampleStart, sampleEnd, stats);
 }

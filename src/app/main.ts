@@ -5,6 +5,8 @@
  */
 import { validateScene } from '../core/index.ts';
 import { createPathTracer, type LoadProgressInfo } from '../view/index.ts';
+import { currentPool } from '../view/pool.ts';
+import { faults } from '../view/worker-deaths.ts';
 import { BENCHMARK_SECONDS, BENCHMARK_WARMUP_S, runBenchmark } from './benchmark.ts';
 import { attachControls } from './controls.ts';
 import { gridStep } from './error-grid.ts';
@@ -65,11 +67,14 @@ const meter = new ErrorMeter(
 );
 
 // Test hook for the browser tests (tests/browser): the controller, the
-// error meter, and the factory so a test can put a second view on the page.
+// error meter, the factory so a test can put a second view on the page, and
+// the worker pool's fault hooks with the page's fault counts.
 (window as unknown as { __pathwise: unknown }).__pathwise = {
   controller,
   createPathTracer,
   errorMeter: meter,
+  pool: currentPool,
+  faults,
 };
 
 /**
@@ -118,10 +123,15 @@ controller.addEventListener('error', (e) => {
 meter.start();
 
 const mode = document.getElementById('mode') as HTMLElement;
-const m = controller.mode;
-mode.textContent = `Display: ${m.display === 'webgl2' ? 'WebGL2' : 'Canvas 2D'} · Compute: ${
-  m.compute === 'shared' ? 'shared memory' : 'transferred stripes'
-} — ${m.reason}.`;
+function showMode(): void {
+  const m = controller.mode;
+  mode.textContent = `Display: ${m.display === 'webgl2' ? 'WebGL2' : 'Canvas 2D'} · Compute: ${
+    m.compute === 'shared' ? 'shared memory' : 'transferred stripes'
+  } — ${m.reason}.`;
+}
+showMode();
+// The display changes while a lost WebGL2 context is away (and when it is back).
+controller.addEventListener('fallback', showMode);
 
 for (const button of document.querySelectorAll<HTMLButtonElement>('[data-preset]')) {
   button.addEventListener('click', () => {

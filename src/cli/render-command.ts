@@ -23,6 +23,7 @@ import { Interrupts } from './interrupt.ts';
 import { ProgressBar, type ProgressState } from './progress.ts';
 import { showPath } from './read-bounded.ts';
 import { RenderPool } from './render.ts';
+import { startTestFaults, TEST_FAULTS_ENV } from './test-faults.ts';
 
 interface Resumed {
   film: Film;
@@ -81,6 +82,9 @@ export async function renderCommand(
       stripeRows: args.stripeRows,
       workerUrl: new URL('./render-worker.js', import.meta.url),
     });
+    // Test hook (test-faults.ts): worker threads killed during the render.
+    const faultSpec = process.env[TEST_FAULTS_ENV];
+    const stopFaults = faultSpec ? startTestFaults(pool, faultSpec) : undefined;
     try {
       if (resumed) pool.film.copyRowsFrom(resumed.film);
       const from = resumed?.end ?? start;
@@ -186,10 +190,16 @@ export async function renderCommand(
             worker_heap_mb_median: median(report.workerHeapBytes) / 2 ** 20,
             resumed_from: resumed ? resumed.end : null,
             checkpoints: result.checkpoints,
+            // Worker threads that died and were replaced; their stripes were
+            // rendered again, or finished from their journals.
+            workers_replaced: pool.faults.replaced,
+            stripes_rendered_again: pool.faults.freed,
+            stripes_finished_from_journal: pool.faults.finished,
           }) + '\n',
         );
       }
     } finally {
+      stopFaults?.();
       await pool.close();
       await output.discard();
     }

@@ -5,6 +5,12 @@
  * every pixel; between rounds the main thread may read the film (noise
  * estimate, checkpoint) because no worker is writing it. One round of all
  * samples is the plain render.
+ *
+ * A worker thread that dies (an uncaught error, out of memory, killed) is
+ * replaced in its slot and the round goes on: its stripes are finished from
+ * its journal or rendered again (workers/round-claims.ts), so the film is
+ * bit-identical to an undisturbed render's. Workers that keep dying
+ * (DEATH_LIMIT) stop the render with the error, as before.
  */
 import { availableParallelism } from 'node:os';
 import { Worker } from 'node:worker_threads';
@@ -16,7 +22,18 @@ import type {
   ReadyReport,
   RoundMessage,
   RoundReport,
+  WorkerInput,
 } from '../../workers/node-render-worker.ts';
+import {
+  addRoundStats,
+  recoverSlot,
+  roundBuffers,
+  roundMemory,
+  startRound,
+  stripesDone,
+  type RoundMemory,
+  type RoundRecovery,
+} from '../../workers/round-claims.ts';
 
 export interface PoolRequest {
   scene: Scene;
@@ -45,65 +62,84 @@ export interface PoolReport {
   workerHeapBytes: number[];
 }
 
+/** What the pool survived (--json, tests). */
+export interface PoolFaults extends RoundRecovery {
+  /** Worker threads that died and were replaced. */
+  replaced: number;
+}
+
+interface Slot {
+  worker: Worker;
+  journal: SharedArrayBuffer;
+  /** A round message is out and its `done` has not come back. */
+  inRound: boolean;
+  /** The last error the thread reported, for the message should the render stop. */
+  lastError: string | null;
+  /** Test hook: killWorker ended it; its exit has not come yet. */
+  killed: boolean;
+}
+
 export class RenderPool {
   readonly film: Film;
   readonly threads: number;
   readonly stripes: number;
-  /** Counters of every round so far. */
+  /** Counters of every round so far (summed from the stripes: the same whatever died). */
   readonly stats = new RenderStats();
   /** performance.now() when the workers were started. */
   readonly startedAt: number;
-  private readonly workers: Worker[];
-  private readonly counter: Int32Array;
+  /** What was survived so far. */
+  readonly faults: PoolFaults = { replaced: 0, freed: 0, finished: 0 };
+  /** Worker deaths survived at most: 2 per thread + 4 (a worker that always dies stops the render). */
+  readonly deathLimit: number;
+  private readonly slots: Slot[];
+  private readonly memory: RoundMemory;
+  private readonly filmBuffer: SharedArrayBuffer;
+  private readonly faultWords: Int32Array;
+  private readonly stripeRows: number;
+  private readonly workerUrl: URL;
+  private readonly init: InitMessage;
   private readonly compileSeconds: number;
   private readonly sceneBytes: number;
   private readonly readyAt: number[] = [];
   private readonly heapBytes: number[];
+  private deaths = 0;
+  private round_: RoundMessage | null = null;
   private failure: Error | undefined;
   private pending: ((e?: Error) => void) | undefined;
+  private closed = false;
 
   constructor(req: PoolRequest) {
     const threads = req.threads ?? availableParallelism();
     // Enough stripes for load balance (~16 per thread), each at least a row.
     const stripeRows = req.stripeRows ?? Math.max(1, Math.floor(req.height / (threads * 16)));
-    const filmBuffer = new SharedArrayBuffer(Film.byteLength(req.width, req.height));
-    const counterBuffer = new SharedArrayBuffer(8);
-    this.film = new Film(req.width, req.height, filmBuffer);
-    this.counter = new Int32Array(counterBuffer);
+    this.filmBuffer = new SharedArrayBuffer(Film.byteLength(req.width, req.height));
+    this.film = new Film(req.width, req.height, this.filmBuffer);
     this.threads = threads;
+    this.stripeRows = stripeRows;
     this.stripes = stripeCount(req.height, stripeRows);
+    this.memory = roundMemory(this.stripes, threads);
+    this.faultWords = new Int32Array(new SharedArrayBuffer(4 * threads));
     this.heapBytes = new Array<number>(threads).fill(0);
+    this.deathLimit = 2 * threads + 4;
+    this.workerUrl = req.workerUrl;
     this.startedAt = performance.now();
     // The workers start first: their start-up (a new V8 isolate each, loading
     // the worker script) overlaps the compilation below.
-    this.workers = Array.from(
-      { length: threads },
-      () => new Worker(req.workerUrl, { workerData: { film: filmBuffer, counter: counterBuffer } }),
-    );
-    this.workers.forEach((w, k) => {
-      const fail = (e: Error) => {
-        this.failure ??= e;
-        this.pending?.(this.failure);
+    this.slots = Array.from({ length: threads }, (_, k) => {
+      const journal = new SharedArrayBuffer(Film.byteLength(req.width, stripeRows));
+      return {
+        worker: this.start(k, journal),
+        journal,
+        inRound: false,
+        lastError: null,
+        killed: false,
       };
-      w.on('error', fail);
-      w.on('exit', (code) => fail(new Error(`render worker exited with code ${code}`)));
-      w.on('message', (m: ReadyReport | RoundReport) => {
-        if (m.type === 'ready') {
-          this.readyAt.push(m.readyAt);
-          return;
-        }
-        this.stats.paths += m.paths;
-        this.stats.segments += m.segments;
-        this.stats.rejected += m.rejected;
-        this.heapBytes[k] = m.heapBytes;
-        this.pending?.();
-      });
     });
     // Compiled once here; every worker maps the same shared buffer.
     const scene = packScene(compileScene(req.scene), true);
     this.compileSeconds = (performance.now() - this.startedAt) / 1000;
     this.sceneBytes = scene.buffer.byteLength;
-    const init: InitMessage = {
+    this.init = {
       type: 'init',
       job: {
         camera: req.scene.camera,
@@ -117,29 +153,125 @@ export class RenderPool {
       },
       scene,
     };
-    for (const w of this.workers) w.postMessage(init);
+    for (const slot of this.slots) slot.worker.postMessage(this.init);
+  }
+
+  /** Starts the worker of slot `k`. */
+  private start(k: number, journal: SharedArrayBuffer): Worker {
+    const workerData: WorkerInput = {
+      film: this.filmBuffer,
+      round: roundBuffers(this.memory),
+      slot: k,
+      journal,
+      faults: this.faultWords.buffer as SharedArrayBuffer,
+    };
+    const w = new Worker(this.workerUrl, { workerData });
+    w.on('error', (e) => {
+      const slot = this.slots?.[k];
+      if (slot && slot.worker === w) slot.lastError = e.message;
+    });
+    // The thread is gone for certain once `exit` fires: recover, replace.
+    w.on('exit', (code) => this.died(k, w, code));
+    w.on('message', (m: ReadyReport | RoundReport) => {
+      if (m.type === 'ready') {
+        this.readyAt.push(m.readyAt);
+        return;
+      }
+      this.heapBytes[k] = m.heapBytes;
+      const slot = this.slots[k];
+      if (slot.worker === w) slot.inRound = false;
+      this.check();
+    });
+    return w;
+  }
+
+  private died(k: number, w: Worker, code: number): void {
+    const slot = this.slots[k];
+    if (this.closed || slot.worker !== w) return;
+    this.deaths++;
+    // What it held: its published stripe finished, any other claim freed.
+    recoverSlot(this.memory, k, this.film, slot.journal, this.stripeRows, this.faults);
+    Atomics.store(this.faultWords, k, 0);
+    if (this.deaths > this.deathLimit) {
+      this.fail(
+        new Error(
+          `render worker exited with code ${code}${slot.lastError ? ` (${slot.lastError})` : ''}; ` +
+            `${this.deaths} worker threads died, so the render stops`,
+        ),
+      );
+      return;
+    }
+    slot.worker = this.start(k, slot.journal);
+    slot.lastError = null;
+    slot.killed = false;
+    slot.inRound = false;
+    this.faults.replaced++;
+    // Messages are handled in order: the replacement initialises, then joins the round.
+    slot.worker.postMessage(this.init);
+    if (this.round_) {
+      slot.inRound = true;
+      slot.worker.postMessage(this.round_);
+    }
+    this.check();
+  }
+
+  private fail(e: Error): void {
+    this.failure ??= e;
+    this.pending?.(this.failure);
+  }
+
+  /** The round is over once every stripe is done and no worker is still in it. */
+  private check(): void {
+    if (!this.round_ || !this.pending) return;
+    if (this.slots.some((s) => s.inRound)) return;
+    if (stripesDone(this.memory) === this.stripes) this.pending();
   }
 
   /** Stripes finished in the current round (for progress). */
   stripesDone(): number {
-    return Math.min(this.stripes, Atomics.load(this.counter, 1));
+    return stripesDone(this.memory);
   }
 
   /** Adds samples [s0, s1) of every pixel to the film. */
   async round(s0: number, s1: number): Promise<void> {
     if (this.failure) throw this.failure;
-    Atomics.store(this.counter, 0, 0);
-    Atomics.store(this.counter, 1, 0);
-    let left = this.workers.length;
+    startRound(this.memory);
+    const message: RoundMessage = { type: 'round', s0, s1 };
     try {
       await new Promise<void>((resolve, reject) => {
-        this.pending = (e) => (e ? reject(e) : --left === 0 && resolve());
-        const message: RoundMessage = { type: 'round', s0, s1 };
-        for (const w of this.workers) w.postMessage(message);
+        this.pending = (e) => (e ? reject(e) : resolve());
+        this.round_ = message;
+        for (const slot of this.slots) {
+          slot.inRound = true;
+          slot.worker.postMessage(message);
+        }
       });
     } finally {
       this.pending = undefined;
+      this.round_ = null;
     }
+    addRoundStats(this.memory, this.stats);
+  }
+
+  /**
+   * Test hook, not API: terminates the worker of slot `k` (modulo the
+   * thread count) now, wherever it is. It is replaced as any dead worker is.
+   * False when that worker was already killed and has not exited yet.
+   */
+  killWorker(k: number): boolean {
+    const slot = this.slots[Math.abs(Math.floor(k)) % this.threads];
+    if (slot.killed) return false;
+    slot.killed = true;
+    void slot.worker.terminate();
+    return true;
+  }
+
+  /**
+   * Test hook, not API: makes the worker of slot `k` throw an uncaught
+   * error at step `step` (1–4) of its next stripe (round-claims.ts).
+   */
+  crashWorker(k: number, step: number): void {
+    Atomics.store(this.faultWords, Math.abs(Math.floor(k)) % this.threads, step);
   }
 
   report(): PoolReport {
@@ -155,8 +287,9 @@ export class RenderPool {
   }
 
   async close(): Promise<void> {
+    this.closed = true;
     this.failure ??= new Error('render pool closed');
-    for (const w of this.workers) w.removeAllListeners();
-    await Promise.all(this.workers.map((w) => w.terminate()));
+    for (const { worker } of this.slots) worker.removeAllListeners();
+    await Promise.all(this.slots.map(({ worker }) => worker.terminate()));
   }
 }

@@ -60,8 +60,10 @@ import { sceneSizeProblem } from '../core/scene/load.ts';
 import type { JobConfig } from '../../workers/render-protocol.ts';
 import { compositeBackdrop, type Backdrop } from './backdrop.ts';
 import type { Display, DisplayPixels } from './display.ts';
+import { StandInDisplay } from './display-standin.ts';
 import type { FilmJob, FilmSnapshot } from './film-job.ts';
-import { Films } from './films.ts';
+import { MAX_FILM_SIDE } from './film-cap.ts';
+import { FilmMemoryError, Films } from './films.ts';
 import { FirstPass, type Timeline } from './first-pass.ts';
 import { attachCameraControls } from './interaction.ts';
 import { chooseCompute, createDisplay } from './mode.ts';
@@ -114,7 +116,7 @@ const NOISE_INTERVAL_MS = 500;
 
 export class Controller extends EventTarget implements PathTracerController {
   readonly canvas: HTMLCanvasElement;
-  readonly mode: FallbackInfo;
+  private modeInfo: FallbackInfo;
   private readonly options: PathTracerOptions;
   private readonly id = nextJobId++;
   private readonly pool: WorkerPool;
@@ -159,8 +161,14 @@ export class Controller extends EventTarget implements PathTracerController {
   /** The model worker's current load, stopped when a newer scene or destroy() comes. */
   private modelJob: ModelJob | null = null;
   private sceneRequested = false;
-  /** Bumped by every setScene: one that finishes reading files after a newer one is dropped. */
+  /**
+   * Bumped by every scene request (setScene, load) and by destroy: a request
+   * that is no longer the latest when its fetch or file read ends is
+   * dropped, so the last request always wins.
+   */
   private sceneRequest = 0;
+  /** Aborts the fetch of a load that a newer request superseded. */
+  private loadAbort: AbortController | null = null;
   /** The last picture, shown where the active film has no sample yet. */
   private backdrop: Backdrop | null = null;
   /** The film the display showed last (its pixels are what is on screen). */
@@ -171,6 +179,8 @@ export class Controller extends EventTarget implements PathTracerController {
   private readonly firstPass: FirstPass;
   /** Tracing time of the active film since its last restart. */
   private readonly clock = new TraceClock();
+  /** The accumulator-cap reason last reported with a `fallback` event (null: none). */
+  private capReported: string | null = null;
   constructor(canvas: HTMLCanvasElement, options: PathTracerOptions) {
     super();
     this.canvas = canvas;
@@ -182,13 +192,26 @@ export class Controller extends EventTarget implements PathTracerController {
     const compute = chooseCompute(options);
     const { display, why } = createDisplay(canvas, options);
     this.display = display;
-    this.mode = {
+    this.modeInfo = {
       display: display.mode,
       compute: compute.compute,
       reason: `${why}; ${compute.why}`,
     };
+    if (display instanceof StandInDisplay) {
+      display.onChange = (_event, reason) => {
+        // The picture moved to another canvas (or back): draw it all, now.
+        this.modeInfo = { ...this.modeInfo, display: display.mode, reason };
+        this.displayDirty = true;
+        this.emit('fallback', this.mode);
+        this.wake();
+      };
+    }
     this.pool = sharedPool(options, options.workers);
     this.films = new Films(canvas, options, compute.compute, () => this.pool.size);
+    // A film wider than a texture could not be shown.
+    if (display instanceof StandInDisplay) {
+      this.films.maxSide = Math.min(MAX_FILM_SIDE, display.maxTextureSize);
+    }
     this.firstPass = new FirstPass(this.films);
     if (options.workers !== undefined && options.workers !== this.pool.size) {
       void this.pool.setSize(options.workers);
@@ -203,6 +226,19 @@ export class Controller extends EventTarget implements PathTracerController {
         this.wake();
       },
       onWorkerError: (message) => this.emit('error', { message }),
+      onTaskLost: (task) => {
+        const job = this.activeJob();
+        if (job && task.version === this.version) job.onTaskLost?.(task);
+        this.wake();
+      },
+      recover: () => {
+        let done = true;
+        for (const job of [this.films.full, this.films.preview]) {
+          if (job?.recover && !job.recover()) done = false;
+        }
+        this.wake();
+        return done;
+      },
     };
     if (options.cameraControls !== false) {
       this.detachControls = attachCameraControls(this, canvas);
@@ -232,6 +268,11 @@ export class Controller extends EventTarget implements PathTracerController {
     this.raf = requestAnimationFrame(this.frame);
   }
 
+  /** How it runs now: the display changes while a lost WebGL2 context is away. */
+  get mode(): FallbackInfo {
+    return this.modeInfo;
+  }
+
   get scene(): Scene | null {
     return this.currentScene;
   }
@@ -250,17 +291,26 @@ export class Controller extends EventTarget implements PathTracerController {
 
   // ---- scene -------------------------------------------------------------
 
+  /**
+   * Loads a scene. A request superseded by a later one (setScene or load)
+   * before it was read resolves without loading anything.
+   */
   async setScene(value: unknown, files?: SceneFileReader): Promise<void> {
-    this.sceneRequested = true;
-    const request = ++this.sceneRequest;
-    this.modelJob?.cancel();
+    const request = this.newSceneRequest();
     // Mesh, glTF and environment-map files: fetched relative to the page unless the
     // caller says how (a scene's URL, dropped files, a preset's assets).
     const reader = files ?? this.options.files ?? urlSceneFiles(document.baseURI);
     return this.install(request, () => this.readScene(value, reader));
   }
 
-  /** A scene from readScene: a bare model loaded in the model worker comes compiled and packed. */
+  /** A new scene request: the older ones lose (a fetch in flight is aborted, a model load stopped). */
+  private newSceneRequest(): number {
+    this.sceneRequested = true;
+    this.loadAbort?.abort();
+    this.loadAbort = null;
+    this.modelJob?.cancel();
+    return ++this.sceneRequest;
+  }
 
   /**
    * Reads a scene: a File named `.glb` / `.gltf`, or bytes that are a GLB, is a bare
@@ -362,6 +412,8 @@ export class Controller extends EventTarget implements PathTracerController {
     try {
       loaded = await read();
     } catch (e) {
+      // A superseded request's failure is nobody's concern any more.
+      if (request !== this.sceneRequest) return;
       if (e instanceof ByteLimitError) e = new SceneError([sceneSizeProblem(e.size, e.exact)]);
       const message = e instanceof Error ? e.message : String(e);
       this.emit('error', { message });
@@ -380,18 +432,30 @@ export class Controller extends EventTarget implements PathTracerController {
       await new Promise((resolve) => setTimeout(resolve, 0));
       if (request !== this.sceneRequest || this.destroyed) return;
     }
-    this.currentScene = scene;
-    if (packed !== undefined) {
-      // Compiled and packed by the model worker: views into its buffer.
-      this.compiled = unpackScene(packed);
-      this.packed = packed;
-    } else {
-      this.compiled = compileScene(scene);
-      if (big) this.progressLoad('compile', 1, 1);
-      // Compiled once here (the picker uses it too) and shipped packed: the
-      // workers neither parse nor compile nor build a BVH.
-      this.packed = packScene(this.compiled, this.mode.compute === 'shared');
+    let compiled: CompiledScene;
+    let packedScene: PackedScene;
+    try {
+      if (packed !== undefined) {
+        // Compiled and packed by the model worker: views into its buffer.
+        compiled = unpackScene(packed);
+        packedScene = packed;
+      } else {
+        compiled = compileScene(scene);
+        if (big) this.progressLoad('compile', 1, 1);
+        // Compiled once here (the picker uses it too) and shipped packed: the
+        // workers neither parse nor compile nor build a BVH.
+        packedScene = packScene(compiled, this.mode.compute === 'shared');
+      }
+    } catch (e) {
+      if (!(e instanceof RangeError)) throw e;
+      // Memory the scene's arrays (shared ones, when isolated) could not get.
+      const message = `could not allocate memory for the compiled scene: ${e.message}`;
+      this.emit('error', { message });
+      throw new Error(message);
     }
+    this.currentScene = scene;
+    this.compiled = compiled;
+    this.packed = packedScene;
     this.picker = null;
     this.sceneId++;
     this.camera = { ...scene.camera };
@@ -408,10 +472,11 @@ export class Controller extends EventTarget implements PathTracerController {
     if (warnings.length > 0) this.emit('warning', { messages: warnings });
   }
 
+  /** Fetches and loads a scene; superseded like setScene (its fetch is aborted then). */
   async load(url: string): Promise<void> {
-    this.sceneRequested = true;
-    const request = ++this.sceneRequest;
-    this.modelJob?.cancel();
+    const request = this.newSceneRequest();
+    const abort = typeof AbortController !== 'undefined' ? new AbortController() : null;
+    this.loadAbort = abort;
     let bytes: Uint8Array;
     let base: string;
     let model = false;
@@ -422,21 +487,23 @@ export class Controller extends EventTarget implements PathTracerController {
     }
     try {
       if (model) this.progressLoad('read', 0, 1);
-      const response = await fetch(url);
+      const response = await fetch(url, abort ? { signal: abort.signal } : undefined);
       if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
       base = response.url || new URL(url, document.baseURI).href;
       bytes = await readResponseBounded(response, model ? GLTF_FILE_BYTES : LIMITS.fileBytes);
     } catch (e) {
+      if (request !== this.sceneRequest) return;
       const message =
         e instanceof ByteLimitError
           ? `${url}: ${model ? modelSizeProblem(e.size, e.exact) : sceneSizeProblem(e.size, e.exact)}`
           : e instanceof Error
             ? e.message
             : String(e);
-      if (request === this.sceneRequest) this.emit('error', { message });
+      this.emit('error', { message });
       throw new Error(message);
     }
     if (request !== this.sceneRequest) return;
+    if (this.loadAbort === abort) this.loadAbort = null;
     if (model) this.progressLoad('read', 1, 1);
     // The files the scene (or the model) names live beside it.
     const files = urlSceneFiles(base);
@@ -458,7 +525,14 @@ export class Controller extends EventTarget implements PathTracerController {
     if (!this.currentScene || !this.camera || this.destroyed) return;
     this.captureBackdrop();
     this.films.wantPreview = this.interacting || this.firstPass.active;
-    const active = this.films.select(this.target);
+    let active: FilmJob;
+    try {
+      active = this.films.select(this.target);
+    } catch (e) {
+      this.filmFailed(e);
+      return;
+    }
+    this.reportCap();
     this.version++;
     // Version first, then reset: a worker still holding the old
     // configuration can claim nothing once the version moved on.
@@ -466,6 +540,7 @@ export class Controller extends EventTarget implements PathTracerController {
     active.setTarget(this.target);
     active.setPaused(this.isPaused);
     active.reset();
+    active.takeRenewed?.();
     const shared = active instanceof SharedFilmJob ? active : null;
     this.config = {
       mode: this.mode.compute,
@@ -482,6 +557,7 @@ export class Controller extends EventTarget implements PathTracerController {
       stripeRows: active.stripeRows,
       film: shared?.filmBuffer,
       ctrl: shared?.ctrlBuffer,
+      journal: shared?.journalBuffer,
     };
     this.convergedSent = false;
     this.rays.reset();
@@ -495,11 +571,38 @@ export class Controller extends EventTarget implements PathTracerController {
     this.wake();
   }
 
+  /** No film could be made (the accumulator cap, or no memory): said once, as an error. */
+  private filmFailed(e: unknown): void {
+    if (!(e instanceof FilmMemoryError)) throw e;
+    this.emit('error', { message: e.message });
+  }
+
+  /** A full film smaller than the canvas asks is reported once per size, as a fallback. */
+  private reportCap(): void {
+    if (this.films.previewing) return;
+    const cap = this.films.capped;
+    const reason = cap?.reason ?? null;
+    if (reason === this.capReported) return;
+    this.capReported = reason;
+    if (cap) this.emit('fallback', { ...this.mode, reason, renderScale: cap.scale });
+  }
+
   reset(): void {
     const job = this.activeJob();
     if (!job || !this.config) return;
     this.captureBackdrop();
     job.reset();
+    if (job instanceof SharedFilmJob && job.takeRenewed()) {
+      // The film moved to new buffers (a lock its holder would not let go):
+      // the workers need them.
+      this.config = {
+        ...this.config,
+        film: job.filmBuffer,
+        ctrl: job.ctrlBuffer,
+        journal: job.journalBuffer,
+      };
+      this.pool.configure(this.client);
+    }
     this.clock.restart(performance.now(), this.isPaused);
     this.convergedSent = false;
     this.displayDirty = true;
@@ -565,7 +668,11 @@ export class Controller extends EventTarget implements PathTracerController {
     this.films.autoScale = false;
     this.firstPass.manual();
     this.films.renderScale = Math.max(0.05, Math.min(4, scale));
-    if (this.films.ensureFull(this.target)) this.restart();
+    try {
+      if (this.films.ensureFull(this.target)) this.restart();
+    } catch (e) {
+      this.filmFailed(e);
+    }
   }
 
   /** See PathTracerOptions.sizeStep; applies from the next restart that sizes the film. */
@@ -688,7 +795,11 @@ export class Controller extends EventTarget implements PathTracerController {
     this.raf = 0;
     if (this.destroyed) return;
     this.framesCount++;
-    if (this.films.follow(now, this.target)) this.restart();
+    try {
+      if (this.films.follow(now, this.target)) this.restart();
+    } catch (e) {
+      this.filmFailed(e);
+    }
     // The speed measurements may hand over to another film (a restart):
     // this frame then draws that one, over the picture captured as backdrop.
     const before = this.activeJob();
@@ -892,6 +1003,8 @@ export class Controller extends EventTarget implements PathTracerController {
   destroy(): void {
     if (this.destroyed) return;
     this.destroyed = true;
+    // A scene still loading is dropped (and its fetch aborted).
+    this.newSceneRequest();
     cancelAnimationFrame(this.raf);
     this.raf = 0;
     this.resizeObserver?.disconnect();

@@ -3,6 +3,10 @@
  * and a fragment shader divides by the sample count and tone maps
  * (shaders/display.frag.glsl, the same transform as the core's
  * tonemapSums). The main thread's cost is one texSubImage2D and one draw.
+ *
+ * The context may be lost (a GPU reset, too many contexts on the page) and
+ * restored later; `rebuild` then makes the program and textures again, and
+ * the next draw uploads the whole film (display-standin.ts covers the gap).
  */
 import fragmentSource from '../../shaders/display.frag.glsl?raw';
 import vertexSource from '../../shaders/display.vert.glsl?raw';
@@ -36,14 +40,16 @@ function newTexture(gl: WebGL2RenderingContext, unit: number): WebGLTexture {
 
 export class WebGLDisplay implements Display {
   readonly mode = 'webgl2' as const;
-  private readonly canvas: HTMLCanvasElement;
-  private readonly gl: WebGL2RenderingContext;
-  private readonly program: WebGLProgram;
-  private readonly texture: WebGLTexture;
+  readonly canvas: HTMLCanvasElement;
+  readonly gl: WebGL2RenderingContext;
+  private program!: WebGLProgram;
+  private texture!: WebGLTexture;
   /** The last picture (linear RGB, A = shown), sampled where the film has no sample yet. */
-  private readonly backdrop: WebGLTexture;
-  private readonly uExposure: WebGLUniformLocation | null;
-  private readonly uCanvasSize: WebGLUniformLocation | null;
+  private backdrop!: WebGLTexture;
+  private uExposure: WebGLUniformLocation | null = null;
+  private uCanvasSize: WebGLUniformLocation | null = null;
+  /** The largest texture side (MAX_TEXTURE_SIZE, at least 2048 in WebGL2). */
+  readonly maxTextureSize: number;
   private texWidth = 0;
   private texHeight = 0;
   /**
@@ -65,6 +71,18 @@ export class WebGLDisplay implements Display {
     if (!gl) throw new Error('WebGL2 is unavailable');
     this.canvas = canvas;
     this.gl = gl;
+    this.maxTextureSize = Number(gl.getParameter(gl.MAX_TEXTURE_SIZE)) || 2048;
+    this.build(null);
+  }
+
+  /**
+   * Makes the program and textures (again, after a context was restored:
+   * everything made in the lost context is gone). The texture starts at
+   * 1×1, so the next draw allocates it at the film's size and uploads every
+   * row; `backdrop` is what the last clear() was given.
+   */
+  build(backdrop: Backdrop | null): void {
+    const gl = this.gl;
     const program = gl.createProgram()!;
     gl.attachShader(program, compile(gl, gl.VERTEX_SHADER, vertexSource));
     gl.attachShader(program, compile(gl, gl.FRAGMENT_SHADER, fragmentSource));
@@ -85,7 +103,7 @@ export class WebGLDisplay implements Display {
     if (gl.getError() !== gl.NO_ERROR) throw new Error('float textures are unavailable');
     this.texWidth = 1;
     this.texHeight = 1;
-    this.setBackdrop(null);
+    this.setBackdrop(backdrop);
   }
 
   /** Uploads the backdrop (a 1×1 texture with A = 0, drawn black, for none). */

@@ -40,6 +40,15 @@ export interface FilmJob {
   /** Transfer mode only. */
   nextTask?(job: number): StripeTask | null;
   onResult?(result: StripeResult): void;
+  /** Transfer mode: the worker holding `task` died; the stripe goes out again. */
+  onTaskLost?(task: StripeTask): void;
+  /**
+   * Shared mode: workers the pool knows to be dead left claims, maybe a
+   * lock: hand them on. False when the lock stayed busy (try again soon).
+   */
+  recover?(): boolean;
+  /** Shared mode: true once after the job moved to new buffers (send a new configuration). */
+  takeRenewed?(): boolean;
 }
 
 /**

@@ -8,6 +8,15 @@
  */
 import { chooseStripeRows } from '../../workers/render-protocol.ts';
 import { DEFAULT_MAX_PIXEL_RATIO } from './auto-scale.ts';
+import { Film } from '../core/index.ts';
+import {
+  filmSizeProblem,
+  fitFactor,
+  maxFilmPixels,
+  mib,
+  MAX_FILM_BYTES,
+  MAX_FILM_SIDE,
+} from './film-cap.ts';
 import type { FilmJob } from './film-job.ts';
 import { SharedFilmJob } from './shared-job.ts';
 import { TransferFilmJob } from './transfer-job.ts';
@@ -21,6 +30,8 @@ const PREVIEW_DIVISOR = 4;
  * samples/s of two cores).
  */
 const PREVIEW_MAX_PIXELS = 16_384;
+/** Films made smaller after failed allocations are at least this many pixels. */
+const MIN_FALLBACK_PIXELS = 4096;
 /** A new canvas size must hold this long before the film follows it. */
 const RESIZE_SETTLE_MS = 200;
 /**
@@ -29,6 +40,9 @@ const RESIZE_SETTLE_MS = 200;
  * frame evenly; a claim costs microseconds next to a row's milliseconds.
  */
 const SHARED_STRIPES_TARGET = 256;
+
+/** No film could be made: the message says why (the cap, or the memory). */
+export class FilmMemoryError extends Error {}
 
 export class Films {
   full: FilmJob | null = null;
@@ -50,6 +64,16 @@ export class Films {
   sizeStep: number;
   private pendingSize = '';
   private pendingSince = 0;
+  /** Share of the pixel cap still allowed: halved after each failed allocation. */
+  private memoryFraction = 1;
+  /** The largest film side the display takes (its texture limit), at most MAX_FILM_SIDE. */
+  maxSide = MAX_FILM_SIDE;
+  /**
+   * Why the full film is smaller than the canvas asks (the accumulator cap,
+   * or memory that could not be had) and the render scale that results;
+   * null when it is not.
+   */
+  capped: { reason: string; scale: number } | null = null;
 
   constructor(
     canvas: HTMLCanvasElement,
@@ -93,16 +117,52 @@ export class Films {
 
   /**
    * The full render size: fixed, or the canvas's CSS size × capped
-   * devicePixelRatio × renderScale. With a size step the height is a
-   * multiple of it and the width even, so that film pixels tile a centred
-   * grid exactly (the demo compares its image with references cell by
-   * cell); the aspect ratio stays within a pixel of the canvas's.
+   * devicePixelRatio × renderScale, held to the accumulator cap (capped
+   * says when and why).
    */
   fullSize(scale = this.renderScale): [number, number] {
     const o = this.options;
     if (o.width && o.height) return [Math.floor(o.width), Math.floor(o.height)];
     const css = this.cssSize();
-    const s = css.pixelRatio * scale;
+    const wanted = css.pixelRatio * scale;
+    let s = wanted;
+    let size = this.sizeAt(css, s);
+    // The cap: scaled down to fit, the aspect ratio kept (film-cap.ts).
+    const factor = fitFactor(size[0], size[1], this.memoryFraction, this.maxSide);
+    if (factor < 1) {
+      s *= factor;
+      size = this.sizeAt(css, s);
+      // Rounding to the size step may land just over: a little less then.
+      while (s > 1e-6 && this.overCap(size[0], size[1])) {
+        s *= 0.98;
+        size = this.sizeAt(css, s);
+      }
+    }
+    this.capped =
+      factor < 1
+        ? {
+            scale: (scale * s) / wanted,
+            reason:
+              this.memoryFraction < 1
+                ? `memory for a larger film could not be had, so the render scale is reduced to ${((scale * s) / wanted).toFixed(3)} (${size[0]}×${size[1]})`
+                : `the canvas asks for more than the accumulator cap (${mib(MAX_FILM_BYTES)}, ${this.maxSide} pixels a side), so the render scale is reduced to ${((scale * s) / wanted).toFixed(3)} (${size[0]}×${size[1]})`,
+          }
+        : null;
+    return size;
+  }
+
+  private overCap(width: number, height: number): boolean {
+    const f = fitFactor(width, height, this.memoryFraction, this.maxSide);
+    return f < 1;
+  }
+
+  /**
+   * The size at `s` film pixels per CSS pixel. With a size step the height
+   * is a multiple of it and the width even, so that film pixels tile a
+   * centred grid exactly (the demo compares its image with references cell
+   * by cell); the aspect ratio stays within a pixel of the canvas's.
+   */
+  private sizeAt(css: { width: number; height: number }, s: number): [number, number] {
     let w = Math.max(1, Math.round(css.width * s));
     let h = Math.max(1, Math.round(css.height * s));
     const step = this.sizeStep;
@@ -114,24 +174,56 @@ export class Films {
     return [w, h];
   }
 
+  /**
+   * A film job of w × h. Memory that cannot be had (the allocation throws a
+   * RangeError, SharedArrayBuffer's included) is reported in plain words.
+   */
   private make(width: number, height: number, target: number): FilmJob {
-    if (this.compute === 'shared') {
-      const rows = Math.max(1, Math.floor(height / SHARED_STRIPES_TARGET));
-      return new SharedFilmJob(width, height, rows, target);
+    try {
+      if (this.compute === 'shared') {
+        const rows = Math.max(1, Math.floor(height / SHARED_STRIPES_TARGET));
+        return new SharedFilmJob(width, height, rows, target);
+      }
+      // Each transferred stripe is a message both ways: keep them few.
+      return new TransferFilmJob(width, height, chooseStripeRows(height, this.workers()), target);
+    } catch (e) {
+      if (!(e instanceof RangeError)) throw e;
+      const what = this.compute === 'shared' ? 'shared memory (SharedArrayBuffer)' : 'memory';
+      throw new FilmMemoryError(
+        `could not allocate ${what} for a ${width}×${height} film (${mib(Film.byteLength(width, height))}): ${e.message}`,
+      );
     }
-    // Each transferred stripe is a message both ways: keep them few.
-    return new TransferFilmJob(width, height, chooseStripeRows(height, this.workers()), target);
   }
 
   /**
    * Makes sure the full film matches the wanted size (the canvas's backing
-   * store follows); returns true when it was remade.
+   * store follows); returns true when it was remade. Throws, with the
+   * reason, when no film can be made: a fixed size over the cap, or memory
+   * that cannot be had; a canvas-derived size is halved in pixels after a
+   * failed allocation and tried again first.
    */
   ensureFull(target: number): boolean {
-    const [w, h] = this.fullSize();
+    let [w, h] = this.fullSize();
     if (this.full && this.full.width === w && this.full.height === h) return false;
+    if (this.fixedSize) {
+      const problem = filmSizeProblem(w, h, this.maxSide);
+      if (problem) throw new FilmMemoryError(problem);
+    }
+    let made: FilmJob;
+    for (;;) {
+      try {
+        made = this.make(w, h, target);
+        break;
+      } catch (e) {
+        if (!(e instanceof FilmMemoryError) || this.fixedSize || w * h <= MIN_FALLBACK_PIXELS) {
+          throw e;
+        }
+        this.memoryFraction = Math.min(this.memoryFraction, (w * h) / maxFilmPixels()) / 2;
+        [w, h] = this.fullSize();
+      }
+    }
     this.full?.setVersion(-1);
-    this.full = this.make(w, h, target);
+    this.full = made;
     this.preview?.setVersion(-1);
     this.preview = null;
     this.canvas.width = w;
@@ -151,8 +243,9 @@ export class Films {
     const [fw, fh] = this.full ? [this.full.width, this.full.height] : this.fullSize();
     const [w, h] = Films.previewSize(fw, fh);
     if (!this.preview || this.preview.width !== w || this.preview.height !== h) {
+      const made = this.make(w, h, target);
       this.preview?.setVersion(-1);
-      this.preview = this.make(w, h, target);
+      this.preview = made;
     }
     if (!this.full) {
       this.canvas.width = fw;
@@ -163,6 +256,12 @@ export class Films {
 
   /** For a restart: the film to render (the preview while wanted); the other is parked. */
   select(target: number): FilmJob {
+    if (this.fixedSize) {
+      // A fixed size that cannot be had fails before any preview of it.
+      const [w, h] = this.fullSize();
+      const problem = filmSizeProblem(w, h, this.maxSide);
+      if (problem) throw new FilmMemoryError(problem);
+    }
     this.previewing = this.wantPreview;
     if (this.previewing) {
       this.full?.setVersion(-1);

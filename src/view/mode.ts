@@ -2,6 +2,7 @@
  * Which display and compute paths run, and why, in plain words for the UI.
  */
 import { Canvas2DDisplay } from './display-canvas2d.ts';
+import { StandInDisplay } from './display-standin.ts';
 import { WebGLDisplay } from './display-webgl.ts';
 import type { Display } from './display.ts';
 import type { ComputeMode, PathTracerOptions } from './types.ts';
@@ -41,7 +42,11 @@ export function createDisplay(
     }
   }
   try {
-    return { display: new WebGLDisplay(canvas), why: 'WebGL2 shows the float accumulator' };
+    return {
+      // Survives a lost context: Canvas 2D stands in until it is restored.
+      display: new StandInDisplay(new WebGLDisplay(canvas)),
+      why: 'WebGL2 shows the float accumulator',
+    };
   } catch (e) {
     const reason = e instanceof Error ? e.message : String(e);
     // A canvas keeps the first context type it gave out; a failed WebGL2

@@ -2,84 +2,185 @@
  * A film on a SharedArrayBuffer that the workers write in place. The main
  * thread only changes the control block under its lock (see
  * workers/render-protocol.ts) and reads the sums for display.
+ *
+ * Workers may die holding a claim or even the lock (workers/shared-claims.ts
+ * says how that is survived): `recover` hands a dead worker's claims to the
+ * living and finishes its cut-short commit. The main thread never waits
+ * long for the lock: if its holder does not let go within
+ * LOCK_PATIENCE_MS (it may have died a moment ago, before the pool knew),
+ * the job walks away from its buffers and starts on fresh ones, which is
+ * always safe where it happens (a reset or a new configuration, after which
+ * the old samples are not wanted); the controller then sends the workers
+ * the new buffers.
  */
 import { Film } from '../core/index.ts';
 import {
   C_CLAIM,
+  C_COMMITS,
   C_CONFIG,
   C_DONE,
   C_GEN,
+  C_LOCK,
   C_PAUSED,
   C_REJECTED,
   C_SEGMENTS,
   C_TARGET,
+  MAIN_TOKEN,
   controlWords,
   lock,
-  rowStampBase,
   unlock,
 } from '../../workers/render-protocol.ts';
+import { ControlLayout, initControl, lockMain, recoverDead } from '../../workers/shared-claims.ts';
 import type { FilmJob } from './film-job.ts';
+import { faults, isDead } from './worker-deaths.ts';
+
+/** How long the main thread spins for a lock before it gives the buffers up. */
+const LOCK_PATIENCE_MS = 50;
+
+interface Abandoned {
+  ctrl: Int32Array;
+  stripes: number;
+}
 
 export class SharedFilmJob implements FilmJob {
-  readonly film: Film;
+  film!: Film;
   readonly width: number;
   readonly height: number;
   readonly stripeRows: number;
   readonly stripes: number;
-  readonly filmBuffer: SharedArrayBuffer;
-  readonly ctrlBuffer: SharedArrayBuffer;
-  private readonly ctrl: Int32Array;
+  filmBuffer!: SharedArrayBuffer;
+  ctrlBuffer!: SharedArrayBuffer;
+  /** One row of film: a commit's row goes here first (shared-claims.ts, rule 3). */
+  journalBuffer!: SharedArrayBuffer;
+  private ctrl!: Int32Array;
+  private journal!: Film;
+  private readonly layout: ControlLayout;
   private lastSegments = 0;
   private cleared = false;
   /** Row stamps as of the last takeDirtyRows. */
   private readonly seen: Int32Array;
+  /** Control blocks given up while a worker held their lock: broken when it is known dead. */
+  private abandoned: Abandoned[] = [];
+  private renewed = false;
 
   constructor(width: number, height: number, stripeRows: number, target: number) {
     this.width = width;
     this.height = height;
     this.stripeRows = stripeRows;
-    this.stripes = Math.ceil(height / stripeRows);
-    this.filmBuffer = new SharedArrayBuffer(Film.byteLength(width, height));
-    this.ctrlBuffer = new SharedArrayBuffer(controlWords(this.stripes, height) * 4);
+    this.layout = new ControlLayout(height, stripeRows);
+    this.stripes = this.layout.stripes;
     this.seen = new Int32Array(height).fill(-1);
-    this.film = new Film(width, height, this.filmBuffer);
-    this.ctrl = new Int32Array(this.ctrlBuffer);
+    this.allocate();
     this.ctrl[C_CONFIG] = -1;
     this.ctrl[C_TARGET] = target;
   }
 
+  /** New, zeroed buffers (a RangeError when the memory is not there). */
+  private allocate(): void {
+    const filmBuffer = new SharedArrayBuffer(Film.byteLength(this.width, this.height));
+    const ctrlBuffer = new SharedArrayBuffer(controlWords(this.stripes, this.height) * 4);
+    const journalBuffer = new SharedArrayBuffer(Film.byteLength(this.width, 1));
+    this.filmBuffer = filmBuffer;
+    this.ctrlBuffer = ctrlBuffer;
+    this.journalBuffer = journalBuffer;
+    this.film = new Film(this.width, this.height, filmBuffer);
+    this.journal = new Film(this.width, 1, journalBuffer);
+    this.ctrl = new Int32Array(ctrlBuffer);
+    initControl(this.ctrl);
+  }
+
   get memoryBytes(): number {
-    return this.filmBuffer.byteLength + this.ctrlBuffer.byteLength;
+    return this.filmBuffer.byteLength + this.ctrlBuffer.byteLength + this.journalBuffer.byteLength;
+  }
+
+  /** Takes the lock for the main thread; see the header for what happens when it cannot. */
+  private acquire(): void {
+    const broken = faults.locksBroken;
+    if (lockMain(this.ctrl, MAIN_TOKEN, isDead, LOCK_PATIENCE_MS, faults)) {
+      // A broken lock: its dead holder's claims and cut-short commit first.
+      if (faults.locksBroken > broken) this.repair();
+      return;
+    }
+    try {
+      this.renew();
+    } catch {
+      // No memory for new buffers: all that is left is to wait for the holder.
+      lock(this.ctrl, MAIN_TOKEN);
+      return;
+    }
+    lock(this.ctrl, MAIN_TOKEN);
+  }
+
+  /**
+   * Moves to fresh buffers, keeping the counters that the controller reads
+   * as differences. Workers still on the old block drop their work at the
+   * next look (a new generation, no configuration) once its lock is free.
+   */
+  private renew(): void {
+    const old = this.ctrl;
+    const carried = [C_GEN, C_CONFIG, C_TARGET, C_PAUSED, C_COMMITS, C_SEGMENTS, C_REJECTED].map(
+      (w) => [w, Atomics.load(old, w)],
+    );
+    this.allocate();
+    for (const [w, v] of carried) this.ctrl[w] = v;
+    this.ctrl[C_GEN]++;
+    Atomics.add(old, C_GEN, 1);
+    Atomics.store(old, C_CONFIG, -1);
+    for (let s = 0; s < this.stripes; s++) Atomics.notify(old, C_DONE + s);
+    this.abandoned.push({ ctrl: old, stripes: this.stripes });
+    this.seen.fill(-1);
+    this.renewed = true;
+    faults.renewals++;
+  }
+
+  /** True once after the job moved to new buffers: the workers need them (a new configuration). */
+  takeRenewed(): boolean {
+    const r = this.renewed;
+    this.renewed = false;
+    return r;
   }
 
   reset(): void {
-    const ctrl = this.ctrl;
-    lock(ctrl);
+    this.acquire();
     // Under the lock no worker is committing a row; once the generation is
     // bumped, rows rendered before this point fail their commit check.
     this.film.clear();
-    ctrl[C_CLAIM] = 0;
-    ctrl.fill(0, C_DONE, C_DONE + this.stripes);
-    ctrl[C_GEN]++;
-    unlock(ctrl);
+    this.clearProgress();
+    unlock(this.ctrl);
     // The display blanks the whole image once (takeCleared) instead of
     // tone mapping every row of zeros; rows committed from now on carry
     // new stamps and are drawn over the blank.
     this.cleared = true;
     // Workers waiting for a stripe's previous pass look at the generation again.
-    for (let s = 0; s < this.stripes; s++) Atomics.notify(ctrl, C_DONE + s);
+    this.notifyAll();
+  }
+
+  private notifyAll(): void {
+    for (let s = 0; s < this.stripes; s++) Atomics.notify(this.ctrl, C_DONE + s);
+  }
+
+  /**
+   * Under the lock: a new generation with nothing claimed, reclaimed, done
+   * or committed (row stamps stay: they only ever grow).
+   */
+  private clearProgress(): void {
+    const ctrl = this.ctrl;
+    ctrl[C_CLAIM] = 0;
+    initControl(ctrl);
+    ctrl.fill(0, C_DONE, C_DONE + this.stripes);
+    ctrl.fill(0, this.layout.passBase, this.layout.passBase + this.height);
+    ctrl[C_GEN]++;
   }
 
   setVersion(version: number): void {
-    const ctrl = this.ctrl;
-    lock(ctrl);
-    ctrl[C_CONFIG] = version;
+    this.acquire();
+    this.ctrl[C_CONFIG] = version;
     // A new generation too: a stripe in hand under the old configuration
     // stops at its next row instead of finishing (a film being switched
     // away from, e.g. for the drag preview, must free the workers at once).
-    ctrl[C_GEN]++;
-    unlock(ctrl);
-    for (let s = 0; s < this.stripes; s++) Atomics.notify(ctrl, C_DONE + s);
+    this.ctrl[C_GEN]++;
+    unlock(this.ctrl);
+    this.notifyAll();
   }
 
   setTarget(spp: number): void {
@@ -88,6 +189,44 @@ export class SharedFilmJob implements FilmJob {
 
   setPaused(paused: boolean): void {
     Atomics.store(this.ctrl, C_PAUSED, paused ? 1 : 0);
+  }
+
+  /**
+   * After the pool learnt of dead workers (isDead): their claims go back to
+   * the others, a commit one of them cut short is finished, and locks they
+   * held are broken, here and on given-up blocks. Returns false when a live
+   * holder kept the lock too long; the pool tries again shortly.
+   */
+  recover(): boolean {
+    this.abandoned = this.abandoned.filter((a) => {
+      const holder = Atomics.load(a.ctrl, C_LOCK);
+      if (holder !== 0 && isDead(holder)) {
+        // Nothing on it is wanted; breaking the lock only frees live workers spinning on it.
+        if (Atomics.compareExchange(a.ctrl, C_LOCK, holder, 0) === holder) {
+          faults.locksBroken++;
+        }
+        for (let s = 0; s < a.stripes; s++) Atomics.notify(a.ctrl, C_DONE + s);
+        return false;
+      }
+      return holder !== 0;
+    });
+    if (!lockMain(this.ctrl, MAIN_TOKEN, isDead, LOCK_PATIENCE_MS, faults)) return false;
+    this.repair();
+    unlock(this.ctrl);
+    this.notifyAll();
+    return true;
+  }
+
+  /** Under the lock: recoverDead, for this block. */
+  private repair(): void {
+    const ok = recoverDead(this.ctrl, this.layout, this.film, this.journal, isDead, faults);
+    if (!ok) {
+      // More open claims than the list holds, which its bound rules out:
+      // start the image over rather than lose a claim.
+      this.film.clear();
+      this.clearProgress();
+      this.cleared = true;
+    }
   }
 
   passesDone(): number {
@@ -110,7 +249,7 @@ export class SharedFilmJob implements FilmJob {
 
   takeDirtyRows(): number[] {
     const spans: number[] = [];
-    const base = rowStampBase(this.stripes);
+    const base = this.layout.stampBase;
     let start = -1;
     for (let y = 0; y < this.height; y++) {
       const stamp = Atomics.load(this.ctrl, base + y);
@@ -140,7 +279,8 @@ export class SharedFilmJob implements FilmJob {
 
   busy(): boolean {
     // Every claim ends in a finished pass unless the generation moves on,
-    // and the controller resets (zeroing both counts) whenever it does.
+    // and the controller resets (zeroing both counts) whenever it does. A
+    // dead worker's claim stays open (reclaimed) until another finishes it.
     let done = 0;
     for (let s = 0; s < this.stripes; s++) done += Atomics.load(this.ctrl, C_DONE + s);
     return Atomics.load(this.ctrl, C_CLAIM) > done;

@@ -141,6 +141,17 @@ export class TransferFilmJob implements FilmJob {
     };
   }
 
+  /**
+   * A task's worker died before answering: its rows never left this
+   * film (they travelled as a copy), so the stripe simply goes out again.
+   */
+  onTaskLost(task: StripeTask): void {
+    if (task.gen !== this.gen) return;
+    const s = task.stripe;
+    this.inFlight[s] = 0;
+    if (this.done[s] < this.target) this.queue.unshift(s);
+  }
+
   onResult(result: StripeResult): void {
     this.segments += result.segments;
     this.rejectedCount += result.rejected;

@@ -13,6 +13,12 @@ export interface FallbackInfo {
   compute: ComputeMode;
   /** Plain words: why this mode runs (e.g. "page is not cross-origin isolated"). */
   reason: string;
+  /**
+   * Set when the render is smaller than the canvas asks, because of the
+   * accumulator cap or memory that could not be had: the render scale in
+   * use (relative to CSS size × devicePixelRatio).
+   */
+  renderScale?: number;
 }
 
 export interface ProgressInfo {

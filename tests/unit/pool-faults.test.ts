@@ -1,0 +1,244 @@
+/**
+ * The browser's worker pool and render worker, run in Node on real threads
+ * (worker_threads behind the benchmark's Web Worker shim, as
+ * bench/pool-node.ts does), with workers killed for real: Node's
+ * `terminate()` stops a thread at once, wherever it is — in the middle of a
+ * row, holding the lock, between the journal and the film copy. Node has no
+ * Web Locks, so the pool waits its grace period before recovering (the
+ * path a browser without them takes). The film must end bit-identical to
+ * an undisturbed render, in shared memory and in transfer mode.
+ */
+import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { Worker as NodeWorker } from 'node:worker_threads';
+import { build } from 'esbuild';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import {
+  DEFAULT_SAMPLER,
+  Film,
+  PathTracer,
+  RenderStats,
+  compileScene,
+  packScene,
+  parseScene,
+} from '../../src/core/index.ts';
+import type { FilmJob } from '../../src/view/film-job.ts';
+import { WorkerPool, type PoolClient } from '../../src/view/pool.ts';
+import { SharedFilmJob } from '../../src/view/shared-job.ts';
+import { TransferFilmJob } from '../../src/view/transfer-job.ts';
+import { faults } from '../../src/view/worker-deaths.ts';
+import { C_LOCK, type JobConfig } from '../../workers/render-protocol.ts';
+
+const WIDTH = 32;
+const HEIGHT = 96;
+const STRIPE_ROWS = 3;
+const SPP = 12;
+const SEED = 5;
+
+const scene = parseScene(readFileSync('scenes/cornell.json', 'utf8'));
+let dir = '';
+let workerFile = '';
+
+beforeAll(async () => {
+  dir = mkdtempSync(join(tmpdir(), 'pathwise-pool-faults-'));
+  workerFile = join(dir, 'worker.mjs');
+  await build({
+    entryPoints: ['bench/pool-node-worker.ts'],
+    outfile: workerFile,
+    bundle: true,
+    platform: 'node',
+    format: 'esm',
+    target: 'node20',
+    logLevel: 'warning',
+    ignoreAnnotations: true,
+  });
+});
+
+afterAll(() => {
+  if (dir) rmSync(dir, { recursive: true, force: true });
+});
+
+/** The Web Worker interface the pool uses, over a worker_threads worker. */
+class NodeWebWorker {
+  private readonly w: NodeWorker;
+  constructor(file: string) {
+    this.w = new NodeWorker(file);
+  }
+  postMessage(message: unknown, transfer?: Transferable[]): void {
+    this.w.postMessage(message, transfer as readonly never[] | undefined);
+  }
+  addEventListener(type: string, listener: (event: { data?: unknown; message?: string }) => void) {
+    if (type === 'message') this.w.on('message', (data) => listener({ data }));
+    if (type === 'error') this.w.on('error', (e) => listener({ message: e.message }));
+    if (type === 'exit') this.w.on('exit', () => listener({}));
+  }
+  removeEventListener(): void {}
+  terminate(): void {
+    void this.w.terminate();
+  }
+}
+
+function reference(): Film {
+  const film = new Film(WIDTH, HEIGHT);
+  new PathTracer(compileScene(scene), {
+    width: WIDTH,
+    height: HEIGHT,
+    maxBounces: scene.settings.maxBounces,
+    seed: SEED,
+    camera: scene.camera,
+  }).renderRows(film, 0, HEIGHT, 0, SPP, new RenderStats());
+  return film;
+}
+
+function differingWords(a: Film, b: Film): number {
+  const x = new Uint32Array(a.buffer as ArrayBuffer);
+  const y = new Uint32Array(b.buffer as ArrayBuffer);
+  let n = 0;
+  for (let i = 0; i < x.length; i++) if (x[i] !== y[i]) n++;
+  return n;
+}
+
+function mulberry32(seed: number): () => number {
+  let a = seed >>> 0;
+  return () => {
+    a = (a + 0x6d2b79f5) | 0;
+    let t = Math.imul(a ^ (a >>> 15), 1 | a);
+    t = (t + Math.imul(t ^ (t >>> 7), 61 | t)) ^ t;
+    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
+  };
+}
+
+const sleep = (ms: number) => new Promise((r) => setTimeout(r, ms));
+
+/**
+ * Renders with `threads` workers, doing `faults` at seeded random points of
+ * the render: 'kill' terminates a worker, 'crash' makes one throw in its
+ * next stripe (or task), 'hang' freezes one inside a row commit and then
+ * terminates it.
+ */
+async function renderWithFaults(
+  mode: 'shared' | 'transfer',
+  kinds: ('kill' | 'crash' | 'hang')[],
+  seed: number,
+): Promise<{ film: Film; errors: string[] }> {
+  const random = mulberry32(seed);
+  const job: FilmJob =
+    mode === 'shared'
+      ? new SharedFilmJob(WIDTH, HEIGHT, STRIPE_ROWS, SPP)
+      : new TransferFilmJob(WIDTH, HEIGHT, STRIPE_ROWS, SPP);
+  const shared = job instanceof SharedFilmJob ? job : null;
+  const config = (): JobConfig => ({
+    mode,
+    version: 1,
+    sceneId: 1,
+    scene: packScene(compileScene(scene), mode === 'shared'),
+    width: WIDTH,
+    height: HEIGHT,
+    maxBounces: scene.settings.maxBounces,
+    seed: SEED,
+    estimator: 'nee-mis',
+    sampler: DEFAULT_SAMPLER,
+    camera: scene.camera,
+    stripeRows: STRIPE_ROWS,
+    film: shared?.filmBuffer,
+    ctrl: shared?.ctrlBuffer,
+    journal: shared?.journalBuffer,
+  });
+  const current = config();
+  job.setVersion(1);
+  job.setTarget(SPP);
+  job.reset();
+  const errors: string[] = [];
+  const client: PoolClient = {
+    id: 1,
+    config: () => current,
+    nextTask: () => job.nextTask?.(1) ?? null,
+    onResult: (r) => job.onResult?.(r),
+    onWorkerError: (m) => errors.push(m),
+    onTaskLost: (t) => job.onTaskLost?.(t),
+    recover: () => job.recover?.() ?? true,
+  };
+  const pool = new WorkerPool(
+    { workerFactory: () => new NodeWebWorker(workerFile) as unknown as Worker },
+    2,
+  );
+  pool.register(client);
+  pool.kick();
+  try {
+    for (let i = 0; i < kinds.length; i++) {
+      const at = ((i + 0.5 + 0.5 * random()) / (kinds.length + 1)) * SPP;
+      while (job.progress() < at) await sleep(1 + 3 * random());
+      const index = Math.floor(random() * 4);
+      const kind = kinds[i];
+      if (kind === 'kill') {
+        while (!pool.killWorker(index)) await sleep(2);
+      } else if (kind === 'crash') {
+        const crashed = faults.crashed;
+        while (!pool.crashWorker(index, 1)) await sleep(2);
+        // It crashes in its next stripe (or task): wait for it.
+        while (faults.crashed === crashed && job.passesDone() < SPP) await sleep(2);
+      } else {
+        let token = 0;
+        while (!(token = pool.hangWorker(index, 1 + Math.floor(random() * 5)))) await sleep(2);
+        // Frozen once it holds the lock for good (a live holder keeps it for microseconds).
+        const ctrl = new Int32Array(shared!.ctrlBuffer);
+        const until = Date.now() + 30_000;
+        while (Atomics.load(ctrl, C_LOCK) !== token && Date.now() < until) await sleep(2);
+        expect(Atomics.load(ctrl, C_LOCK)).toBe(token);
+        pool.killWorker(0, token);
+      }
+    }
+    const deadline = Date.now() + 90_000;
+    while ((job.passesDone() < SPP || job.busy()) && errors.length === 0) {
+      if (Date.now() > deadline) throw new Error(`stuck at ${job.progress()} passes`);
+      await sleep(5);
+    }
+  } finally {
+    pool.terminate();
+  }
+  return { film: job.film, errors };
+}
+
+describe('the browser pool with workers killed on real threads (Node)', () => {
+  const expected = reference();
+
+  it('shared memory: kills, crashes and frozen lock holders, the film stays bit-identical', async () => {
+    const before = { ...faults };
+    const { film, errors } = await renderWithFaults(
+      'shared',
+      ['kill', 'hang', 'crash', 'kill', 'kill', 'hang', 'crash', 'kill'],
+      3,
+    );
+    expect(errors).toEqual([]);
+    expect(differingWords(film, expected)).toBe(0);
+    const d = {
+      killed: faults.killed - before.killed,
+      crashed: faults.crashed - before.crashed,
+      reclaimed: faults.reclaimed - before.reclaimed,
+      locksBroken: faults.locksBroken - before.locksBroken,
+      journalRepairs: faults.journalRepairs - before.journalRepairs,
+      partial: faults.partial - before.partial,
+    };
+    console.log(`browser pool in Node, shared: ${JSON.stringify(d)}`);
+    expect(d.killed).toBe(6);
+    expect(d.crashed).toBe(2);
+    // Node stops a thread at once: every killed or crashed worker left a
+    // stripe behind (a crash one row in, so half written).
+    expect(d.reclaimed).toBeGreaterThanOrEqual(6);
+    // The frozen ones died holding the lock, inside a commit.
+    expect(d.locksBroken).toBe(2);
+  });
+
+  it('transfer mode: kills and crashes, the film stays bit-identical', async () => {
+    const before = { ...faults };
+    const { film, errors } = await renderWithFaults(
+      'transfer',
+      ['kill', 'crash', 'kill', 'crash', 'kill'],
+      4,
+    );
+    expect(errors).toEqual([]);
+    expect(differingWords(film, expected)).toBe(0);
+    expect(faults.tasksResent - before.tasksResent).toBeGreaterThanOrEqual(2);
+  });
+});
