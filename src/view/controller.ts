@@ -21,13 +21,15 @@
  * (stripeOrder), so the new picture refines on top of the old one
  * everywhere at once.
  *
- * The animation-frame loop runs only while something can change on screen:
- * samples arriving, a pending resize, a redraw asked for. Paused, converged
- * or in a hidden tab it stops asking for frames (a page of idle views costs
- * nothing), and every call that can change the picture wakes it again.
+ * The animation-frame loop (frame-loop.ts) runs only while something can
+ * change on screen, and every call that can change the picture wakes it.
+ *
+ * The class wires the parts: scene requests (scene-request.ts), the job in
+ * the worker pool (render-job.ts), the display and backdrop (presenter.ts),
+ * rates and progress events (progress-meter.ts), modes and fallbacks
+ * (fallbacks.ts), click-to-focus (focus-pick.ts) and export (film-export.ts).
  */
 import {
-  DEFAULT_SAMPLER,
   encodePfm,
   type CameraDesc,
   type CompiledScene,
@@ -49,13 +51,11 @@ import { FrameLoop } from './frame-loop.ts';
 import { attachCameraControls } from './interaction.ts';
 import { chooseCompute, createDisplay } from './mode.ts';
 import { dollyCamera, orbitCamera } from './orbit.ts';
-import { releasePool, sharedPool, type PoolClient, type WorkerPool } from './pool.ts';
-import { poolClient } from './pool-client.ts';
+import { sharedPool } from './pool.ts';
 import { Presenter } from './presenter.ts';
 import { ProgressMeter } from './progress-meter.ts';
+import { RenderJob } from './render-job.ts';
 import { SceneRequests } from './scene-request.ts';
-import { SharedFilmJob } from './shared-job.ts';
-import { TraceClock } from './trace-clock.ts';
 import type {
   FallbackInfo,
   PathTracerController,
@@ -69,8 +69,8 @@ export class Controller extends EventTarget implements PathTracerController {
   readonly canvas: HTMLCanvasElement;
   private readonly options: PathTracerOptions;
   private readonly id = nextJobId++;
-  private readonly pool: WorkerPool;
-  private readonly client: PoolClient;
+  /** The configuration the workers render, and the pool they are in. */
+  private readonly job: RenderJob;
   /** The display, the exposure and the backdrop. */
   private readonly screen: Presenter;
   /** The mode, and what could not be had (fallback and error events). */
@@ -88,8 +88,6 @@ export class Controller extends EventTarget implements PathTracerController {
   private seed: number;
   private target: number;
   private isPaused = false;
-  private version = 0;
-  private config: JobConfig | null = null;
   private readonly films: Films;
   private destroyed = false;
   /** Rates, noise, and the progress and converged events. */
@@ -105,8 +103,6 @@ export class Controller extends EventTarget implements PathTracerController {
   private interacting = false;
   /** The quick first pass of a new scene and the automatic scale. */
   private readonly firstPass: FirstPass;
-  /** Tracing time of the active film since its last restart. */
-  private readonly clock = new TraceClock();
   constructor(canvas: HTMLCanvasElement, options: PathTracerOptions) {
     super();
     this.canvas = canvas;
@@ -129,24 +125,17 @@ export class Controller extends EventTarget implements PathTracerController {
       this.emit('fallback', this.mode);
       this.wake();
     });
-    this.pool = sharedPool(options, options.workers);
-    this.films = new Films(canvas, options, compute.compute, () => this.pool.size);
+    const pool = sharedPool(options, options.workers);
+    this.films = new Films(canvas, options, compute.compute, () => pool.size);
     // A film wider than a texture could not be shown.
     if (display instanceof StandInDisplay) {
       this.films.maxSide = Math.min(MAX_FILM_SIDE, display.maxTextureSize);
     }
     this.firstPass = new FirstPass(this.films);
-    if (options.workers !== undefined && options.workers !== this.pool.size) {
-      void this.pool.setSize(options.workers);
+    if (options.workers !== undefined && options.workers !== pool.size) {
+      void pool.setSize(options.workers);
     }
-    this.client = poolClient({
-      id: this.id,
-      films: this.films,
-      config: () => this.config!,
-      version: () => this.version,
-      wake: () => this.wake(),
-      emit,
-    });
+    this.job = new RenderJob(this.id, pool, this.films, () => this.wake(), emit);
     this.requests = new SceneRequests({
       canvas,
       options,
@@ -218,6 +207,11 @@ export class Controller extends EventTarget implements PathTracerController {
     return this.films.active();
   }
 
+  /** The configuration the workers render (the browser tests read it too). */
+  private get config(): JobConfig | null {
+    return this.job.config;
+  }
+
   // ---- scene -------------------------------------------------------------
 
   /**
@@ -264,38 +258,19 @@ export class Controller extends EventTarget implements PathTracerController {
       return;
     }
     this.fallbacks.reportCap(this.films);
-    this.version++;
-    // Version first, then reset: a worker still holding the old
-    // configuration can claim nothing once the version moved on.
-    active.setVersion(this.version);
-    active.setTarget(this.target);
-    active.setPaused(this.isPaused);
-    active.reset();
-    active.takeRenewed?.();
-    const shared = active instanceof SharedFilmJob ? active : null;
-    this.config = {
+    const image = {
       mode: this.mode.compute,
-      version: this.version,
       sceneId: this.sceneId,
       scene: this.packed!,
-      width: active.width,
-      height: active.height,
       maxBounces: this.bounces,
       seed: this.seed,
-      estimator: 'nee-mis',
-      sampler: DEFAULT_SAMPLER,
       camera: this.camera,
-      stripeRows: active.stripeRows,
-      film: shared?.filmBuffer,
-      ctrl: shared?.ctrlBuffer,
-      journal: shared?.journalBuffer,
     };
+    this.job.start(active, image, this.target, this.isPaused);
     this.meter.restarted();
-    this.clock.restart(performance.now(), this.isPaused);
+    this.job.clock.restart(performance.now(), this.isPaused);
     this.firstPass.interrupted();
-    this.pool.register(this.client);
-    this.pool.configure(this.client);
-    this.pool.kick();
+    this.job.send();
     this.wake();
   }
 
@@ -303,27 +278,15 @@ export class Controller extends EventTarget implements PathTracerController {
     const job = this.activeJob();
     if (!job || !this.config) return;
     this.screen.captureBackdrop();
-    job.reset();
-    if (job instanceof SharedFilmJob && job.takeRenewed()) {
-      // The film moved to new buffers (a lock its holder would not let go):
-      // the workers need them.
-      this.config = {
-        ...this.config,
-        film: job.filmBuffer,
-        ctrl: job.ctrlBuffer,
-        journal: job.journalBuffer,
-      };
-      this.pool.configure(this.client);
-    }
-    this.clock.restart(performance.now(), this.isPaused);
+    this.job.reset(job, this.isPaused);
     this.screen.dirty = true;
     this.meter.cleared();
-    this.pool.kick();
+    this.job.pool.kick();
     this.wake();
   }
 
   pause(): void {
-    this.clock.pause(performance.now());
+    this.job.clock.pause(performance.now());
     this.isPaused = true;
     this.activeJob()?.setPaused(true);
     // Stripes already in hand still finish and should be shown; the loop
@@ -332,12 +295,12 @@ export class Controller extends EventTarget implements PathTracerController {
   }
 
   resume(): void {
-    this.clock.resume(performance.now());
+    this.job.clock.resume(performance.now());
     // A measurement window must not span a pause.
     if (this.isPaused) this.firstPass.interrupted();
     this.isPaused = false;
     this.activeJob()?.setPaused(false);
-    this.pool.kick();
+    this.job.pool.kick();
     this.wake();
   }
 
@@ -346,7 +309,7 @@ export class Controller extends EventTarget implements PathTracerController {
     this.films.full?.setTarget(this.target);
     this.films.preview?.setTarget(this.target);
     this.meter.targetChanged();
-    this.pool.kick();
+    this.job.pool.kick();
     this.wake();
   }
 
@@ -395,9 +358,8 @@ export class Controller extends EventTarget implements PathTracerController {
     return this.bounces;
   }
 
-  async setWorkers(count: number): Promise<void> {
-    await this.pool.setSize(count);
-    this.pool.kick();
+  setWorkers(count: number): Promise<void> {
+    return this.job.setWorkers(count);
   }
 
   // ---- camera ------------------------------------------------------------
@@ -451,7 +413,7 @@ export class Controller extends EventTarget implements PathTracerController {
       // A pinhole images every distance sharply: keep the focus for when the
       // aperture opens, but do not throw away the samples.
       this.camera = { ...this.camera, focusDistance: distance };
-      if (this.config) this.config = { ...this.config, camera: this.camera };
+      this.job.setCamera(this.camera);
     }
     return true;
   }
@@ -481,7 +443,7 @@ export class Controller extends EventTarget implements PathTracerController {
       frameMs: this.meter.frameMs,
       width: job?.width ?? 0,
       height: job?.height ?? 0,
-      workers: this.pool.size,
+      workers: this.job.pool.size,
       memoryBytes: this.films.memoryBytes + textureBytes + this.screen.backdropBytes,
       rejected: job?.rejected() ?? 0,
       paused: this.isPaused,
@@ -539,14 +501,14 @@ export class Controller extends EventTarget implements PathTracerController {
     const job = this.films.full;
     if (!job || this.films.previewing || !this.config || !this.camera) return null;
     return {
-      version: this.version,
+      version: this.job.version,
       width: job.width,
       height: job.height,
       sums: job.film.sums,
       hi: job.film.hi,
       lo: job.film.lo,
       spp: job.passesDone(),
-      seconds: this.clock.seconds(performance.now()),
+      seconds: this.job.clock.seconds(performance.now()),
       camera: this.camera,
       bounces: this.bounces,
       seed: this.seed,
@@ -583,8 +545,7 @@ export class Controller extends EventTarget implements PathTracerController {
     this.requests.cancelModel();
     this.detachControls?.();
     this.films.park();
-    this.pool.unregister(this.client);
-    releasePool(this.pool);
+    this.job.release();
     this.screen.display.destroy();
   }
 }
