@@ -42,11 +42,18 @@ export async function loadSceneFile(path: string, options: SceneFileOptions = {}
   }
   try {
     const files = nodeSceneFiles(dirname(path));
-    const platform = { generateTangents: await nodeTangentGenerator() };
+    // MikkTSpace's WebAssembly is read only for glTF: a scene of spheres,
+    // quads and meshes needs nothing beyond the bundle itself.
+    const tangents = async () => ({ generateTangents: await nodeTangentGenerator() });
     if (model) {
-      return await loadBareModel(bytes, basename(path), files, { ...platform, ...options });
+      return await loadBareModel(bytes, basename(path), files, {
+        ...(await tangents()),
+        ...options,
+      });
     }
-    return await resolveSceneFiles(parseScene(bytes), files, platform);
+    const scene = parseScene(bytes);
+    const gltf = scene.shapes.some((s) => s.type === 'gltf');
+    return await resolveSceneFiles(scene, files, gltf ? await tangents() : {});
   } catch (e) {
     if (e instanceof SceneError) throw new CliError(`${showPath(path)}: ${e.message}`);
     throw e;
