@@ -1,0 +1,120 @@
+/**
+ * The animation-frame loop. Each frame lets the film follow the canvas's
+ * size, lets the quick first pass hand over to another film, uploads and
+ * draws what the workers traced, and reports progress.
+ *
+ * The loop runs only while something can change on screen: samples
+ * arriving, a pending resize, a redraw asked for. Paused, converged or in a
+ * hidden tab it stops asking for frames (a page of idle views costs
+ * nothing), and every call that can change the picture wakes it again.
+ */
+import type { Fallbacks } from './fallbacks.ts';
+import type { Films } from './films.ts';
+import type { FirstPass } from './first-pass.ts';
+import type { Presenter } from './presenter.ts';
+import type { ProgressMeter } from './progress-meter.ts';
+
+/** What the loop reads from the controller each frame. */
+export interface LoopHost {
+  destroyed(): boolean;
+  target(): number;
+  paused(): boolean;
+  /** The pointer (or keyboard) is moving the camera. */
+  interacting(): boolean;
+  /** A new configuration version and reset of the active film (Controller.restart). */
+  restart(): void;
+}
+
+export class FrameLoop {
+  private readonly host: LoopHost;
+  private readonly films: Films;
+  private readonly firstPass: FirstPass;
+  private readonly screen: Presenter;
+  private readonly meter: ProgressMeter;
+  private readonly fallbacks: Fallbacks;
+  /** The pending animation frame; 0 while the loop is idle. */
+  private raf = 0;
+  /** Animation frames the loop has run (see Controller.framesRun). */
+  count = 0;
+
+  constructor(
+    host: LoopHost,
+    films: Films,
+    firstPass: FirstPass,
+    screen: Presenter,
+    meter: ProgressMeter,
+    fallbacks: Fallbacks,
+  ) {
+    this.host = host;
+    this.films = films;
+    this.firstPass = firstPass;
+    this.screen = screen;
+    this.meter = meter;
+    this.fallbacks = fallbacks;
+  }
+
+  /** Makes sure an animation frame is coming (the loop stops itself when idle). */
+  wake(): void {
+    if (this.host.destroyed() || this.raf !== 0) return;
+    this.raf = requestAnimationFrame(this.frame);
+  }
+
+  /** Cancels the pending frame (destroy). */
+  stop(): void {
+    cancelAnimationFrame(this.raf);
+    this.raf = 0;
+  }
+
+  private readonly frame = (now: number): void => {
+    const { host, films, firstPass, meter } = this;
+    this.raf = 0;
+    if (host.destroyed()) return;
+    this.count++;
+    try {
+      if (films.follow(now, host.target())) host.restart();
+    } catch (e) {
+      this.fallbacks.filmFailed(e);
+    }
+    // The speed measurements may hand over to another film (a restart):
+    // this frame then draws that one, over the picture captured as backdrop.
+    const before = films.active();
+    const paused = host.paused();
+    if (before && firstPass.advance(now, before, host.target(), paused, host.interacting())) {
+      host.restart();
+    }
+    const job = films.active();
+    // No scene yet: setScene's restart wakes the loop. A resize waiting to
+    // settle is checked again on the next frame.
+    if (!job) {
+      if (films.resizePending) this.wake();
+      return;
+    }
+    const segments = job.takeSegments();
+    meter.traced(now, segments);
+    const t0 = performance.now();
+    const drew = this.screen.present(job, false);
+    if (drew) meter.drew(now, performance.now() - t0);
+    // Preview passes are not the image's samples: the full film has none yet.
+    const spp = films.previewing ? 0 : job.passesDone();
+    if (drew) firstPass.drew(now, job, spp);
+    meter.update(now, job, spp);
+    // Another frame only while the picture can still change: samples are
+    // (or may soon be) arriving, a draw or an event is owed, a resize is
+    // settling or the pointer drags the preview.
+    const tracing = !host.paused() && spp < host.target();
+    const owed = meter.owed(spp) || this.screen.dirty;
+    if (
+      drew ||
+      segments > 0 ||
+      tracing ||
+      owed ||
+      job.busy() ||
+      (firstPass.active && !host.paused()) ||
+      films.resizePending ||
+      films.wantPreview ||
+      films.previewing
+    ) {
+      this.wake();
+    }
+  };
+}

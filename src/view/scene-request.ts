@@ -1,0 +1,322 @@
+/**
+ * Scene requests: setScene and load read a scene (JSON, bytes, a File, a
+ * URL, a bare glTF model), compile and pack it for the workers, and hand it
+ * to the controller, which installs it and restarts.
+ *
+ * The last request always wins: each one bumps a counter, and a request
+ * that is no longer the latest when its fetch or file read ends is dropped
+ * (its fetch aborted, its model load stopped).
+ */
+import {
+  LIMITS,
+  SceneError,
+  compileScene,
+  countSkippedTriangles,
+  isGlbBytes,
+  isModelFileName,
+  isValidatedScene,
+  loadBareModel,
+  parseScene,
+  sceneWarnings,
+  resolveSceneFiles,
+  sceneNeedsFiles,
+  validateScene,
+  packScene,
+  unpackScene,
+  type CompiledScene,
+  type PackedScene,
+  type Scene,
+  type LoadStage,
+  type ResolveOptions,
+  type SceneFileReader,
+} from '../core/index.ts';
+import { GLTF_FILE_BYTES } from '../core/gltf/load.ts';
+import { sceneSizeProblem } from '../core/scene/load.ts';
+import { ByteLimitError, readBlobBounded, readResponseBounded } from './read-bounded.ts';
+import { loadModelInWorker, type LoadedModel, type ModelJob } from './model-load.ts';
+import { urlSceneFiles, type PortableReader } from './scene-files.ts';
+import type { PathTracerOptions } from './types.ts';
+
+/**
+ * A scene ready to install; compiled and packed already when the model worker loaded it
+ * (which also counted what the model's arrays, left out of `scene`, said).
+ */
+type Loaded = { scene: Scene } | LoadedModel;
+
+/** What the requests need from the controller. */
+export interface SceneHost {
+  readonly canvas: HTMLCanvasElement;
+  readonly options: PathTracerOptions;
+  /** Whether the workers share memory (then scenes are packed into shared buffers). */
+  shared(): boolean;
+  /** Whether a scene is installed already (the first one may take options.bounces). */
+  hasScene(): boolean;
+  destroyed(): boolean;
+  emit(type: string, detail: unknown): void;
+  /** Installs a compiled scene and restarts; `load` and `warning` follow. */
+  use(scene: Scene, compiled: CompiledScene, packed: PackedScene, first: boolean): void;
+}
+
+/** A model file's bytes, at most GLTF_FILE_BYTES (checked by its size before reading). */
+async function readModelBlob(blob: Blob, name: string): Promise<Uint8Array> {
+  if (blob.size > GLTF_FILE_BYTES) throw new Error(`${name}: ${modelSizeProblem(blob.size, true)}`);
+  return new Uint8Array(await blob.arrayBuffer());
+}
+
+/** The last component of a URL's path, as its file's name. */
+function fileNameOf(url: string): string {
+  const last = new URL(url).pathname.replace(/^.*\//, '');
+  try {
+    return decodeURIComponent(last) || 'model.glb';
+  } catch {
+    return last || 'model.glb';
+  }
+}
+
+function modelSizeProblem(size: number, exact: boolean): string {
+  const got = exact ? `${size}` : `at least ${size}`;
+  return `a glTF model must be at most ${GLTF_FILE_BYTES} bytes (1 GiB), got ${got} bytes`;
+}
+
+export class SceneRequests {
+  private readonly host: SceneHost;
+  /** The model worker's current load, stopped when a newer scene or destroy() comes. */
+  private modelJob: ModelJob | null = null;
+  /** Whether any scene was asked for (the one in the options then is not loaded). */
+  requested = false;
+  /**
+   * Bumped by every scene request (setScene, load) and by destroy: a request
+   * that is no longer the latest when its fetch or file read ends is
+   * dropped, so the last request always wins.
+   */
+  private sceneRequest = 0;
+  /** Aborts the fetch of a load that a newer request superseded. */
+  private loadAbort: AbortController | null = null;
+
+  constructor(host: SceneHost) {
+    this.host = host;
+  }
+
+  /**
+   * Loads a scene. A request superseded by a later one (setScene or load)
+   * before it was read resolves without loading anything.
+   */
+  async setScene(value: unknown, files?: SceneFileReader): Promise<void> {
+    const request = this.newSceneRequest();
+    // Mesh, glTF and environment-map files: fetched relative to the page unless the
+    // caller says how (a scene's URL, dropped files, a preset's assets).
+    const reader = files ?? this.host.options.files ?? urlSceneFiles(document.baseURI);
+    return this.install(request, () => this.readScene(value, reader));
+  }
+
+  /** A new scene request: the older ones lose (a fetch in flight is aborted, a model load stopped). */
+  newSceneRequest(): number {
+    this.requested = true;
+    this.loadAbort?.abort();
+    this.loadAbort = null;
+    this.modelJob?.cancel();
+    return ++this.sceneRequest;
+  }
+
+  /** Stops the model worker's load, if one is running. */
+  cancelModel(): void {
+    this.modelJob?.cancel();
+  }
+
+  /**
+   * Reads a scene: a File named `.glb` / `.gltf`, or bytes that are a GLB, is a bare
+   * model (core/gltf/bare-scene.ts), anything else a pathwise-scene/1 scene.
+   */
+  private async readScene(value: unknown, files: SceneFileReader): Promise<Loaded> {
+    if (value instanceof Blob) {
+      const name = value instanceof File ? value.name : '';
+      if (isModelFileName(name)) {
+        return this.readModel(await readModelBlob(value, name), name, files);
+      }
+      // Bytes and files get the loader's byte bound and strict UTF-8, as on the command line.
+      value = await readBlobBounded(value, LIMITS.fileBytes);
+    }
+    if (value instanceof Uint8Array && isGlbBytes(value)) {
+      return this.readModel(value, 'model.glb', files);
+    }
+    const scene = isValidatedScene(value)
+      ? value
+      : typeof value === 'string' || value instanceof Uint8Array
+        ? parseScene(value)
+        : validateScene(value);
+    if (!sceneNeedsFiles(scene)) return { scene };
+    // A scene file's glTF shapes load on the page (its reader may be any object).
+    const hasGltf = scene.shapes.some((s) => s.type === 'gltf' && s.data === null);
+    return {
+      scene: await resolveSceneFiles(scene, files, hasGltf ? await this.gltfPlatform() : {}),
+    };
+  }
+
+  /**
+   * A bare model, framed at the aspect ratio of the picture it will be shown in: loaded,
+   * compiled and packed in the model worker (model-load.ts) when its files can be read
+   * there (a URL, dropped files), else on the page.
+   */
+  private async readModel(
+    bytes: Uint8Array,
+    name: string,
+    files: SceneFileReader,
+  ): Promise<Loaded> {
+    const { canvas, options } = this.host;
+    const width = options.width ?? Math.round(canvas.clientWidth || 512);
+    const height = options.height ?? Math.round(canvas.clientHeight || 512);
+    // Only the aspect ratio matters here (the film follows the canvas).
+    const clamp = (n: number) => Math.min(4096, Math.max(1, n));
+    const source = (files as Partial<PortableReader>).source;
+    if (source !== undefined && typeof Worker !== 'undefined') {
+      this.modelJob?.cancel();
+      const job = loadModelInWorker(
+        {
+          bytes,
+          name,
+          source,
+          width: clamp(width),
+          height: clamp(height),
+          shared: this.host.shared(),
+        },
+        (stage, done, total) => this.progressLoad(stage, done, total),
+      );
+      this.modelJob = job;
+      const loaded = await job.promise;
+      if (loaded !== null) return loaded;
+    }
+    const scene = await loadBareModel(bytes, name, files, {
+      ...(await this.gltfPlatform()),
+      width: clamp(width),
+      height: clamp(height),
+    });
+    return { scene };
+  }
+
+  /**
+   * What loading glTF takes from the browser (gltf-browser.ts, imported only when a
+   * model is loaded): createImageBitmap for images, MikkTSpace's WebAssembly, texels
+   * in shared memory when the workers share it, and progress as `loadprogress` events.
+   */
+  private async gltfPlatform(): Promise<ResolveOptions> {
+    const { browserTangentGenerator, decodeImageBrowser } =
+      await import('../../workers/gltf-browser.ts');
+    return {
+      decodeImage: decodeImageBrowser,
+      // Without it, normal maps of primitives that have no tangents are ignored with
+      // a warning (the loader says so) rather than failing the whole model.
+      generateTangents: await browserTangentGenerator().catch(() => null),
+      sharedTextures: this.host.shared(),
+      onProgress: (stage, done, total) => this.progressLoad(stage, done, total),
+    };
+  }
+
+  private progressLoad(stage: LoadStage, done: number, total: number): void {
+    this.host.emit('loadprogress', { stage, done, total });
+  }
+
+  /**
+   * Installs the scene `read` gives, unless a later request came first; every failure
+   * is an `error` event and a rejection with the loader's message.
+   */
+  private async install(request: number, read: () => Promise<Loaded>): Promise<void> {
+    const host = this.host;
+    let loaded: Loaded;
+    try {
+      loaded = await read();
+    } catch (e) {
+      // A superseded request's failure is nobody's concern any more.
+      if (request !== this.sceneRequest) return;
+      if (e instanceof ByteLimitError) e = new SceneError([sceneSizeProblem(e.size, e.exact)]);
+      const message = e instanceof Error ? e.message : String(e);
+      host.emit('error', { message });
+      throw new Error(message);
+    }
+    // A later call started while this one read its files: that one wins.
+    if (request !== this.sceneRequest || host.destroyed()) return;
+    const { scene } = loaded;
+    const packed = 'packed' in loaded ? loaded.packed : undefined;
+    const first = !host.hasScene();
+    const big =
+      packed === undefined && scene.shapes.some((s) => s.type === 'gltf' || s.type === 'mesh');
+    if (big) {
+      // The BVH build is synchronous: let the page show the stage first.
+      this.progressLoad('compile', 0, 1);
+      await new Promise((resolve) => setTimeout(resolve, 0));
+      if (request !== this.sceneRequest || host.destroyed()) return;
+    }
+    let compiled: CompiledScene;
+    let packedScene: PackedScene;
+    try {
+      if (packed !== undefined) {
+        // Compiled and packed by the model worker: views into its buffer.
+        compiled = unpackScene(packed);
+        packedScene = packed;
+      } else {
+        compiled = compileScene(scene);
+        if (big) this.progressLoad('compile', 1, 1);
+        // Compiled once here (the picker uses it too) and shipped packed: the
+        // workers neither parse nor compile nor build a BVH.
+        packedScene = packScene(compiled, host.shared());
+      }
+    } catch (e) {
+      if (!(e instanceof RangeError)) throw e;
+      // Memory the scene's arrays (shared ones, when isolated) could not get.
+      const message = `could not allocate memory for the compiled scene: ${e.message}`;
+      host.emit('error', { message });
+      throw new Error(message);
+    }
+    host.use(scene, compiled, packedScene, first);
+    const warnings = 'warnings' in loaded ? loaded.warnings : sceneWarnings(scene);
+    const skippedTriangles =
+      'skippedTriangles' in loaded ? loaded.skippedTriangles : countSkippedTriangles(scene);
+    host.emit('load', { scene, skippedTriangles, warnings });
+    if (warnings.length > 0) host.emit('warning', { messages: warnings });
+  }
+
+  /** Fetches and loads a scene; superseded like setScene (its fetch is aborted then). */
+  async load(url: string): Promise<void> {
+    const request = this.newSceneRequest();
+    const abort = typeof AbortController !== 'undefined' ? new AbortController() : null;
+    this.loadAbort = abort;
+    let bytes: Uint8Array;
+    let base: string;
+    let model = false;
+    try {
+      model = isModelFileName(new URL(url, document.baseURI).pathname);
+    } catch {
+      // Not a URL: fetch says so below.
+    }
+    try {
+      if (model) this.progressLoad('read', 0, 1);
+      const response = await fetch(url, abort ? { signal: abort.signal } : undefined);
+      if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
+      base = response.url || new URL(url, document.baseURI).href;
+      bytes = await readResponseBounded(response, model ? GLTF_FILE_BYTES : LIMITS.fileBytes);
+    } catch (e) {
+      if (request !== this.sceneRequest) return;
+      const message =
+        e instanceof ByteLimitError
+          ? `${url}: ${model ? modelSizeProblem(e.size, e.exact) : sceneSizeProblem(e.size, e.exact)}`
+          : e instanceof Error
+            ? e.message
+            : String(e);
+      this.host.emit('error', { message });
+      throw new Error(message);
+    }
+    if (request !== this.sceneRequest) return;
+    if (this.loadAbort === abort) this.loadAbort = null;
+    if (model) this.progressLoad('read', 1, 1);
+    // The files the scene (or the model) names live beside it.
+    const files = urlSceneFiles(base);
+    if (model || isGlbBytes(bytes)) {
+      const name = fileNameOf(base);
+      return this.install(request, () =>
+        this.readModel(bytes, name, files).catch((e: unknown): never => {
+          throw new Error(`${name}: ${e instanceof Error ? e.message : String(e)}`);
+        }),
+      );
+    }
+    await this.setScene(bytes, files);
+  }
+}
