@@ -11,13 +11,10 @@
  */
 import { getHeapStatistics } from 'node:v8';
 import { parentPort, workerData } from 'node:worker_threads';
-import {
-  Film,
-  RenderStats,
-  unpackScene,
-  type PackedScene,
-  type PathTracer,
-} from '../src/core/index.ts';
+// Direct module imports, not the core's index (see round-claims.ts).
+import { Film } from '../src/core/film/film.ts';
+import { RenderStats, type PathTracer } from '../src/core/integrator/path-tracer.ts';
+import { unpackScene, type PackedScene } from '../src/core/scene/pack.ts';
 import { claimStripe, renderStripeRound, roundMemoryFrom, type Die } from './round-claims.ts';
 import { createTracer, type StripeJob } from './stripes.ts';
 
