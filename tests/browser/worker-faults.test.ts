@@ -83,7 +83,11 @@ async function faultDuringRender(
         } else {
           const before = faults.crashed;
           while (!w.__pathwise.pool().crashWorker(index, 1)) await sleep(2);
-          while (faults.crashed === before && c.stats().spp < target) await sleep(2);
+          // The hold moves on a pass at a time if the render catches up first.
+          while (faults.crashed === before && c.stats().spp < passes) {
+            if (c.stats().spp >= target && target < passes) c.setTargetSpp(++target);
+            await sleep(2);
+          }
           if (faults.crashed > before) done.crash++;
         }
       }

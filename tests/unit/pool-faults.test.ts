@@ -164,10 +164,25 @@ async function renderWithFaults(
     2,
   );
   pool.register(client);
-  pool.kick();
+  // The render is held two passes past the next fault's point (never past
+  // SPP), so that a fast machine cannot finish before every fault has landed;
+  // raising the target keeps the samples. Workers start at the first hold.
+  let target = 0;
+  // While a fault waits for its worker to reach a stripe or a commit, the
+  // hold moves on a pass at a time if the render has caught up with it.
+  const extend = () => {
+    if (job.passesDone() >= target && target < SPP) {
+      target++;
+      job.setTarget(target);
+      pool.kick();
+    }
+  };
   try {
     for (let i = 0; i < kinds.length; i++) {
       const at = ((i + 0.5 + 0.5 * random()) / (kinds.length + 1)) * SPP;
+      target = Math.max(target, Math.min(SPP, Math.ceil(at) + 2));
+      job.setTarget(target);
+      pool.kick();
       while (job.progress() < at) await sleep(1 + 3 * random());
       const index = Math.floor(random() * 4);
       const kind = kinds[i];
@@ -177,18 +192,26 @@ async function renderWithFaults(
         const crashed = faults.crashed;
         while (!pool.crashWorker(index, 1)) await sleep(2);
         // It crashes in its next stripe (or task): wait for it.
-        while (faults.crashed === crashed && job.passesDone() < SPP) await sleep(2);
+        while (faults.crashed === crashed && job.passesDone() < SPP) {
+          extend();
+          await sleep(2);
+        }
       } else {
         let token = 0;
         while (!(token = pool.hangWorker(index, 1 + Math.floor(random() * 5)))) await sleep(2);
         // Frozen once it holds the lock for good (a live holder keeps it for microseconds).
         const ctrl = new Int32Array(shared!.ctrlBuffer);
         const until = Date.now() + 30_000;
-        while (Atomics.load(ctrl, C_LOCK) !== token && Date.now() < until) await sleep(2);
+        while (Atomics.load(ctrl, C_LOCK) !== token && Date.now() < until) {
+          extend();
+          await sleep(2);
+        }
         expect(Atomics.load(ctrl, C_LOCK)).toBe(token);
         pool.killWorker(0, token);
       }
     }
+    job.setTarget(SPP);
+    pool.kick();
     const deadline = Date.now() + 90_000;
     while ((job.passesDone() < SPP || job.busy()) && errors.length === 0) {
       if (Date.now() > deadline) throw new Error(`stuck at ${job.progress()} passes`);
@@ -223,11 +246,14 @@ describe('the browser pool with workers killed on real threads (Node)', () => {
     console.log(`browser pool in Node, shared: ${JSON.stringify(d)}`);
     expect(d.killed).toBe(6);
     expect(d.crashed).toBe(2);
-    // Node stops a thread at once: every killed or crashed worker left a
-    // stripe behind (a crash one row in, so half written).
-    expect(d.reclaimed).toBeGreaterThanOrEqual(6);
-    // The frozen ones died holding the lock, inside a commit.
-    expect(d.locksBroken).toBe(2);
+    // Node stops a thread at once. A crash comes one row into a stripe, so
+    // each crash leaves a half-written stripe behind; a kill leaves one only
+    // if it lands while the worker holds a claim (most do: 6-8 of 8 here).
+    expect(d.reclaimed).toBeGreaterThanOrEqual(d.crashed);
+    expect(d.partial).toBeGreaterThanOrEqual(d.crashed);
+    // The two frozen ones died holding the lock, inside a commit; a kill
+    // that lands during a commit breaks one more (seen in 1 of 3 idle runs).
+    expect(d.locksBroken).toBeGreaterThanOrEqual(2);
   });
 
   it('transfer mode: kills and crashes, the film stays bit-identical', async () => {

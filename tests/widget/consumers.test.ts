@@ -77,12 +77,24 @@ async function expectCornellBox(page: Page, spp: number) {
     spp,
     { timeout: WAIT_MS, polling: 100 },
   );
-  const bytes = await page.evaluate(() =>
-    Array.from(
-      (document.querySelector('pathwise-view') as unknown as { toPFM(): Uint8Array }).toPFM(),
-    ),
-  );
-  const image = decodePfm(Uint8Array.from(bytes));
+  // The image and its sample count are read in one task of the page: between
+  // two reads the element may restart (its render scale is chosen from the
+  // measured speed), and a restarted film is black until its first pass.
+  const deadline = Date.now() + WAIT_MS;
+  let read: { spp: number; bytes: number[] };
+  for (;;) {
+    read = await page.evaluate(() => {
+      const el = document.querySelector('pathwise-view') as unknown as {
+        controller: { stats(): { spp: number } };
+        toPFM(): Uint8Array;
+      };
+      return { spp: el.controller.stats().spp, bytes: Array.from(el.toPFM()) };
+    });
+    if (read.spp >= spp || Date.now() > deadline) break;
+    await page.waitForTimeout(100);
+  }
+  expect(read.spp, 'samples per pixel of the image read').toBeGreaterThanOrEqual(spp);
+  const image = decodePfm(Uint8Array.from(read.bytes));
   const walls = wallColors(image.width, image.height, image.rgb);
   expect(isRed(walls.left), `left wall ${walls.left}`).toBe(true);
   expect(isGreen(walls.right), `right wall ${walls.right}`).toBe(true);
