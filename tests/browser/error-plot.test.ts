@@ -103,10 +103,12 @@ describe('live error plot (Chromium)', () => {
     );
     const moved = await points(page);
     expect(moved.every((p) => Number.isNaN(p.truth))).toBe(true);
-    // The estimate needs two samples per pixel: a point taken at 1 spp (if the
-    // meter's tick came then, which depends on the machine's speed) has none.
+    // The estimate needs two samples in a cell's pixels: a point taken at 1 spp
+    // (if the meter's tick came then, which depends on the machine's speed) has
+    // none, or one from the cells the second pass had already covered. Either
+    // way it is never zero or negative.
     expect(moved.filter((p) => p.spp >= 2).every((p) => p.estimated > 0)).toBe(true);
-    expect(moved.filter((p) => p.spp < 2).every((p) => Number.isNaN(p.estimated))).toBe(true);
+    expect(moved.every((p) => Number.isNaN(p.estimated) || p.estimated > 0)).toBe(true);
     expect(moved.at(-1)!.estimated).toBeGreaterThan(0);
     expect(await page.locator('#error-caption').textContent()).toMatch(/Reset view/);
     await page.click('#reset-view');
