@@ -15,13 +15,19 @@ import {
   type FilmHeader,
 } from '../core/index.ts';
 
+/** Whether `path` names a `.film` output (exact sums and a header). */
+export function isFilmPath(path: string): boolean {
+  return /\.film$/i.test(path);
+}
+
 export function encodeOutput(
   path: string,
   film: Film,
-  header: FilmHeader,
+  /** The `.film` header, made only when the output is a `.film`. */
+  header: () => FilmHeader,
   exposure: number,
 ): Uint8Array {
-  if (/\.film$/i.test(path)) return encodeFilmFile(header, film);
+  if (isFilmPath(path)) return encodeFilmFile(header(), film);
   if (/\.pfm$/i.test(path)) return encodePfm(film.width, film.rows, film.mean());
   const rgba = new Uint8Array(film.width * film.rows * 4);
   tonemapSums(film.sums, exposure, rgba);

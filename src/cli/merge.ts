@@ -97,7 +97,7 @@ export async function merge(argv: string[]): Promise<void> {
       stats.rejected += part.header.stats.rejected;
     }
     const header = makeHeader(first, total, union, stats);
-    await output.commit(encodeOutput(args.out, acc.film, header, args.exposure));
+    await output.commit(encodeOutput(args.out, acc.film, () => header, args.exposure));
     report(args, header, acc.film, missing, held, total);
   } finally {
     await output.discard();
