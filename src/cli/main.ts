@@ -3,13 +3,10 @@
  * stderr for bad arguments, a bad or unreadable scene, or an output that cannot be
  * written; 1 for anything else (a bug).
  */
-import {
-  FilmFileError,
-  SceneError,
-  countSkippedTriangles,
-  sceneWarnings,
-  validateSettingsOverride,
-} from '../core/index.ts';
+import { FilmFileError } from '../core/film/film-file.ts';
+import { SceneError, validateSettingsOverride } from '../core/scene/load.ts';
+import { countSkippedTriangles } from '../core/scene/mesh-desc.ts';
+import { sceneWarnings } from '../core/scene/warnings.ts';
 import { printableLine, quote } from '../core/scene/message.ts';
 import { SYNOPSIS, USAGE, UsageError, parseRenderArgs } from './args.ts';
 import { CliError } from './errors.ts';

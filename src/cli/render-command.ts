@@ -4,15 +4,11 @@
  * the output and the JSON line.
  */
 import { existsSync } from 'node:fs';
-import {
-  LIMITS,
-  estimateNoise,
-  formatRanges,
-  type Film,
-  type FilmHeader,
-  type Scene,
-  type SettingsDesc,
-} from '../core/index.ts';
+import { LIMITS, type Scene, type SettingsDesc } from '../core/scene/types.ts';
+import { estimateNoise } from '../core/film/noise.ts';
+import { formatRanges } from '../core/film/sample-ranges.ts';
+import type { Film } from '../core/film/film.ts';
+import type { FilmHeader } from '../core/film/film-file.ts';
 import { UsageError, type RenderArgs } from './args.ts';
 import { processSeconds, runBatch, type BatchProgress } from './batch.ts';
 import { encodeOutput, isFilmPath } from './encode-output.ts';

@@ -14,7 +14,11 @@
  */
 import { availableParallelism } from 'node:os';
 import { Worker } from 'node:worker_threads';
-import { Film, RenderStats, compileScene, packScene, type Scene } from '../core/index.ts';
+import { Film } from '../core/film/film.ts';
+import { RenderStats } from '../core/integrator/path-tracer.ts';
+import { compileScene } from '../core/scene/compile.ts';
+import { packScene } from '../core/scene/pack.ts';
+import type { Scene } from '../core/scene/types.ts';
 import type { StripeJob } from '../../workers/stripes.ts';
 import { stripeCount } from '../../workers/stripes.ts';
 import type {
