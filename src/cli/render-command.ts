@@ -18,7 +18,7 @@ import { filmIdentity, makeHeader, readFilmFile, type FilmIdentity } from './fil
 import { Interrupts } from './interrupt.ts';
 import { ProgressBar, type ProgressState } from './progress.ts';
 import { showPath } from './read-bounded.ts';
-import { RenderPool } from './render.ts';
+import { RenderPool, type EarlyWorkers } from './render.ts';
 import { startTestFaults, TEST_FAULTS_ENV } from './test-faults.ts';
 
 interface Resumed {
@@ -27,12 +27,19 @@ interface Resumed {
   stats: FilmHeader['stats'];
 }
 
+/** The bundled worker script, beside this bundle (dist/cli). */
+export function renderWorkerUrl(): URL {
+  return new URL('./render-worker.js', import.meta.url);
+}
+
 export async function renderCommand(
   args: RenderArgs,
   scene: Scene,
   settings: SettingsDesc,
   /** Zero-area triangles the loader skipped (reported in --json). */
   skippedTriangles = 0,
+  /** Workers started before the scene was loaded (warm-up.ts), for the pool to take over. */
+  early?: EarlyWorkers,
 ): Promise<void> {
   const b = args.batch;
   const criteria = b.time !== undefined || b.noise !== undefined;
@@ -85,7 +92,8 @@ export async function renderCommand(
       estimator: args.estimator,
       sampler: args.sampler,
       stripeRows: args.stripeRows,
-      workerUrl: new URL('./render-worker.js', import.meta.url),
+      workerUrl: renderWorkerUrl(),
+      early,
     });
     // Test hook (test-faults.ts): worker threads killed during the render.
     const faultSpec = process.env[TEST_FAULTS_ENV];
