@@ -52,7 +52,7 @@ export interface PoolRequest {
   stripeRows?: number;
   /** Path of the bundled worker script. */
   workerUrl: URL;
-  /** Workers started earlier (startWorkers), taken over by the pool; `threads` must match. */
+  /** Workers started earlier (EarlyWorkers, warm-up.ts), taken over by the pool; `threads` must match. */
   early?: EarlyWorkers;
 }
 
@@ -204,8 +204,18 @@ export class RenderPool {
         killed: false,
       };
     });
-    // Compiled once here; every worker maps the same shared buffer.
-    this.scene = packScene(compileScene(req.scene), true);
+    // Compiled once here; every worker maps the same shared buffer. Should that
+    // fail, the workers are ended (they would keep the process alive).
+    try {
+      this.scene = packScene(compileScene(req.scene), true);
+    } catch (e) {
+      this.closed = true;
+      for (const { worker } of this.slots) {
+        worker.removeAllListeners();
+        void worker.terminate();
+      }
+      throw e;
+    }
     this.compileSeconds = (performance.now() - this.startedAt) / 1000;
     this.sceneBytes = this.scene.buffer.byteLength;
     this.job = {

@@ -82,6 +82,41 @@ describe('early, warmed-up render workers', () => {
     },
   );
 
+  it('a scene that fails to compile ends the workers the pool took over', async () => {
+    const scene = parseScene(readFileSync(join(ROOT, 'scenes', 'cornell.json'), 'utf8'));
+    // A mesh file never read: compileScene refuses it.
+    const broken = {
+      ...scene,
+      shapes: [
+        ...scene.shapes,
+        { type: 'mesh' as const, material: 'white', file: 'x.obj', transform: null, data: null },
+      ],
+    };
+    const job = {
+      maxBounces: 6,
+      seed: 0,
+      estimator: 'nee-mis' as const,
+      sampler: 'sobol' as const,
+    };
+    const early = new EarlyWorkers(2, WORKER, null, 0);
+    try {
+      expect(
+        () =>
+          new RenderPool({
+            scene: broken,
+            width: 8,
+            height: 8,
+            ...job,
+            threads: 2,
+            workerUrl: WORKER,
+            early,
+          }),
+      ).toThrow(/not read/);
+    } finally {
+      await early.close();
+    }
+  });
+
   it('workers no pool took over are ended by close (a bad scene, say)', async () => {
     const job = {
       maxBounces: 6,
