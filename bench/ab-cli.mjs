@@ -38,6 +38,7 @@ if (existsSync(native)) variants.push({ name: 'native', native });
 
 /** Wall and CPU seconds of one process (CPU from /proc via `time`'s format). */
 function timed(cmd, args) {
+  if (!existsSync('/usr/bin/time')) return timedWallOnly(cmd, args);
   const out = join(work, 'time.txt');
   const t0 = performance.now();
   const r = spawnSync('/usr/bin/time', ['-o', out, '-f', '%U %S', cmd, ...args], {
@@ -50,6 +51,15 @@ function timed(cmd, args) {
     .split(' ')
     .map(Number);
   return { wall, cpu: user + sys, stdout: r.stdout };
+}
+
+/** Where GNU time is not installed: wall time only (CPU reads as NaN). */
+function timedWallOnly(cmd, args) {
+  const t0 = performance.now();
+  const r = spawnSync(cmd, args, { encoding: 'utf8' });
+  const wall = (performance.now() - t0) / 1000;
+  if (r.status !== 0) throw new Error(`${cmd} failed: ${r.stderr}`);
+  return { wall, cpu: NaN, stdout: r.stdout };
 }
 
 const size = String(opts.size);
