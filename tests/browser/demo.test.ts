@@ -117,7 +117,8 @@ describe('browser demo (Chromium)', () => {
     await waitForSpp(page, 3);
     // Paused, the counts only move when something resets them.
     await page.click('#pause');
-    await page.waitForTimeout(300);
+    // Stripes already in hand may still finish their pass; after that nothing moves.
+    await waitForPauseSettled(page);
     const before = await spp(page);
     expect(before).toBeGreaterThanOrEqual(3);
     const dark = await readDisplay(page);
