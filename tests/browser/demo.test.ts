@@ -262,7 +262,7 @@ describe('browser demo (Chromium)', () => {
         return Math.abs(s.width - (s.height * c.canvas.clientWidth) / c.canvas.clientHeight) <= 1;
       },
       null,
-      { timeout: 10_000 },
+      { timeout: 60_000 },
     );
     expect((await size()).w).toBeGreaterThan(half.w);
     await page.close();
