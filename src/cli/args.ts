@@ -2,7 +2,8 @@
  * Command-line parsing for `pathwise render`. Every problem is a
  * UsageError with a one-line message; the caller exits with status 2.
  */
-import { DEFAULT_SAMPLER, SAMPLER_KINDS, type Estimator, type SamplerKind } from '../core/index.ts';
+import { DEFAULT_SAMPLER, SAMPLER_KINDS, type SamplerKind } from '../core/sampling/sampler.ts';
+import type { Estimator } from '../core/integrator/path-tracer.ts';
 import { quote, sanitize } from '../core/scene/message.ts';
 import {
   BATCH_OPTION_NAMES,

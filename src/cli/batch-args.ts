@@ -3,7 +3,7 @@
  * checkpoints) and the arguments of `pathwise merge`. Every problem is a
  * UsageError with a one-line message (exit status 2).
  */
-import { LIMITS } from '../core/index.ts';
+import { LIMITS } from '../core/scene/types.ts';
 import { quote, sanitize } from '../core/scene/message.ts';
 import { UsageError } from './args.ts';
 import {

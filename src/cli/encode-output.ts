@@ -6,22 +6,25 @@
  * or merged from parts.
  */
 import { deflateSync } from 'node:zlib';
-import {
-  encodeFilmFile,
-  encodePfm,
-  encodePng,
-  tonemapSums,
-  type Film,
-  type FilmHeader,
-} from '../core/index.ts';
+import { encodeFilmFile, type FilmHeader } from '../core/film/film-file.ts';
+import { encodePfm } from '../core/io/pfm.ts';
+import { encodePng } from '../core/io/png.ts';
+import { tonemapSums } from '../core/io/tonemap.ts';
+import type { Film } from '../core/film/film.ts';
+
+/** Whether `path` names a `.film` output (exact sums and a header). */
+export function isFilmPath(path: string): boolean {
+  return /\.film$/i.test(path);
+}
 
 export function encodeOutput(
   path: string,
   film: Film,
-  header: FilmHeader,
+  /** The `.film` header, made only when the output is a `.film`. */
+  header: () => FilmHeader,
   exposure: number,
 ): Uint8Array {
-  if (/\.film$/i.test(path)) return encodeFilmFile(header, film);
+  if (isFilmPath(path)) return encodeFilmFile(header(), film);
   if (/\.pfm$/i.test(path)) return encodePfm(film.width, film.rows, film.mean());
   const rgba = new Uint8Array(film.width * film.rows * 4);
   tonemapSums(film.sums, exposure, rgba);

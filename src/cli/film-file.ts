@@ -9,14 +9,14 @@ import {
   FILM_FORMAT,
   FilmFileError,
   MAX_HEADER_BYTES,
-  SCALE_BITS,
   decodeFilmFile,
   decodeFilmHeader,
   type FilmFile,
   type FilmHeader,
   type FilmSettings,
-  type Scene,
-} from '../core/index.ts';
+} from '../core/film/film-file.ts';
+import { SCALE_BITS } from '../core/film/exact-sum.ts';
+import type { Scene } from '../core/scene/types.ts';
 import packageJson from '../../package.json' with { type: 'json' };
 import { CliError } from './errors.ts';
 import { reason, showPath } from './read-bounded.ts';

@@ -3,19 +3,20 @@
  * stderr for bad arguments, a bad or unreadable scene, or an output that cannot be
  * written; 1 for anything else (a bug).
  */
-import {
-  FilmFileError,
-  SceneError,
-  countSkippedTriangles,
-  sceneWarnings,
-  validateSettingsOverride,
-} from '../core/index.ts';
+import { availableParallelism } from 'node:os';
+import { FilmFileError } from '../core/film/film-file.ts';
+import { SceneError, validateSettingsOverride } from '../core/scene/load.ts';
+import { countSkippedTriangles } from '../core/scene/mesh-desc.ts';
+import { sceneWarnings } from '../core/scene/warnings.ts';
 import { printableLine, quote } from '../core/scene/message.ts';
-import { SYNOPSIS, USAGE, UsageError, parseRenderArgs } from './args.ts';
+import { DEFAULT_SETTINGS } from '../core/scene/types.ts';
+import { SYNOPSIS, USAGE, UsageError, parseRenderArgs, type RenderArgs } from './args.ts';
 import { CliError } from './errors.ts';
 import { merge } from './merge.ts';
-import { renderCommand } from './render-command.ts';
+import { renderCommand, renderWorkerUrl } from './render-command.ts';
+import type { EarlyWorkers } from './render.ts';
 import { loadSceneFile } from './scene-file.ts';
+import { startWarmWorkers } from './warm-up.ts';
 
 async function render(argv: string[]): Promise<void> {
   if (argv.includes('--help')) {
@@ -23,6 +24,21 @@ async function render(argv: string[]): Promise<void> {
     return;
   }
   const args = parseRenderArgs(argv);
+  // The workers start (and warm up) while the scene is read and compiled.
+  const early = startWarmWorkers(args.threads ?? availableParallelism(), renderWorkerUrl(), {
+    maxBounces: args.bounces ?? DEFAULT_SETTINGS.maxBounces,
+    seed: args.seed,
+    estimator: args.estimator,
+    sampler: args.sampler,
+  });
+  try {
+    await renderScene(args, early);
+  } finally {
+    await early.close();
+  }
+}
+
+async function renderScene(args: RenderArgs, early: EarlyWorkers): Promise<void> {
   const scene = await loadSceneFile(args.scenePath, { width: args.width, height: args.height });
   for (const w of sceneWarnings(scene)) {
     process.stderr.write(`pathwise: note: ${printableLine(w)}\n`);
@@ -42,7 +58,7 @@ async function render(argv: string[]): Promise<void> {
     { width: args.width, height: args.height, maxBounces: args.bounces, spp: args.spp },
     (key) => names[key],
   );
-  await renderCommand(args, scene, settings, skipped);
+  await renderCommand(args, scene, settings, skipped, early);
 }
 
 async function main(argv: string[]): Promise<number> {

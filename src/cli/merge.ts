@@ -11,17 +11,17 @@
  * part at a time, so memory holds two films at most.
  */
 import { basename } from 'node:path';
+import { estimateNoise } from '../core/film/noise.ts';
 import {
-  estimateNoise,
   findOverlap,
   formatRanges,
   missingRanges,
   normalizeRanges,
   rangeSamples,
-  type Film,
-  type FilmHeader,
   type SampleRange,
-} from '../core/index.ts';
+} from '../core/film/sample-ranges.ts';
+import type { Film } from '../core/film/film.ts';
+import type { FilmHeader } from '../core/film/film-file.ts';
 import { MERGE_USAGE, parseMergeArgs, type MergeArgs } from './batch-args.ts';
 import { encodeOutput } from './encode-output.ts';
 import { CliError } from './errors.ts';
@@ -97,7 +97,7 @@ export async function merge(argv: string[]): Promise<void> {
       stats.rejected += part.header.stats.rejected;
     }
     const header = makeHeader(first, total, union, stats);
-    await output.commit(encodeOutput(args.out, acc.film, header, args.exposure));
+    await output.commit(encodeOutput(args.out, acc.film, () => header, args.exposure));
     report(args, header, acc.film, missing, held, total);
   } finally {
     await output.discard();

@@ -4,25 +4,21 @@
  * the output and the JSON line.
  */
 import { existsSync } from 'node:fs';
-import {
-  LIMITS,
-  estimateNoise,
-  formatRanges,
-  type Film,
-  type FilmHeader,
-  type Scene,
-  type SettingsDesc,
-} from '../core/index.ts';
+import { LIMITS, type Scene, type SettingsDesc } from '../core/scene/types.ts';
+import { estimateNoise } from '../core/film/noise.ts';
+import { formatRanges } from '../core/film/sample-ranges.ts';
+import type { Film } from '../core/film/film.ts';
+import type { FilmHeader } from '../core/film/film-file.ts';
 import { UsageError, type RenderArgs } from './args.ts';
 import { processSeconds, runBatch, type BatchProgress } from './batch.ts';
-import { encodeOutput } from './encode-output.ts';
+import { encodeOutput, isFilmPath } from './encode-output.ts';
 import { CliError } from './errors.ts';
 import { explainMismatch } from './film-compat.ts';
 import { filmIdentity, makeHeader, readFilmFile, type FilmIdentity } from './film-file.ts';
 import { Interrupts } from './interrupt.ts';
 import { ProgressBar, type ProgressState } from './progress.ts';
 import { showPath } from './read-bounded.ts';
-import { RenderPool } from './render.ts';
+import { RenderPool, type EarlyWorkers } from './render.ts';
 import { startTestFaults, TEST_FAULTS_ENV } from './test-faults.ts';
 
 interface Resumed {
@@ -31,12 +27,19 @@ interface Resumed {
   stats: FilmHeader['stats'];
 }
 
+/** The bundled worker script, beside this bundle (dist/cli). */
+export function renderWorkerUrl(): URL {
+  return new URL('./render-worker.js', import.meta.url);
+}
+
 export async function renderCommand(
   args: RenderArgs,
   scene: Scene,
   settings: SettingsDesc,
   /** Zero-area triangles the loader skipped (reported in --json). */
   skippedTriangles = 0,
+  /** Workers started before the scene was loaded (warm-up.ts), for the pool to take over. */
+  early?: EarlyWorkers,
 ): Promise<void> {
   const b = args.batch;
   const criteria = b.time !== undefined || b.noise !== undefined;
@@ -50,15 +53,24 @@ export async function renderCommand(
       `--samples ${start}:${end} goes past the render's ${total} samples per pixel (--spp gives the whole render's total)`,
     );
   }
-  const identity = filmIdentity(scene, {
-    width: settings.width,
-    height: settings.height,
-    maxBounces: settings.maxBounces,
-    seed: args.seed,
-    sampler: args.sampler,
-    estimator: args.estimator,
-  });
-  const resumed = b.resume ? await loadCheckpoint(b.resume, identity, start, end) : undefined;
+  // The render's identity hashes the whole scene (tens of milliseconds for a
+  // large one): made, before the render, only when a `.film` is read or written.
+  const identity_ =
+    isFilmPath(args.out) || b.checkpoint !== undefined || b.resume !== undefined
+      ? filmIdentity(scene, {
+          width: settings.width,
+          height: settings.height,
+          maxBounces: settings.maxBounces,
+          seed: args.seed,
+          sampler: args.sampler,
+          estimator: args.estimator,
+        })
+      : undefined;
+  const identity = (): FilmIdentity => {
+    if (identity_ === undefined) throw new Error('a film header without the render identity');
+    return identity_;
+  };
+  const resumed = b.resume ? await loadCheckpoint(b.resume, identity(), start, end) : undefined;
   // Ctrl-C or SIGTERM from here on removes the temporary files (interrupt.ts).
   const interrupts = new Interrupts();
   try {
@@ -80,7 +92,8 @@ export async function renderCommand(
       estimator: args.estimator,
       sampler: args.sampler,
       stripeRows: args.stripeRows,
-      workerUrl: new URL('./render-worker.js', import.meta.url),
+      workerUrl: renderWorkerUrl(),
+      early,
     });
     // Test hook (test-faults.ts): worker threads killed during the render.
     const faultSpec = process.env[TEST_FAULTS_ENV];
@@ -90,7 +103,7 @@ export async function renderCommand(
       const from = resumed?.end ?? start;
       const prior = resumed?.stats ?? { paths: 0, segments: 0, rejected: 0 };
       const header = (n: number, spp: number): FilmHeader =>
-        makeHeader(identity, spp, n > start ? [[start, n]] : [], {
+        makeHeader(identity(), spp, n > start ? [[start, n]] : [], {
           paths: prior.paths + pool.stats.paths,
           segments: prior.segments + pool.stats.segments,
           rejected: prior.rejected + pool.stats.rejected,
@@ -126,7 +139,7 @@ export async function renderCommand(
           checkpoint: b.checkpoint
             ? async (n) => {
                 const file = await interrupts.prepare(b.checkpoint!);
-                await file.commit(encodeOutput(b.checkpoint!, pool.film, header(n, end), 1));
+                await file.commit(encodeOutput(b.checkpoint!, pool.film, () => header(n, end), 1));
                 interrupts.release(file);
               }
             : undefined,
@@ -150,7 +163,7 @@ export async function renderCommand(
       const bad = countNonFinite(pool.film.mean());
       if (bad > 0) throw new Error(`${bad} pixel values are not finite; nothing was written`);
       await output.commit(
-        encodeOutput(args.out, pool.film, header(result.end, spp), args.exposure),
+        encodeOutput(args.out, pool.film, () => header(result.end, spp), args.exposure),
       );
       if (pool.stats.rejected > 0) {
         // Not an error (the image is finite and written), but never silent.

@@ -14,7 +14,11 @@
  */
 import { availableParallelism } from 'node:os';
 import { Worker } from 'node:worker_threads';
-import { Film, RenderStats, compileScene, packScene, type Scene } from '../core/index.ts';
+import { Film } from '../core/film/film.ts';
+import { RenderStats } from '../core/integrator/path-tracer.ts';
+import { compileScene } from '../core/scene/compile.ts';
+import { packScene } from '../core/scene/pack.ts';
+import type { Scene } from '../core/scene/types.ts';
 import type { StripeJob } from '../../workers/stripes.ts';
 import { stripeCount } from '../../workers/stripes.ts';
 import type {
@@ -22,6 +26,7 @@ import type {
   ReadyReport,
   RoundMessage,
   RoundReport,
+  WarmMessage,
   WorkerInput,
 } from '../../workers/node-render-worker.ts';
 import {
@@ -47,6 +52,59 @@ export interface PoolRequest {
   stripeRows?: number;
   /** Path of the bundled worker script. */
   workerUrl: URL;
+  /** Workers started earlier (EarlyWorkers, warm-up.ts), taken over by the pool; `threads` must match. */
+  early?: EarlyWorkers;
+}
+
+function spawn(workerUrl: URL, workerData: WorkerInput): Worker {
+  return new Worker(workerUrl, { workerData });
+}
+
+/**
+ * Worker threads started before the scene is read, so that their start-up (a V8
+ * isolate each, the worker script) and a warm-up (WarmMessage) overlap the main
+ * thread's reading, parsing and compiling; a RenderPool then takes them over. Those
+ * it does not take are ended by `close`.
+ */
+export class EarlyWorkers {
+  readonly threads: number;
+  readonly faults: SharedArrayBuffer;
+  readonly stop = new SharedArrayBuffer(4);
+  private readonly workers: (Worker | null)[];
+  private readonly exited: boolean[];
+
+  /** Starts `threads` workers; the first `warmCount` get `warm`. */
+  constructor(threads: number, workerUrl: URL, warm: WarmMessage | null, warmCount: number) {
+    this.threads = threads;
+    this.faults = new SharedArrayBuffer(4 * threads);
+    this.exited = new Array<boolean>(threads).fill(false);
+    this.workers = Array.from({ length: threads }, (_, k) => {
+      const w = spawn(workerUrl, { slot: k, faults: this.faults, stop: this.stop });
+      // Until taken over: an error or exit is only noted (the pool replaces a dead one).
+      w.on('error', () => {});
+      w.on('exit', () => (this.exited[k] = true));
+      if (warm && k < warmCount) w.postMessage(warm);
+      return w;
+    });
+  }
+
+  /** The worker of slot `k`, if it is still there (then it is the caller's). */
+  take(k: number): Worker | null {
+    const w = this.workers[k];
+    this.workers[k] = null;
+    if (w === null || this.exited[k]) return null;
+    w.removeAllListeners();
+    return w;
+  }
+
+  /** Ends the workers not taken. */
+  async close(): Promise<void> {
+    Atomics.store(new Int32Array(this.stop), 0, 1);
+    const left = this.workers.filter((w): w is Worker => w !== null);
+    this.workers.fill(null);
+    for (const w of left) w.removeAllListeners();
+    await Promise.all(left.map((w) => w.terminate()));
+  }
 }
 
 /** What the pool measured about itself (for --json and the benchmarks). */
@@ -95,9 +153,12 @@ export class RenderPool {
   private readonly memory: RoundMemory;
   private readonly filmBuffer: SharedArrayBuffer;
   private readonly faultWords: Int32Array;
+  private readonly stopWord: SharedArrayBuffer;
   private readonly stripeRows: number;
   private readonly workerUrl: URL;
-  private readonly init: InitMessage;
+  private readonly job: InitMessage['job'];
+  private readonly scene: InitMessage['scene'];
+  private readonly roundBuffers: SharedArrayBuffer[];
   private readonly compileSeconds: number;
   private readonly sceneBytes: number;
   private readonly readyAt: number[] = [];
@@ -110,6 +171,10 @@ export class RenderPool {
 
   constructor(req: PoolRequest) {
     const threads = req.threads ?? availableParallelism();
+    const early = req.early;
+    if (early && early.threads !== threads) {
+      throw new Error(`${early.threads} early workers for a pool of ${threads}`);
+    }
     // Enough stripes for load balance (~16 per thread), each at least a row.
     const stripeRows = req.stripeRows ?? Math.max(1, Math.floor(req.height / (threads * 16)));
     this.filmBuffer = new SharedArrayBuffer(Film.byteLength(req.width, req.height));
@@ -118,54 +183,79 @@ export class RenderPool {
     this.stripeRows = stripeRows;
     this.stripes = stripeCount(req.height, stripeRows);
     this.memory = roundMemory(this.stripes, threads);
-    this.faultWords = new Int32Array(new SharedArrayBuffer(4 * threads));
+    this.roundBuffers = roundBuffers(this.memory);
+    this.faultWords = new Int32Array(early?.faults ?? new SharedArrayBuffer(4 * threads));
+    this.stopWord = early?.stop ?? new SharedArrayBuffer(4);
     this.heapBytes = new Array<number>(threads).fill(0);
     this.deathLimit = 2 * threads + 4;
     this.workerUrl = req.workerUrl;
     this.startedAt = performance.now();
-    // The workers start first: their start-up (a new V8 isolate each, loading
-    // the worker script) overlaps the compilation below.
+    // The workers start first (unless they were started earlier still): their
+    // start-up (a new V8 isolate each, loading the worker script) overlaps
+    // the compilation below.
     this.slots = Array.from({ length: threads }, (_, k) => {
-      const journal = new SharedArrayBuffer(Film.byteLength(req.width, stripeRows));
+      const worker = early?.take(k) ?? this.spawn(k);
+      this.listen(k, worker);
       return {
-        worker: this.start(k, journal),
-        journal,
+        worker,
+        journal: new SharedArrayBuffer(Film.byteLength(req.width, stripeRows)),
         inRound: false,
         lastError: null,
         killed: false,
       };
     });
-    // Compiled once here; every worker maps the same shared buffer.
-    const scene = packScene(compileScene(req.scene), true);
+    // Compiled once here; every worker maps the same shared buffer. Should that
+    // fail, the workers are ended (they would keep the process alive).
+    try {
+      this.scene = packScene(compileScene(req.scene), true);
+    } catch (e) {
+      this.closed = true;
+      for (const { worker } of this.slots) {
+        worker.removeAllListeners();
+        void worker.terminate();
+      }
+      throw e;
+    }
     this.compileSeconds = (performance.now() - this.startedAt) / 1000;
-    this.sceneBytes = scene.buffer.byteLength;
-    this.init = {
-      type: 'init',
-      job: {
-        camera: req.scene.camera,
-        width: req.width,
-        height: req.height,
-        maxBounces: req.maxBounces,
-        seed: req.seed,
-        estimator: req.estimator,
-        sampler: req.sampler,
-        stripeRows,
-      },
-      scene,
+    this.sceneBytes = this.scene.buffer.byteLength;
+    this.job = {
+      camera: req.scene.camera,
+      width: req.width,
+      height: req.height,
+      maxBounces: req.maxBounces,
+      seed: req.seed,
+      estimator: req.estimator,
+      sampler: req.sampler,
+      stripeRows,
     };
-    for (const slot of this.slots) slot.worker.postMessage(this.init);
+    // A warm-up in progress ends at its next row.
+    Atomics.store(new Int32Array(this.stopWord), 0, 1);
+    for (let k = 0; k < threads; k++) this.slots[k].worker.postMessage(this.initFor(k));
   }
 
-  /** Starts the worker of slot `k`. */
-  private start(k: number, journal: SharedArrayBuffer): Worker {
-    const workerData: WorkerInput = {
+  /** The init message of slot `k`: the job, the scene and the shared memory. */
+  private initFor(k: number): InitMessage {
+    return {
+      type: 'init',
+      job: this.job,
+      scene: this.scene,
       film: this.filmBuffer,
-      round: roundBuffers(this.memory),
-      slot: k,
-      journal,
-      faults: this.faultWords.buffer as SharedArrayBuffer,
+      round: this.roundBuffers,
+      journal: this.slots[k].journal,
     };
-    const w = new Worker(this.workerUrl, { workerData });
+  }
+
+  /** Starts a worker for slot `k`. */
+  private spawn(k: number): Worker {
+    return spawn(this.workerUrl, {
+      slot: k,
+      faults: this.faultWords.buffer as SharedArrayBuffer,
+      stop: this.stopWord,
+    });
+  }
+
+  /** Follows the worker of slot `k`. */
+  private listen(k: number, w: Worker): void {
     w.on('error', (e) => {
       const slot = this.slots?.[k];
       if (slot && slot.worker === w) slot.lastError = e.message;
@@ -182,7 +272,6 @@ export class RenderPool {
       if (slot.worker === w) slot.inRound = false;
       this.check();
     });
-    return w;
   }
 
   private died(k: number, w: Worker, code: number): void {
@@ -201,13 +290,14 @@ export class RenderPool {
       );
       return;
     }
-    slot.worker = this.start(k, slot.journal);
+    slot.worker = this.spawn(k);
+    this.listen(k, slot.worker);
     slot.lastError = null;
     slot.killed = false;
     slot.inRound = false;
     this.faults.replaced++;
     // Messages are handled in order: the replacement initialises, then joins the round.
-    slot.worker.postMessage(this.init);
+    slot.worker.postMessage(this.initFor(k));
     if (this.round_) {
       slot.inRound = true;
       slot.worker.postMessage(this.round_);

@@ -1,18 +1,13 @@
 /** Reading a scene file on the command line (any subcommand that takes one). */
 import { basename, dirname } from 'node:path';
-import {
-  LIMITS,
-  SceneError,
-  isModelFileName,
-  loadBareModel,
-  parseScene,
-  resolveSceneFiles,
-  type Scene,
-} from '../core/index.ts';
-import { GLTF_FILE_BYTES } from '../core/gltf/load.ts';
-import { sceneSizeProblem } from '../core/scene/load.ts';
+// Only what every scene needs is imported statically: the glTF loader (glTF-Transform,
+// image decoders, MikkTSpace; most of the command line's code) is imported when a scene
+// names a model, so a scene of spheres and quads starts without compiling it.
+import { GLTF_FILE_BYTES, isModelFileName } from '../core/gltf/file-names.ts';
+import { SceneError, parseScene, sceneSizeProblem } from '../core/scene/load.ts';
+import { sceneNeedsFiles } from '../core/scene/needs-files.ts';
+import { LIMITS, type Scene } from '../core/scene/types.ts';
 import { CliError } from './errors.ts';
-import { nodeTangentGenerator } from './gltf-node.ts';
 import { ReadLimitError, readBounded, showPath } from './read-bounded.ts';
 import { nodeSceneFiles } from './scene-files.ts';
 
@@ -44,14 +39,20 @@ export async function loadSceneFile(path: string, options: SceneFileOptions = {}
     const files = nodeSceneFiles(dirname(path));
     // MikkTSpace's WebAssembly is read only for glTF: a scene of spheres,
     // quads and meshes needs nothing beyond the bundle itself.
-    const tangents = async () => ({ generateTangents: await nodeTangentGenerator() });
+    const tangents = async () => {
+      const { nodeTangentGenerator } = await import('./gltf-node.ts');
+      return { generateTangents: await nodeTangentGenerator() };
+    };
     if (model) {
+      const { loadBareModel } = await import('../core/gltf/bare-scene.ts');
       return await loadBareModel(bytes, basename(path), files, {
         ...(await tangents()),
         ...options,
       });
     }
     const scene = parseScene(bytes);
+    if (!sceneNeedsFiles(scene)) return scene;
+    const { resolveSceneFiles } = await import('../core/scene/files.ts');
     const gltf = scene.shapes.some((s) => s.type === 'gltf');
     return await resolveSceneFiles(scene, files, gltf ? await tangents() : {});
   } catch (e) {

@@ -27,7 +27,7 @@ import {
 } from '../../src/core/index.ts';
 import { UsageError, parseRenderArgs } from '../../src/cli/args.ts';
 import { decodeUtf8, Utf8Error } from '../../src/core/io/utf8.ts';
-import { JsonError, parseJson } from '../../src/core/scene/json.ts';
+import { JsonError, parseJson, parseJsonStrict } from '../../src/core/scene/json.ts';
 import { quote, sanitize } from '../../src/core/scene/message.ts';
 import { MAX_RADIANCE } from '../../src/core/scene/radiance.ts';
 import { PRINTABLE_LINE, expectContract, runCli } from '../helpers/cli.ts';
@@ -158,6 +158,8 @@ describe('properties, in-process', () => {
         fc.property(fc.jsonValue(), fc.constantFrom(0, 1, '\t', ' \r\n'), (value, indent) => {
           const text = JSON.stringify(value, null, indent as any);
           expect(parseJson(text)).toEqual(JSON.parse(text));
+          // parseJson takes JSON.parse for valid text: the hand-written parser on its own.
+          expect(parseJsonStrict(text)).toEqual(JSON.parse(text));
         }),
         { seed: SEED, numRuns },
       ),
@@ -186,14 +188,24 @@ describe('properties, in-process', () => {
           } catch {
             native = false;
           }
+          // The fast path (JSON.parse) and the hand-written parser alone agree on every text.
+          let strict: unknown;
+          try {
+            strict = parseJsonStrict(text);
+          } catch (e) {
+            strict = e;
+          }
           try {
             const value = parseJson(text);
             expect(native, text).toBe(true);
             expect(value).toEqual(expected);
+            expect(strict).toEqual(value);
           } catch (e) {
             expect(e).toBeInstanceOf(JsonError);
             expectPrintable((e as Error).message);
             if ((e as JsonError).kind === 'syntax') expect(native, text).toBe(false);
+            expect(strict).toBeInstanceOf(JsonError);
+            expect((strict as Error).message).toBe((e as Error).message);
           }
         }),
         { seed: SEED, numRuns },

@@ -102,8 +102,23 @@ describe('parseJson', () => {
     );
   });
 
+  it('finds a duplicate key anywhere, whatever the strings hold', () => {
+    // Valid text goes through JSON.parse after a scan that counts keys: colons, braces and
+    // escaped quotes inside strings must not confuse the count.
+    const items = Array.from({ length: 2000 }, (_, i) => ({ name: `a":{[\\${i}`, v: [i, -0.5] }));
+    const text = JSON.stringify({ items, tail: { 'k:"}': 1 } });
+    expect(parseJson(text)).toEqual(JSON.parse(text));
+    const dup = text.replace('"v":[1234,', '"v":0,"v":[1234,');
+    const e = jsonError(dup);
+    expect(e.kind).toBe('duplicate');
+    expect(e.path).toBe('items[1234].v');
+    expect(jsonError('[{"a":{"b":1,"b":1}}]').path).toBe('[0].a.b');
+  });
+
   it('bounds nesting without recursion', () => {
     expect(() => parseJson('['.repeat(MAX_JSON_DEPTH) + ']'.repeat(MAX_JSON_DEPTH))).not.toThrow();
+    const deep = '['.repeat(MAX_JSON_DEPTH + 1) + ']'.repeat(MAX_JSON_DEPTH + 1);
+    expect(jsonError(deep).message).toMatch(/nested deeper than 512 levels/);
     const e = jsonError('['.repeat(1_000_000));
     expect(e.message).toBe(
       `line 1, column ${MAX_JSON_DEPTH + 1}: arrays and objects are nested deeper than 512 levels`,

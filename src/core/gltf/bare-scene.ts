@@ -15,10 +15,7 @@ import { isGlb } from './glb.ts';
 import { GLTF_FILE_BYTES, type GltfModel, loadGltf } from './load.ts';
 import { decodeImageJs } from '../texture/decode-js.ts';
 
-/** Whether `name` is a glTF model by its extension (`.glb`, `.gltf`). */
-export function isModelFileName(name: string): boolean {
-  return /\.(glb|gltf)$/i.test(name.split(/[?#]/)[0]);
-}
+export { isModelFileName } from './file-names.ts';
 
 /** Whether bytes are a GLB file (its magic), whatever the name they came with. */
 export function isGlbBytes(bytes: Uint8Array): boolean {

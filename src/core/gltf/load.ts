@@ -28,6 +28,7 @@ import { quote } from '../scene/message.ts';
 import type { ImageDecoder } from '../texture/decoded-image.ts';
 import { DEFAULT_TEXTURE_LIMIT_BYTES, type TextureStore } from '../texture/texture-store.ts';
 import { GltfError, messageOf } from './errors.ts';
+import { GLTF_FILE_BYTES } from './file-names.ts';
 import type { GltfCamera } from './cameras.ts';
 import { flattenGltf } from './flatten.ts';
 import { decodeDataUri, PreloadedIO, resolveUri } from './io.ts';
@@ -49,8 +50,7 @@ export const HONOURED_EXTENSIONS = new Set([
   'KHR_texture_transform',
 ]);
 
-/** Largest external buffer or image file read for a glTF (the scene format's mesh file limit). */
-export const GLTF_FILE_BYTES = 1024 * 1024 * 1024;
+export { GLTF_FILE_BYTES };
 
 export type GltfStage = 'parse' | 'textures' | 'geometry';
 

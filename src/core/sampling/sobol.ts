@@ -95,14 +95,19 @@ function sobol1Table(reversed: boolean): Uint32Array {
   const dirs = new Uint32Array(32);
   dirs[0] = 0x80000000;
   for (let i = 1; i < 32; i++) dirs[i] = dirs[i - 1] ^ (dirs[i - 1] >>> 1);
+  // Bit reversal is linear over XOR, so the reversed table is built the same
+  // way from reversed directions.
+  if (reversed) for (let i = 0; i < 32; i++) dirs[i] = reverseBits32(dirs[i]);
+  // Entry v of byte b is the XOR of the directions of v's set bits: entry
+  // h + v (v < h = 2^bit) is entry v XOR direction `bit`, one XOR per entry
+  // (this runs at start-up, in every worker, before V8 optimises anything).
   const table = new Uint32Array(4 * 256);
   for (let b = 0; b < 4; b++) {
-    for (let v = 0; v < 256; v++) {
-      let x = 0;
-      for (let bit = 0; bit < 8; bit++) if (v & (1 << bit)) x ^= dirs[b * 8 + bit];
-      // Bit reversal is linear over XOR, so the reversed point is the XOR
-      // of reversed directions.
-      table[b * 256 + v] = reversed ? reverseBits32(x) : x >>> 0;
+    const t = b * 256;
+    for (let bit = 0; bit < 8; bit++) {
+      const d = dirs[b * 8 + bit];
+      const h = 1 << bit;
+      for (let v = 0; v < h; v++) table[t + h + v] = table[t + v] ^ d;
     }
   }
   return table;

@@ -23,6 +23,7 @@ import { sanitize } from './message.ts';
 import { checkTexelRadiance } from './radiance.ts';
 import { SceneError, markValidated, parseScene } from './load.ts';
 import { meshFileKind } from './mesh-desc.ts';
+import { sceneNeedsFiles } from './needs-files.ts';
 import { LIMITS, type EnvironmentImage, type EnvironmentMapDesc, type Scene } from './types.ts';
 import { describe } from './validate-helpers.ts';
 
@@ -53,13 +54,7 @@ export interface ResolveOptions {
   onProgress?: (stage: LoadStage, done: number, total: number) => void;
 }
 
-/** Whether the scene names files that `resolveSceneFiles` must read. */
-export function sceneNeedsFiles(scene: Scene): boolean {
-  return (
-    scene.shapes.some((s) => (s.type === 'mesh' || s.type === 'gltf') && s.data === null) ||
-    (scene.environmentMap != null && scene.environmentMap.image === null)
-  );
-}
+export { sceneNeedsFiles };
 
 /** Parses a scene and reads every file it names. Throws SceneError. */
 export async function loadScene(

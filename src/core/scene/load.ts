@@ -15,6 +15,7 @@ import {
   type Scene,
   type SettingsDesc,
   type ShapeDesc,
+  type SphereDesc,
   type Vec3,
 } from './types.ts';
 import {
@@ -36,6 +37,7 @@ import {
   indexPath,
   length,
   normalize,
+  plainVec3,
   sub,
   type Problems,
 } from './validate-helpers.ts';
@@ -384,7 +386,10 @@ function checkShapes(
   }
   const before = problems.length;
   const known = materials === undefined ? undefined : new MaterialNames(materials);
-  const out = value.map((shape, i) => checkShape(shape, indexPath('shapes', i), known, problems));
+  const out = value.map(
+    (shape, i) =>
+      plainSphere(shape, known) ?? checkShape(shape, indexPath('shapes', i), known, problems),
+  );
   if (problems.length > before) return undefined;
   // Inline meshes count against the scene's triangle limit here; mesh files when read.
   let triangles = 0;
@@ -400,6 +405,27 @@ function checkShapes(
     return undefined;
   }
   return out as ShapeDesc[];
+}
+
+/**
+ * A sphere with nothing to report, accepted without building its paths (a scene may have
+ * 10,000 of them); undefined sends the shape the long way (checkShape), which accepts
+ * the same spheres and names every problem of the others.
+ */
+function plainSphere(value: unknown, materials: MaterialNames | undefined): SphereDesc | undefined {
+  if (typeof value !== 'object' || value === null || Array.isArray(value)) return undefined;
+  const obj = value as Record<string, unknown>;
+  if (obj.type !== 'sphere' || materials === undefined) return undefined;
+  const known = SHAPE_KEYS.sphere;
+  for (const key of Object.keys(obj)) if (!known.includes(key)) return undefined;
+  const { material, radius } = obj;
+  if (typeof material !== 'string' || !materials.has(material)) return undefined;
+  if (typeof radius !== 'number' || !Number.isFinite(radius) || !POSITIVE.ok(radius)) {
+    return undefined;
+  }
+  const center = plainVec3(obj.center);
+  if (center === undefined) return undefined;
+  return { type: 'sphere', center, radius, material };
 }
 
 function checkShape(
