@@ -24,22 +24,34 @@ function points(page: import('playwright-core').Page): Promise<ErrorPoint[]> {
 
 describe('live error plot (Chromium)', () => {
   it('shows the true error against the Mitsuba reference falling on the Cornell box', async () => {
-    // One worker: slow enough for several points before the target.
+    // The target is raised in steps (which keeps the samples, and the
+    // series): the meter, which takes a point at most every 250 ms, takes one
+    // at each step however fast the machine renders, so the series always has
+    // points from 2 to SPP spp. It waits at the first step for the reference,
+    // so that every later point has a true error.
     const page = await openDemo(
       ctx.browser,
       ctx.url,
-      `width=${SIZE}&height=${SIZE}&seed=1&spp=${SPP}&workers=1`,
+      `width=${SIZE}&height=${SIZE}&seed=1&spp=2&workers=1`,
     );
-    await waitForSpp(page, SPP);
-    // The meter takes its last point a moment after convergence.
-    await page.waitForFunction(
-      (n) => (window as any).__pathwise.errorMeter.points.at(-1)?.spp === n,
-      SPP,
-      { timeout: 10_000 },
-    );
+    // The meter takes a point a moment after each step is reached.
+    const pointAt = (n: number) =>
+      page.waitForFunction(
+        (n) => (window as any).__pathwise.errorMeter.points.at(-1)?.spp === n,
+        n,
+        { timeout: 60_000 },
+      );
+    await waitForSpp(page, 2);
+    await pointAt(2);
+    await page.waitForFunction(() => (window as any).__pathwise.errorMeter.reference !== null);
+    for (const step of [4, 8, 16, 32, SPP]) {
+      await page.evaluate((n) => (window as any).__pathwise.controller.setTargetSpp(n), step);
+      await waitForSpp(page, step);
+      await pointAt(step);
+    }
     const series = await points(page);
     const truth = series.filter((p) => Number.isFinite(p.truth));
-    expect(truth.length).toBeGreaterThanOrEqual(3);
+    expect(truth.length).toBeGreaterThanOrEqual(5);
     for (let i = 1; i < series.length; i++) {
       expect(series[i].seconds).toBeGreaterThan(series[i - 1].seconds);
       expect(series[i].spp).toBeGreaterThan(series[i - 1].spp);

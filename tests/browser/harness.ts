@@ -117,21 +117,24 @@ export async function waitForSpp(page: Page, n: number, timeout = 60_000): Promi
 
 /**
  * After a pause, stripes already in hand still finish their pass and are shown.
- * Waits until that has happened: the controller's frame loop has gone idle (its
- * frame count and spp unchanged over 500 ms), so the display no longer moves.
+ * Waits until that has happened: no stripe is in hand any more (the film job is
+ * not busy) and the controller's frame loop has gone idle (its frame count and
+ * spp unchanged over 500 ms), so the display no longer moves. The first alone
+ * could be fooled by a renderer starved of frames on a loaded machine.
  */
 export async function waitForPauseSettled(page: Page, timeout = 60_000): Promise<void> {
   const probe = () =>
     page.evaluate(() => {
       const c = (window as any).__pathwise.controller;
-      return `${c.framesRun()}/${c.stats().spp}`;
+      const busy = c.films.active()?.busy() ?? false;
+      return `${c.framesRun()}/${c.stats().spp}/${busy ? 'busy' : 'idle'}`;
     });
   const end = Date.now() + timeout;
   let last = await probe();
   for (;;) {
     await page.waitForTimeout(500);
     const now = await probe();
-    if (now === last) return;
+    if (now === last && now.endsWith('/idle')) return;
     if (Date.now() > end) throw new Error(`the paused demo did not settle: ${last} → ${now}`);
     last = now;
   }

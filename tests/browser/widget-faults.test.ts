@@ -173,11 +173,19 @@ describe('<pathwise-view> lifecycle faults (Chromium)', () => {
     const { page, errors } = await open();
     const spheres = readFileSync(join(root, 'scenes', 'spheres.json'), 'utf8');
     const cornell = readFileSync(join(root, 'scenes', 'cornell.json'), 'utf8');
-    // Two slow scenes and a fast one.
+    // Two slow scenes and a fast one. The slow responses are counted, so
+    // that the test can wait until each has been delivered (or refused, its
+    // fetch aborted) whatever the machine's speed.
+    const slow = { started: 0, finished: 0 };
     await page.route('**/slow/*.json', async (route) => {
-      await new Promise((r) => setTimeout(r, 1500));
-      const body = route.request().url().endsWith('spheres.json') ? spheres : cornell;
-      await route.fulfill({ body, contentType: 'application/json' }).catch(() => {});
+      slow.started++;
+      try {
+        await new Promise((r) => setTimeout(r, 1500));
+        const body = route.request().url().endsWith('spheres.json') ? spheres : cornell;
+        await route.fulfill({ body, contentType: 'application/json' }).catch(() => {});
+      } finally {
+        slow.finished++;
+      }
     });
     await page.route('**/fast/*.json', (route) =>
       route.fulfill({
@@ -206,13 +214,31 @@ describe('<pathwise-view> lifecycle faults (Chromium)', () => {
       el.src = '/slow/spheres.json';
       el.src = '/fast/spheres.json';
     });
-    await page.waitForTimeout(2500);
+    // Every slow response is out (a superseded one is the case under test),
+    // and has had a moment to reach the page; then each view has loaded its
+    // last scene and converged on it (view b converged on its first, fast
+    // scene before the slow one arrived).
+    await expect
+      .poll(() => slow.started > 0 && slow.finished === slow.started, { timeout: WAIT.timeout })
+      .toBe(true);
+    await page.waitForTimeout(500);
     for (const [view, name] of [
       [a, names.spheres],
       [b, names.spheres],
       [c, names.spheres],
     ]) {
-      await waitForEvent(page, view, 'converged');
+      await page.waitForFunction(
+        ({ s, name }) => {
+          const log: { type: string; detail: any }[] = (document.querySelector(s) as any).log;
+          let loaded = -1;
+          log.forEach((e, i) => {
+            if (e.type === 'load') loaded = e.detail === name ? i : -1;
+          });
+          return loaded >= 0 && log.slice(loaded).some((e) => e.type === 'converged');
+        },
+        { s: view, name },
+        WAIT,
+      );
       const scene = await page.evaluate(
         (s) => (document.querySelector(s) as any).controller.scene.name,
         view,
@@ -252,13 +278,22 @@ describe('<pathwise-view> lifecycle faults (Chromium)', () => {
       });
       Object.defineProperty(document, 'hidden', { configurable: true, get: () => true });
       document.dispatchEvent(new Event('visibilitychange'));
-      // Stripes in hand finish; then nothing moves.
-      let last = -1;
-      while (el.controller.progress() !== last) {
-        last = el.controller.progress();
+      // Stripes in hand finish; then nothing moves: none is in hand any more
+      // and neither progress nor the frame count has changed over 150 ms (a
+      // quiet spell alone could be a slow stripe on a loaded machine).
+      const state = () => `${el.controller.progress()}/${el.controller.framesRun()}`;
+      let last = state();
+      for (;;) {
         await new Promise((r) => setTimeout(r, 150));
+        const now = state();
+        if (now === last && !el.controller.films.active()?.busy()) break;
+        last = now;
       }
-      return { progress: last, paused: el.controller.paused, frames: el.controller.framesRun() };
+      return {
+        progress: el.controller.progress(),
+        paused: el.controller.paused,
+        frames: el.controller.framesRun(),
+      };
     });
     expect(atHide.paused).toBe(true);
     const cdp = await opened!.context.newCDPSession(page);

@@ -15,6 +15,7 @@ import { SEED } from './context.ts';
 import { bitDifferences, openDemo, readLinear, waitForSpp } from './harness.ts';
 import { useDemo } from './context.ts';
 import { nodeRender } from './node-reference.ts';
+import { C_LOCK } from '../../workers/render-protocol.ts';
 
 const ctx = useDemo();
 
@@ -22,7 +23,9 @@ const ctx = useDemo();
 const WIDTH = 24;
 const HEIGHT = 512;
 const PASSES = 12;
-const query = `width=${WIDTH}&height=${HEIGHT}&seed=${SEED}&spp=${PASSES}&workers=2`;
+const queryAt = (spp: number) =>
+  `width=${WIDTH}&height=${HEIGHT}&seed=${SEED}&spp=${spp}&workers=2`;
+const query = queryAt(PASSES);
 
 interface Faults {
   killed: number;
@@ -98,6 +101,44 @@ async function faultDuringRender(
   );
 }
 
+/**
+ * Opens the demo and freezes running worker 0 for good inside a row commit
+ * (after publishing its row in the journal, before the film copy), holding
+ * the lock. The render first stands at 2 passes, its target, so that nothing
+ * is left to commit while the hang is armed (a render that ended before the
+ * hang landed would never freeze); the target is then raised to PASSES
+ * (which keeps the samples), and the worker freezes in its first commit.
+ * Returns the page and the worker's token once the lock has stayed with
+ * that worker for 250 ms (a live holder keeps it for microseconds).
+ */
+async function openFrozenInCommit(): Promise<{ page: Page; token: number }> {
+  const page = await openDemo(ctx.browser, ctx.url, queryAt(2));
+  await waitForSpp(page, 2);
+  const token = await page.evaluate(
+    async ({ passes, lockIndex }) => {
+      const w = window as any;
+      const c = w.__pathwise.controller;
+      const sleep = (ms: number) => new Promise((r) => setTimeout(r, ms));
+      let token = 0;
+      while (!(token = w.__pathwise.pool().hangWorker(0, 2))) await sleep(2);
+      // The hang goes to the worker before the kick that the new target sends it.
+      c.setTargetSpp(passes);
+      const ctrl: Int32Array = c.films.active().ctrl;
+      const end = performance.now() + 30_000;
+      let since = -1;
+      while (performance.now() < end) {
+        if (Atomics.load(ctrl, lockIndex) !== token) since = -1;
+        else if (since < 0) since = performance.now();
+        else if (performance.now() - since >= 250) return token;
+        await sleep(2);
+      }
+      throw new Error(`worker ${token} did not freeze holding the lock (progress ${c.progress()})`);
+    },
+    { passes: PASSES, lockIndex: C_LOCK },
+  );
+  return { page, token };
+}
+
 /** Waits until every killed or crashed worker is certainly dead and recovered from. */
 async function waitForBurials(page: Page, deaths: number): Promise<void> {
   await page.waitForFunction((n) => (window as any).__pathwise.faults.confirmed >= n, deaths, {
@@ -146,21 +187,16 @@ describe('render workers dying mid-render (Chromium)', () => {
   });
 
   it('shared memory: a worker frozen inside a commit, holding the lock, then terminated', async () => {
-    const page = await openDemo(ctx.browser, ctx.url, query);
-    await waitForSpp(page, 2);
-    const waited = await page.evaluate(async () => {
+    const { page, token } = await openFrozenInCommit();
+    const waited = await page.evaluate((token) => {
       const w = window as any;
-      const pool = w.__pathwise.pool();
-      // Frozen after publishing its row in the journal, before the film copy.
-      const token = pool.hangWorker(0, 2);
-      await new Promise((r) => setTimeout(r, 300));
       // A reset meanwhile must not freeze the page on the held lock.
       const t0 = performance.now();
       w.__pathwise.controller.reset();
       const resetMs = performance.now() - t0;
-      pool.killWorker(0, token);
+      w.__pathwise.pool().killWorker(0, token);
       return resetMs;
-    });
+    }, token);
     expect(waited).toBeLessThan(1000);
     await waitForBurials(page, 1);
     await waitForSpp(page, PASSES);
@@ -175,14 +211,8 @@ describe('render workers dying mid-render (Chromium)', () => {
   });
 
   it('shared memory: frozen inside a commit and terminated, the commit is finished from the journal', async () => {
-    const page = await openDemo(ctx.browser, ctx.url, query);
-    await waitForSpp(page, 2);
-    await page.evaluate(async () => {
-      const pool = (window as any).__pathwise.pool();
-      const token = pool.hangWorker(0, 2);
-      await new Promise((r) => setTimeout(r, 300));
-      pool.killWorker(0, token);
-    });
+    const { page, token } = await openFrozenInCommit();
+    await page.evaluate((token) => (window as any).__pathwise.pool().killWorker(0, token), token);
     await waitForBurials(page, 1);
     await waitForSpp(page, PASSES);
     const f = await faults(page);
