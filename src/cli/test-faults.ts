@@ -9,7 +9,8 @@ import type { RenderPool } from './render.ts';
 
 export const TEST_FAULTS_ENV = 'PATHWISE_TEST_FAULTS';
 
-function mulberry32(seed: number): () => number {
+/** A small seeded PRNG (Tommy Ettinger's Mulberry32) for reproducible fault moments. */
+export function mulberry32(seed: number): () => number {
   let a = seed >>> 0;
   return () => {
     a = (a + 0x6d2b79f5) | 0;

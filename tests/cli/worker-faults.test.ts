@@ -14,6 +14,7 @@ import { Film, PathTracer, RenderStats, compileScene, parseScene } from '../../s
 import { RenderPool } from '../../src/cli/render.ts';
 import { pathwise, tempDir, writeCornell } from '../helpers/batch-cli.ts';
 import { ROOT } from '../helpers/render.ts';
+import { differingWords, mulberry32 } from '../helpers/faults.ts';
 
 const WORKER = new URL('../../dist/cli/render-worker.js', import.meta.url);
 const scene = parseScene(readFileSync(join(ROOT, 'scenes/cornell.json'), 'utf8'));
@@ -57,24 +58,6 @@ function reference(spp: number): { film: Film; stats: RenderStats } {
     camera: scene.camera,
   }).renderRows(film, 0, HEIGHT, 0, spp, stats);
   return { film, stats };
-}
-
-function differingWords(a: Film, b: Film): number {
-  const x = new Uint32Array(a.buffer as ArrayBuffer);
-  const y = new Uint32Array(b.buffer as ArrayBuffer);
-  let n = 0;
-  for (let i = 0; i < x.length; i++) if (x[i] !== y[i]) n++;
-  return n;
-}
-
-function mulberry32(seed: number): () => number {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) | 0;
-    let t = Math.imul(a ^ (a >>> 15), 1 | a);
-    t = (t + Math.imul(t ^ (t >>> 7), 61 | t)) ^ t;
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
 }
 
 describe('the command line survives its worker threads dying', () => {

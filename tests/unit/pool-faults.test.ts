@@ -29,6 +29,7 @@ import { SharedFilmJob } from '../../src/view/shared-job.ts';
 import { TransferFilmJob } from '../../src/view/transfer-job.ts';
 import { faults } from '../../src/view/worker-deaths.ts';
 import { C_LOCK, type JobConfig } from '../../workers/render-protocol.ts';
+import { differingWords, mulberry32 } from '../helpers/faults.ts';
 
 const WIDTH = 32;
 const HEIGHT = 96;
@@ -89,24 +90,6 @@ function reference(): Film {
     camera: scene.camera,
   }).renderRows(film, 0, HEIGHT, 0, SPP, new RenderStats());
   return film;
-}
-
-function differingWords(a: Film, b: Film): number {
-  const x = new Uint32Array(a.buffer as ArrayBuffer);
-  const y = new Uint32Array(b.buffer as ArrayBuffer);
-  let n = 0;
-  for (let i = 0; i < x.length; i++) if (x[i] !== y[i]) n++;
-  return n;
-}
-
-function mulberry32(seed: number): () => number {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) | 0;
-    let t = Math.imul(a ^ (a >>> 15), 1 | a);
-    t = (t + Math.imul(t ^ (t >>> 7), 61 | t)) ^ t;
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
 }
 
 const sleep = (ms: number) => new Promise((r) => setTimeout(r, ms));

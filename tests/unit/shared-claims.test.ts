@@ -32,6 +32,7 @@ import {
   swapClaim,
   takeClaim,
 } from '../../workers/shared-claims.ts';
+import { differingWords, mulberry32 } from '../helpers/faults.ts';
 
 const WIDTH = 10;
 const HEIGHT = 24;
@@ -50,25 +51,6 @@ function tracerOf(height: number): PathTracer {
     seed: SEED,
     camera: scene.camera,
   });
-}
-
-/** Number of 32-bit words of two films' buffers that differ. */
-function differingWords(a: Film, b: Film): number {
-  const x = new Uint32Array(a.buffer as ArrayBuffer);
-  const y = new Uint32Array(b.buffer as ArrayBuffer);
-  let n = 0;
-  for (let i = 0; i < x.length; i++) if (x[i] !== y[i]) n++;
-  return n;
-}
-
-function mulberry32(seed: number): () => number {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) | 0;
-    let t = Math.imul(a ^ (a >>> 15), 1 | a);
-    t = (t + Math.imul(t ^ (t >>> 7), 61 | t)) ^ t;
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
 }
 
 class Killed extends Error {}
