@@ -8,12 +8,9 @@
  * SCENE `@million` or `@bunny`: the mesh scenes of bench/mesh-scenes.ts (the Cornell box
  * with a generated 1,000,000-triangle mesh or the Stanford bunny in place of its boxes).
  */
-import { readFileSync } from 'node:fs';
-import { createRequire } from 'node:module';
-import { resolve } from 'node:path';
-import { Film, PathTracer, RenderStats, compileScene, parseScene } from '../src/core/index.ts';
-import type { SamplerKind, Scene } from '../src/core/index.ts';
-import { bunnyMesh, cornellWith, millionMesh } from './mesh-scenes.ts';
+import { Film, PathTracer, RenderStats, compileScene } from '../src/core/index.ts';
+import type { SamplerKind } from '../src/core/index.ts';
+import { loadBenchScene } from './mesh-scenes.ts';
 
 const [file, w = '128', h = '128', sppArg = '8', bouncesArg = '6', repsArg = '5', sampler, accel] =
   process.argv.slice(2);
@@ -22,18 +19,7 @@ const height = Number(h);
 const spp = Number(sppArg);
 const reps = Number(repsArg);
 const t0 = performance.now();
-function loadScene(name: string): Scene {
-  if (name === '@million') {
-    const m = millionMesh();
-    return cornellWith(m.positions, m.indices);
-  }
-  if (name === '@bunny') {
-    const m = bunnyMesh(createRequire(resolve('package.json')));
-    return cornellWith(m.positions, m.indices);
-  }
-  return parseScene(readFileSync(name, 'utf8'));
-}
-const scene = loadScene(file);
+const scene = loadBenchScene(file);
 const t1 = performance.now();
 const compiled = compileScene(scene, {
   bvh: accel === 'bvh' ? true : accel === 'list' ? false : undefined,

@@ -5,7 +5,9 @@
  * scenes/cornell-bunny.json) or a generated bumpy sphere of 1,000,000 triangles.
  */
 import { readFileSync } from 'node:fs';
-import { validateScene, type Scene } from '../src/core/index.ts';
+import { createRequire } from 'node:module';
+import { resolve } from 'node:path';
+import { parseScene, validateScene, type Scene } from '../src/core/index.ts';
 
 /** A sphere of nu × nv quads (2·nu·nv triangles) with a bumpy radius. */
 export function bumpySphere(
@@ -77,4 +79,20 @@ export function cornellWith(positions: Float64Array, indices: Uint32Array): Scen
   const mesh = scene.shapes[6];
   if (mesh.type === 'mesh') mesh.data = { positions, indices, normals: null, skipped: 0 };
   return scene;
+}
+
+/**
+ * The scene a benchmark names on its command line: `@million` or `@bunny` (the Cornell
+ * box with that mesh, above), else a scene file.
+ */
+export function loadBenchScene(name: string): Scene {
+  if (name === '@million') {
+    const m = millionMesh();
+    return cornellWith(m.positions, m.indices);
+  }
+  if (name === '@bunny') {
+    const m = bunnyMesh(createRequire(resolve('package.json')));
+    return cornellWith(m.positions, m.indices);
+  }
+  return parseScene(readFileSync(name, 'utf8'));
 }

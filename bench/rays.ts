@@ -8,28 +8,14 @@
  *   node scripts/run-ts.mjs bench/rays.ts SCENE [N REPS ACCEL]
  * SCENE: a scene file, or @million / @bunny (bench/mesh-scenes.ts).
  */
-import { readFileSync } from 'node:fs';
-import { createRequire } from 'node:module';
-import { resolve } from 'node:path';
-import { Camera, compileScene, parseScene, type Scene } from '../src/core/index.ts';
+import { Camera, compileScene } from '../src/core/index.ts';
 import { Hit, Ray, SHAPE_QUAD, SHAPE_SPHERE } from '../src/core/geometry/ray.ts';
 import { intersectScene, occluded } from '../src/core/geometry/trace.ts';
 import { Q_NORMAL, QUAD_STRIDE, SPHERE_STRIDE } from '../src/core/geometry/shapes.ts';
-import { bunnyMesh, cornellWith, millionMesh } from './mesh-scenes.ts';
+import { loadBenchScene } from './mesh-scenes.ts';
 
 const [file = '@million', nArg = '100000', repsArg = '7', accel] = process.argv.slice(2);
-function loadScene(name: string): Scene {
-  if (name === '@million') {
-    const m = millionMesh();
-    return cornellWith(m.positions, m.indices);
-  }
-  if (name === '@bunny') {
-    const m = bunnyMesh(createRequire(resolve('package.json')));
-    return cornellWith(m.positions, m.indices);
-  }
-  return parseScene(readFileSync(name, 'utf8'));
-}
-const scene = loadScene(file);
+const scene = loadBenchScene(file);
 const compiled = compileScene(scene, {
   bvh: accel === 'bvh' ? true : accel === 'list' ? false : undefined,
 });
