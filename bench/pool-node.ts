@@ -21,13 +21,13 @@ import { existsSync, mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 
 import { fileURLToPath } from 'node:url';
 import os from 'node:os';
 import path from 'node:path';
-import { Worker as NodeWorker } from 'node:worker_threads';
 import { compileScene, packScene, parseScene, DEFAULT_SAMPLER } from '../src/core/index.ts';
 import { WorkerPool, type PoolClient } from '../src/view/pool.ts';
 import type { FilmJob } from '../src/view/film-job.ts';
 import { SharedFilmJob } from '../src/view/shared-job.ts';
 import { TransferFilmJob } from '../src/view/transfer-job.ts';
 import { chooseStripeRows, type JobConfig } from '../workers/render-protocol.ts';
+import { NodeWebWorker } from './node-web-worker.ts';
 
 const opt: Record<string, string> = {};
 for (let i = 2; i < process.argv.length; i += 2)
@@ -54,26 +54,6 @@ async function workerBundle(): Promise<string> {
     logLevel: 'warning',
   });
   return out;
-}
-
-/** The Web Worker interface the pool and comlink use, over a worker_threads worker. */
-class NodeWebWorker {
-  private readonly w: NodeWorker;
-  constructor(file: string) {
-    this.w = new NodeWorker(file);
-  }
-  postMessage(message: unknown, transfer?: Transferable[]): void {
-    this.w.postMessage(message, transfer as readonly never[] | undefined);
-  }
-  addEventListener(type: string, listener: (event: { data?: unknown; message?: string }) => void) {
-    if (type === 'message') this.w.on('message', (data) => listener({ data }));
-    if (type === 'error') this.w.on('error', (e) => listener({ message: e.message }));
-    if (type === 'exit') this.w.on('exit', () => listener({}));
-  }
-  removeEventListener(): void {}
-  terminate(): void {
-    void this.w.terminate();
-  }
 }
 
 const scene = parseScene(readFileSync(sceneFile, 'utf8'));

@@ -11,7 +11,6 @@
 import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { Worker as NodeWorker } from 'node:worker_threads';
 import { build } from 'esbuild';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import {
@@ -30,6 +29,7 @@ import { TransferFilmJob } from '../../src/view/transfer-job.ts';
 import { faults } from '../../src/view/worker-deaths.ts';
 import { C_LOCK, type JobConfig } from '../../workers/render-protocol.ts';
 import { differingWords, mulberry32 } from '../helpers/faults.ts';
+import { NodeWebWorker } from '../../bench/node-web-worker.ts';
 
 const WIDTH = 32;
 const HEIGHT = 96;
@@ -59,26 +59,6 @@ beforeAll(async () => {
 afterAll(() => {
   if (dir) rmSync(dir, { recursive: true, force: true });
 });
-
-/** The Web Worker interface the pool uses, over a worker_threads worker. */
-class NodeWebWorker {
-  private readonly w: NodeWorker;
-  constructor(file: string) {
-    this.w = new NodeWorker(file);
-  }
-  postMessage(message: unknown, transfer?: Transferable[]): void {
-    this.w.postMessage(message, transfer as readonly never[] | undefined);
-  }
-  addEventListener(type: string, listener: (event: { data?: unknown; message?: string }) => void) {
-    if (type === 'message') this.w.on('message', (data) => listener({ data }));
-    if (type === 'error') this.w.on('error', (e) => listener({ message: e.message }));
-    if (type === 'exit') this.w.on('exit', () => listener({}));
-  }
-  removeEventListener(): void {}
-  terminate(): void {
-    void this.w.terminate();
-  }
-}
 
 function reference(): Film {
   const film = new Film(WIDTH, HEIGHT);
