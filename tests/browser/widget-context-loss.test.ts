@@ -9,7 +9,7 @@
  * core's bit for bit and the final picture an undisturbed element's.
  * Removing the element afterwards leaves no context, canvas or frame.
  */
-import { afterEach, describe, expect, it } from 'vitest';
+import { describe, expect, it } from 'vitest';
 import { SEED, useDemo } from './context.ts';
 import { bitDifferences, maxByteDifference } from './harness.ts';
 import { nodeRender } from './node-reference.ts';
@@ -19,10 +19,9 @@ import {
   events,
   held,
   linear,
-  openWidgetPage,
+  useWidgetPages,
   pretendGpu,
   waitForEvent,
-  type Opened,
 } from './widget-page.ts';
 
 const ctx = useDemo();
@@ -30,11 +29,8 @@ const CYCLES = 10;
 /** The fixture's element is 64 × 64 CSS pixels at devicePixelRatio 1; rendered at half that. */
 const SIZE = 32;
 
-let opened: Opened | null = null;
-afterEach(async () => {
-  await opened?.context.close();
-  opened = null;
-});
+/** Fixture pages in fresh contexts, each closed after its test. */
+const open = useWidgetPages(ctx);
 
 interface Cycle {
   lostMode: string;
@@ -51,8 +47,7 @@ interface Cycle {
 
 describe('<pathwise-view> WebGL2 context loss (Chromium)', () => {
   it(`fires fallback on the element through ${CYCLES} lose/restore cycles and loses no sample`, async () => {
-    opened = await openWidgetPage(ctx.browser, ctx.url, { init: pretendGpu });
-    const { page, errors } = opened;
+    const { page, errors } = await open({ init: pretendGpu });
     const attributes = { src: '/scenes/cornell.json', seed: String(SEED), 'render-scale': '0.5' };
     const view = await addView(page, 'v', { ...attributes, spp: '4' });
     await page.waitForFunction(

@@ -11,7 +11,7 @@
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import type { Page } from 'playwright-core';
-import { afterEach, describe, expect, it } from 'vitest';
+import { describe, expect, it } from 'vitest';
 import { useDemo } from './context.ts';
 import { bitDifferences, root } from './harness.ts';
 import { nodeRender } from './node-reference.ts';
@@ -21,25 +21,15 @@ import {
   events,
   held,
   linear,
-  openWidgetPage,
+  useWidgetPages,
   pretendGpu,
   waitForEvent,
-  type Opened,
 } from './widget-page.ts';
 
 const ctx = useDemo();
 
-let opened: Opened | null = null;
-afterEach(async () => {
-  await opened?.context.close();
-  opened = null;
-});
-
-/** The fixture page in a fresh context (closed after the test). */
-async function open(options: Parameters<typeof openWidgetPage>[2] = {}): Promise<Opened> {
-  opened = await openWidgetPage(ctx.browser, ctx.url, options);
-  return opened;
-}
+/** Fixture pages in fresh contexts, each closed after its test. */
+const open = useWidgetPages(ctx);
 
 describe('<pathwise-view> lifecycle faults (Chromium)', () => {
   // Headless Chromium's WebGL2 is software, where the element picks Canvas 2D;
@@ -258,7 +248,7 @@ describe('<pathwise-view> lifecycle faults (Chromium)', () => {
   });
 
   it('a hidden, frozen tab resumes where it stopped and ends bit-identical', async () => {
-    const { page, errors } = await open();
+    const { context, page, errors } = await open();
     // A target no machine reaches before the tab is hidden; the final one is
     // set after it is shown again.
     const view = await addView(page, 'v', { src: '/scenes/cornell.json', spp: '100000' });
@@ -296,7 +286,7 @@ describe('<pathwise-view> lifecycle faults (Chromium)', () => {
       };
     });
     expect(atHide.paused).toBe(true);
-    const cdp = await opened!.context.newCDPSession(page);
+    const cdp = await context.newCDPSession(page);
     await cdp.send('Page.setWebLifecycleState', { state: 'frozen' });
     await new Promise((r) => setTimeout(r, 800));
     await cdp.send('Page.setWebLifecycleState', { state: 'active' });

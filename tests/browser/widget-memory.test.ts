@@ -7,26 +7,17 @@
  */
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { afterEach, describe, expect, it } from 'vitest';
+import { describe, expect, it } from 'vitest';
 import { Film } from '../../src/core/index.ts';
 import { MAX_FILM_BYTES } from '../../src/view/film-cap.ts';
 import { useDemo } from './context.ts';
 import { root } from './harness.ts';
-import { WAIT, addView, events, openWidgetPage, waitForEvent, type Opened } from './widget-page.ts';
+import { WAIT, addView, events, useWidgetPages, waitForEvent } from './widget-page.ts';
 
 const ctx = useDemo();
 
-let opened: Opened | null = null;
-afterEach(async () => {
-  await opened?.context.close();
-  opened = null;
-});
-
-/** The fixture page in a fresh context (closed after the test). */
-async function open(options: Parameters<typeof openWidgetPage>[2] = {}): Promise<Opened> {
-  opened = await openWidgetPage(ctx.browser, ctx.url, options);
-  return opened;
-}
+/** Fixture pages in fresh contexts, each closed after its test. */
+const open = useWidgetPages(ctx);
 
 describe('<pathwise-view> memory faults (Chromium)', () => {
   it('a huge CSS size × devicePixelRatio renders under the accumulator cap and says so', async () => {

@@ -6,6 +6,7 @@
  * of that log and of the film.
  */
 import type { Browser, BrowserContext, Page } from 'playwright-core';
+import { afterEach } from 'vitest';
 
 export const WAIT = { timeout: 60_000, polling: 50 };
 
@@ -66,6 +67,25 @@ export async function openWidgetPage(
   await page.goto(`${url}tests/browser/fixtures/widget.html`);
   await page.waitForFunction(() => (window as any).__ready === true);
   return { context, page, errors, warnings };
+}
+
+/**
+ * A test file's opener of fixture pages (openWidgetPage on `ctx`'s browser and server,
+ * read when called): the page a test opened is closed after it, pass or fail.
+ */
+export function useWidgetPages(ctx: {
+  browser: Browser;
+  url: string;
+}): (options?: Parameters<typeof openWidgetPage>[2]) => Promise<Opened> {
+  let opened: Opened | null = null;
+  afterEach(async () => {
+    await opened?.context.close();
+    opened = null;
+  });
+  return async (options = {}) => {
+    opened = await openWidgetPage(ctx.browser, ctx.url, options);
+    return opened;
+  };
 }
 
 /** Adds a <pathwise-view> with `attributes` (and an event log) to the page; returns its selector. */
