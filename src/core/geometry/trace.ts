@@ -32,6 +32,7 @@ import {
   Q_TAXIS,
   SPHERE_STRIDE,
 } from './shapes.ts';
+import { anyQuad, nearestQuad } from './quad-list.ts';
 import { hitTriangle, intersectTriangleBary, setTriangleRay } from './triangle.ts';
 
 /** Ray record layout: origin, direction, far bound. */
@@ -129,16 +130,14 @@ function intersectList(scene: CompiledScene, r: Float64Array, hit: Hit): boolean
       index = i;
     }
   }
-  const quads = scene.quads;
-  for (let i = 0, n = scene.quadCount; i < n; i++) {
-    const t = intersectQuad(quads, i, ox, oy, oz, dx, dy, dz, tBest);
-    if (t < tBest) {
-      tBest = t;
+  r[6] = tBest;
+  if (scene.quadCount > 0) {
+    const q = nearestQuad(scene.quadList, r);
+    if (q >= 0) {
       kind = SHAPE_QUAD;
-      index = i;
+      index = q;
     }
   }
-  r[6] = tBest;
   const triCount = scene.triCount;
   if (triCount > 0) {
     const pos = scene.triPositions;
@@ -169,10 +168,7 @@ function occludedList(scene: CompiledScene, r: Float64Array): boolean {
   for (let i = 0, n = scene.sphereCount; i < n; i++) {
     if (intersectSphere(spheres, i, ox, oy, oz, dx, dy, dz, tMax) < tMax) return true;
   }
-  const quads = scene.quads;
-  for (let i = 0, n = scene.quadCount; i < n; i++) {
-    if (intersectQuad(quads, i, ox, oy, oz, dx, dy, dz, tMax) < tMax) return true;
-  }
+  if (scene.quadCount > 0 && anyQuad(scene.quadList, r)) return true;
   const triCount = scene.triCount;
   if (triCount > 0) {
     const pos = scene.triPositions;
