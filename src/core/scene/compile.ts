@@ -9,7 +9,7 @@ import { QuadList } from '../geometry/quad-list.ts';
 import { PrimitiveBoxes, quadBoxes, sphereBoxes, triangleBoxes } from '../accel/primitives.ts';
 import { compileMaterials, MATERIAL_STRIDE, M_EMISSION, M_EMISSIVE } from '../bsdf/materials.ts';
 import { LIGHT_ENVIRONMENT, SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE } from '../geometry/ray.ts';
-import { RAY_RECORD_WORDS } from '../geometry/trace.ts';
+import { RAY_RECORD_WORDS } from '../geometry/ray.ts';
 import { TriangleHit, TriangleRay } from '../geometry/triangle.ts';
 import {
   compileQuads,
