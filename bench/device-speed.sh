@@ -51,7 +51,7 @@ log "BVH build, 1M triangle-sized boxes"
 "$NODE" dist/bench/bvh-build.mjs 1000000 > "$OUT/bvh-build.jsonl"
 
 log "thread scaling of pathwise and of the native anchor, same run"
-"$NODE" bench/scaling.mjs --threads 1,2,4,8,16 --reps 3 --out "$OUT/scaling.json" >&2
+"$NODE" bench/scaling.mjs --threads 16 --spp 8 --reps 2 --out "$OUT/scaling.json" >&2
 
 log "independent single-thread processes (the hardware's ceiling)"
 "$NODE" bench/processes.mjs --spp 16 --out "$OUT/processes.json" >&2
