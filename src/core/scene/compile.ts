@@ -154,7 +154,10 @@ export class CompiledScene {
   /** See SceneData.sphereScale. */
   readonly sphereScale: Float64Array;
   readonly quadScale: Float64Array;
-  /** The quads regrouped for the plain loops (geometry/quad-list.ts), derived from `quads`. */
+  /**
+   * The quads regrouped for the plain loops (geometry/quad-list.ts), derived from `quads`;
+   * empty when the scene has a BVH, which tests quads from `quads` itself.
+   */
   readonly quadList: QuadList;
   /** The triangles of all meshes (compile-meshes.ts), or null without meshes. */
   readonly meshes: CompiledMeshes | null;
@@ -199,7 +202,7 @@ export class CompiledScene {
     this.quadMaterial = data.quadMaterial;
     this.quadLight = data.quadLight;
     this.quadScale = data.quadScale;
-    this.quadList = new QuadList(data.quads);
+    this.quadList = new QuadList(data.bvhNodes.length > 0 ? new Float64Array(0) : data.quads);
     const meshes = data.meshMaterial.length > 0 ? new CompiledMeshes(data) : null;
     this.meshes = meshes;
     this.triCount = meshes?.triangleCount ?? 0;
