@@ -5,7 +5,8 @@
  * general one of intersect.ts.
  *
  * Why: in a box-like scene most quads are axis-aligned (Cornell: 10 of 18,
- * walls, light, box tops and bottoms), and for them the general test spends
+ * walls, light, box tops and bottoms; the other 8, the box sides, are
+ * vertical), and for them the general test spends
  * half its operations on exact zeros. With the normal n = ±e_a (its other two
  * components exactly ±0, which writeQuadRecord gives for edges in a
  * coordinate plane), the general test's
@@ -17,10 +18,16 @@
  * most in the sign of a zero result, and every decision of the test (t > 0,
  * t < tMax, 0 ≤ s ≤ 1, 0 ≤ v ≤ 1) is the same for +0 and −0; where the
  * dropped zero meets an infinite t (a ray parallel to the plane), the t
- * tests reject in both forms (t = +∞ is never below tMax ≤ ∞). So the short
- * test accepts exactly the hits of the general one, with the same t bit for
- * bit (the numerator and denominator of t are the same floating-point
- * operations on the same numbers whenever they are non-zero).
+ * tests reject in both forms (t = +∞ is never below tMax ≤ ∞). A dropped
+ * product is ±0 and not NaN because its q component is finite whenever t is:
+ * q_a = o_a + t d_a − c_a with t d_a = (P − n_a o_a)/n_a up to rounding, so
+ * q_a is bounded by the scene's coordinates. So the short test accepts
+ * exactly the hits of the general one, with the same t bit for bit (the
+ * numerator and denominator of t are the same floating-point operations on
+ * the same numbers whenever they are non-zero). Quads in a vertical plane
+ * (VERTICAL_STRIDE) drop n_y o_y, n_y d_y and the zero components of S and
+ * T in the same way; there a non-finite q_y or q_x, q_z makes the short s or
+ * v infinite or NaN as well, so both forms reject.
  *
  * The groups change the order in which quads are tested, so ties in t are
  * resolved explicitly as the index-ordered loop resolved them: the quad with
