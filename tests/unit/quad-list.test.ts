@@ -60,56 +60,61 @@ describe('QuadList', () => {
     expect(Array.from(list.generalIndex)).toEqual([3]);
   });
 
-  it('finds the nearest quad and occlusion exactly as the index-ordered loop', () => {
-    const descs = makeQuads();
-    const quads = new Float64Array(descs.length * QUAD_STRIDE);
-    descs.forEach((q, i) => writeQuadRecord(q[0], q[1], q[2], quads, i * QUAD_STRIDE));
-    const list = new QuadList(quads);
-    expect(list.axisStart[3]).toBeGreaterThan(0);
-    expect(list.verticalCount).toBeGreaterThan(0);
-    expect(list.generalCount).toBeGreaterThan(0);
-    const r = new Float64Array(8);
-    let hits = 0;
-    let ties = 0;
-    for (let k = 0; k < 20000; k++) {
-      const ox = 10 * rand() - 5,
-        oy = 10 * rand() - 5,
-        oz = 10 * rand() - 5;
-      // Directions along an axis or in a coordinate plane now and then: rays parallel to
-      // quads, and exact zeros in the products the short tests leave out.
-      let dx = pick([0, 2 * rand() - 1, 2 * rand() - 1]);
-      let dy = pick([0, 2 * rand() - 1, 2 * rand() - 1]);
-      let dz = pick([0, 2 * rand() - 1, 2 * rand() - 1]);
-      if (dx === 0 && dy === 0 && dz === 0) dy = 1;
-      const l = Math.hypot(dx, dy, dz);
-      dx /= l;
-      dy /= l;
-      dz /= l;
-      const tMax = pick([Infinity, 4 * rand(), 8 * rand()]);
-      // Reference: intersectQuad in index order, a strictly closer hit replaces.
-      let tBest = tMax;
-      let best = -1;
-      let sameT = 0;
-      for (let i = 0; i < descs.length; i++) {
-        const t = intersectQuad(quads, i, ox, oy, oz, dx, dy, dz, tMax);
-        if (t < tBest) {
-          tBest = t;
-          best = i;
+  // At the scale of the scenes and far from it (tiny and huge coordinates: other roundings,
+  // subnormal products), where a dropped ±0 term could show if the argument were wrong.
+  it.each([1, 1e-150, 3e-7, 7e5, 1e150])(
+    'finds the nearest quad and occlusion exactly as the index-ordered loop (scale %s)',
+    (scale) => {
+      const descs = makeQuads().map((q) => q.map((v) => v.map((c) => c * scale)));
+      const quads = new Float64Array(descs.length * QUAD_STRIDE);
+      descs.forEach((q, i) => writeQuadRecord(q[0], q[1], q[2], quads, i * QUAD_STRIDE));
+      const list = new QuadList(quads);
+      expect(list.axisStart[3]).toBeGreaterThan(0);
+      expect(list.verticalCount).toBeGreaterThan(0);
+      expect(list.generalCount).toBeGreaterThan(0);
+      const r = new Float64Array(8);
+      let hits = 0;
+      let ties = 0;
+      for (let k = 0; k < 20000; k++) {
+        const ox = (10 * rand() - 5) * scale,
+          oy = (10 * rand() - 5) * scale,
+          oz = (10 * rand() - 5) * scale;
+        // Directions along an axis or in a coordinate plane now and then: rays parallel to
+        // quads, and exact zeros in the products the short tests leave out.
+        let dx = pick([0, 2 * rand() - 1, 2 * rand() - 1]);
+        let dy = pick([0, 2 * rand() - 1, 2 * rand() - 1]);
+        let dz = pick([0, 2 * rand() - 1, 2 * rand() - 1]);
+        if (dx === 0 && dy === 0 && dz === 0) dy = 1;
+        const l = Math.hypot(dx, dy, dz);
+        dx /= l;
+        dy /= l;
+        dz /= l;
+        const tMax = pick([Infinity, 4 * rand() * scale, 8 * rand() * scale]);
+        // Reference: intersectQuad in index order, a strictly closer hit replaces.
+        let tBest = tMax;
+        let best = -1;
+        let sameT = 0;
+        for (let i = 0; i < descs.length; i++) {
+          const t = intersectQuad(quads, i, ox, oy, oz, dx, dy, dz, tMax);
+          if (t < tBest) {
+            tBest = t;
+            best = i;
+          }
         }
+        for (let i = 0; i < descs.length; i++)
+          if (best >= 0 && intersectQuad(quads, i, ox, oy, oz, dx, dy, dz, tMax) === tBest) sameT++;
+        r.set([ox, oy, oz, dx, dy, dz, tMax]);
+        const got = nearestQuad(list, r);
+        expect(got).toBe(best);
+        expect(Object.is(r[6], tBest)).toBe(true);
+        r[6] = tMax;
+        expect(anyQuad(list, r)).toBe(best >= 0);
+        if (best >= 0) hits++;
+        if (sameT > 1) ties++;
       }
-      for (let i = 0; i < descs.length; i++)
-        if (best >= 0 && intersectQuad(quads, i, ox, oy, oz, dx, dy, dz, tMax) === tBest) sameT++;
-      r.set([ox, oy, oz, dx, dy, dz, tMax]);
-      const got = nearestQuad(list, r);
-      expect(got).toBe(best);
-      expect(Object.is(r[6], tBest)).toBe(true);
-      r[6] = tMax;
-      expect(anyQuad(list, r)).toBe(best >= 0);
-      if (best >= 0) hits++;
-      if (sameT > 1) ties++;
-    }
-    // The rays met quads, and ties (the copies) among them.
-    expect(hits).toBeGreaterThan(2000);
-    expect(ties).toBeGreaterThan(100);
-  });
+      // The rays met quads, and ties (the copies) among them.
+      expect(hits).toBeGreaterThan(2000);
+      expect(ties).toBeGreaterThan(100);
+    },
+  );
 });
