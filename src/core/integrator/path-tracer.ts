@@ -16,8 +16,10 @@
  */
 import { bsdfEval, bsdfSample } from '../bsdf/bsdf.ts';
 import {
+  MATERIAL_DIFFUSE,
   MATERIAL_GLTF,
   MATERIAL_STRIDE,
+  M_COLOR,
   M_DELTA,
   M_EMISSION,
   M_EMISSIVE,
@@ -41,7 +43,6 @@ import {
   shadeGltfHit,
   shadowTransmittance,
 } from './gltf-surface.ts';
-import { Frame } from '../math/frame.ts';
 import {
   DIM_ALPHA,
   DIM_ALPHA_EXTRA,
@@ -81,6 +82,10 @@ export class RenderStats {
   rejected = 0;
 }
 
+const INV_PI = 1 / Math.PI;
+const PI_OVER_4 = Math.PI / 4;
+const PI_OVER_2 = Math.PI / 2;
+
 /** Russian roulette begins once a path has scattered this many times. */
 const ROULETTE_DEPTH = 3;
 
@@ -99,7 +104,6 @@ export class PathTracer {
   private readonly ray = new Ray();
   private readonly shadowRay = new Ray();
   private readonly hit = new Hit();
-  private readonly frame = new Frame();
   private readonly bs = new BsdfSample();
   private readonly fv = new BsdfValue();
   private readonly ls = new LightSample();
@@ -173,7 +177,6 @@ export class PathTracer {
     const sampler = this.sampler;
     const ray = this.ray;
     const hit = this.hit;
-    const frame = this.frame;
     const bs = this.bs;
     const fv = this.fv;
     const nee = this.estimator === 'nee-mis' && lights !== null;
@@ -374,14 +377,25 @@ export class PathTracer {
         sy = -sny;
         sz = -snz;
       }
-      frame.nx = sx;
-      frame.ny = sy;
-      frame.nz = sz;
-      frame.setFromN();
+      // The tangents of the frame around s, in locals (Frame.setFromN written
+      // out: the call was not inlined once trace's inlining budget was spent).
+      const fsign = sz >= 0 ? 1 : -1;
+      const fa = -1 / (fsign + sz);
+      const fb = sx * sy * fa;
+      const fsx = 1 + fsign * sx * sx * fa;
+      const fsy = fsign * fb;
+      const fsz = -fsign * sx;
+      const ftx = fb;
+      const fty = fsign + sy * sy * fa;
+      const ftz = -sy;
       const bq = this.bq;
-      bq.wox = wox * frame.sx + woy * frame.sy + woz * frame.sz;
-      bq.woy = wox * frame.tx + woy * frame.ty + woz * frame.tz;
-      bq.woz = wox * sx + woy * sy + woz * sz;
+      const lwox = wox * fsx + woy * fsy + woz * fsz;
+      const lwoy = wox * ftx + woy * fty + woz * ftz;
+      const lwoz = wox * sx + woy * sy + woz * sz;
+      bq.wox = lwox;
+      bq.woy = lwoy;
+      bq.woz = lwoz;
+      const mtype = materials[mo + M_TYPE];
       const scale = Math.max(Math.abs(x), Math.abs(y), Math.abs(z), shapeScale) * OFFSET_SCALE;
       // The roulette number only from the bounce where roulette starts.
       sampler.fill(
@@ -407,11 +421,31 @@ export class PathTracer {
           // A frame facing wo sees light only above it; a transmissive glTF surface
           // (geometric side) reflects below it too when the path is inside.
           if (geometricSide ? lwiz !== 0 : lwiz > 0) {
-            bq.wix = wix * frame.sx + wiy * frame.sy + wiz * frame.sz;
-            bq.wiy = wix * frame.tx + wiy * frame.ty + wiz * frame.tz;
-            bq.wiz = lwiz;
-            bsdfEval(materials, m, bq, fv);
-            if (fv.r !== 0 || fv.g !== 0 || fv.b !== 0) {
+            let fr: number, fg: number, fb: number, pb: number;
+            if (mtype === MATERIAL_DIFFUSE) {
+              // diffuseEval written out (diffuse.ts).
+              if (lwoz <= 0 || lwiz <= 0) {
+                fr = 0;
+                fg = 0;
+                fb = 0;
+                pb = 0;
+              } else {
+                fr = materials[mo + M_COLOR] * INV_PI;
+                fg = materials[mo + M_COLOR + 1] * INV_PI;
+                fb = materials[mo + M_COLOR + 2] * INV_PI;
+                pb = lwiz * INV_PI;
+              }
+            } else {
+              bq.wix = wix * fsx + wiy * fsy + wiz * fsz;
+              bq.wiy = wix * ftx + wiy * fty + wiz * ftz;
+              bq.wiz = lwiz;
+              bsdfEval(materials, m, bq, fv);
+              fr = fv.r;
+              fg = fv.g;
+              fb = fv.b;
+              pb = fv.pdf;
+            }
+            if (fr !== 0 || fg !== 0 || fb !== 0) {
               // Both ends lifted off their surfaces (see lights.ts): the
               // segment between them crosses neither. The origin leaves by
               // the geometric side wi is on.
@@ -478,12 +512,11 @@ export class PathTracer {
                     eb = materials[lm + M_EMISSION + 2];
                   }
                 }
-                const pb = fv.pdf;
                 const pl = ls.pdf;
                 const w = (pl / (pl * pl + pb * pb)) * Math.abs(lwiz) * visible;
-                lr += br * fv.r * er * w;
-                lg += bg * fv.g * eg * w;
-                lb += bb * fv.b * eb * w;
+                lr += br * fr * er * w;
+                lg += bg * fg * eg * w;
+                lb += bb * fb * eb * w;
               }
             }
           }
@@ -491,20 +524,55 @@ export class PathTracer {
       }
 
       // Continue the path by sampling the BSDF.
-      bq.u0 = u[DIM_BSDF];
-      bq.u1 = u[DIM_BSDF + 1];
-      bq.u2 = u[DIM_BSDF_LOBE];
-      if (!bsdfSample(materials, m, bq, bs)) break;
-      br *= bs.weightR;
-      bg *= bs.weightG;
-      bb *= bs.weightB;
-      if (br === 0 && bg === 0 && bb === 0) break;
-      etaScale *= bs.etaScale;
-      const wix = bs.wx * frame.sx + bs.wy * frame.tx + bs.wz * sx;
-      const wiy = bs.wx * frame.sy + bs.wy * frame.ty + bs.wz * sy;
-      const wiz = bs.wx * frame.sz + bs.wy * frame.tz + bs.wz * sz;
-      specular = bs.isDelta;
-      prevPdf = bs.pdf;
+      let bwx: number, bwy: number, bwz: number;
+      if (mtype === MATERIAL_DIFFUSE) {
+        // diffuseSample written out (diffuse.ts; the concentric map and
+        // Malley's method of warps.ts): the same arithmetic, no calls.
+        if (lwoz <= 0) break;
+        const ox = 2 * u[DIM_BSDF] - 1;
+        const oy = 2 * u[DIM_BSDF + 1] - 1;
+        if (ox === 0 && oy === 0) {
+          bwx = 0;
+          bwy = 0;
+        } else {
+          let r: number, theta: number;
+          if (Math.abs(ox) > Math.abs(oy)) {
+            r = ox;
+            theta = PI_OVER_4 * (oy / ox);
+          } else {
+            r = oy;
+            theta = PI_OVER_2 - PI_OVER_4 * (ox / oy);
+          }
+          bwx = r * Math.cos(theta);
+          bwy = r * Math.sin(theta);
+        }
+        bwz = Math.sqrt(Math.max(0, 1 - bwx * bwx - bwy * bwy));
+        if (bwz <= 0) break;
+        br *= materials[mo + M_COLOR];
+        bg *= materials[mo + M_COLOR + 1];
+        bb *= materials[mo + M_COLOR + 2];
+        if (br === 0 && bg === 0 && bb === 0) break;
+        specular = false;
+        prevPdf = bwz * INV_PI;
+      } else {
+        bq.u0 = u[DIM_BSDF];
+        bq.u1 = u[DIM_BSDF + 1];
+        bq.u2 = u[DIM_BSDF_LOBE];
+        if (!bsdfSample(materials, m, bq, bs)) break;
+        br *= bs.weightR;
+        bg *= bs.weightG;
+        bb *= bs.weightB;
+        if (br === 0 && bg === 0 && bb === 0) break;
+        etaScale *= bs.etaScale;
+        bwx = bs.wx;
+        bwy = bs.wy;
+        bwz = bs.wz;
+        specular = bs.isDelta;
+        prevPdf = bs.pdf;
+      }
+      const wix = bwx * fsx + bwy * ftx + bwz * sx;
+      const wiy = bwx * fsy + bwy * fty + bwz * sy;
+      const wiz = bwx * fsz + bwy * ftz + bwz * sz;
       prevX = x;
       prevY = y;
       prevZ = z;
