@@ -29,8 +29,25 @@ import {
 import { BsdfQuery, BsdfSample, BsdfValue } from '../bsdf/records.ts';
 import { Camera } from '../camera/camera.ts';
 import type { Film } from '../film/film.ts';
-import { Hit, LIGHT_ENVIRONMENT, Ray, SHAPE_SPHERE, SHAPE_TRIANGLE } from '../geometry/ray.ts';
-import { OFFSET_SCALE, QUAD_STRIDE, Q_NORMAL, Q_PLANE, SPHERE_STRIDE } from '../geometry/shapes.ts';
+import {
+  Hit,
+  LIGHT_ENVIRONMENT,
+  Ray,
+  SHAPE_QUAD,
+  SHAPE_SPHERE,
+  SHAPE_TRIANGLE,
+} from '../geometry/ray.ts';
+import {
+  OFFSET_SCALE,
+  QUAD_STRIDE,
+  Q_AREA,
+  Q_CORNER,
+  Q_NORMAL,
+  Q_PLANE,
+  Q_U,
+  Q_V,
+  SPHERE_STRIDE,
+} from '../geometry/shapes.ts';
 import { intersectScene, occluded } from '../geometry/trace.ts';
 import { EnvironmentSample } from '../lights/environment-map.ts';
 import { LightSample, environmentLightPdf, lightPdf, sampleLight } from '../lights/lights.ts';
@@ -408,15 +425,66 @@ export class PathTracer {
       if (nee && materials[mo + M_DELTA] === 0) {
         const ls = this.ls;
         const l = lights!.choose(u[DIM_LIGHT_CHOICE]);
-        ls.refX = x;
-        ls.refY = y;
-        ls.refZ = z;
-        ls.u0 = u[DIM_LIGHT_POINT];
-        ls.u1 = u[DIM_LIGHT_POINT + 1];
-        if (sampleLight(lights!, spheres, quads, l, ls)) {
-          const wix = ls.wx,
-            wiy = ls.wy,
+        // The sampled direction, the shadow ray's far end and the density.
+        let sampled = false;
+        let wix = 0,
+          wiy = 0,
+          wiz = 0;
+        let lpx = 0,
+          lpy = 0,
+          lpz = 0;
+        let lpdf = 0;
+        let infinite = false;
+        if (lights!.kind[l] === SHAPE_QUAD) {
+          // sampleLight's quad case (and finishAreaSample) written out,
+          // the same arithmetic: the call was not inlined.
+          const o = lights!.shape[l] * QUAD_STRIDE;
+          const u0 = u[DIM_LIGHT_POINT],
+            u1 = u[DIM_LIGHT_POINT + 1];
+          const qx = quads[o + Q_CORNER] + u0 * quads[o + Q_U] + u1 * quads[o + Q_V];
+          const qy = quads[o + Q_CORNER + 1] + u0 * quads[o + Q_U + 1] + u1 * quads[o + Q_V + 1];
+          const qz = quads[o + Q_CORNER + 2] + u0 * quads[o + Q_U + 2] + u1 * quads[o + Q_V + 2];
+          const qnx = quads[o + Q_NORMAL],
+            qny = quads[o + Q_NORMAL + 1],
+            qnz = quads[o + Q_NORMAL + 2];
+          wix = qx - x;
+          wiy = qy - y;
+          wiz = qz - z;
+          const d2 = wix * wix + wiy * wiy + wiz * wiz;
+          if (d2 > 0) {
+            const dist = Math.sqrt(d2);
+            wix /= dist;
+            wiy /= dist;
+            wiz /= dist;
+            const cosLight = -(qnx * wix + qny * wiy + qnz * wiz);
+            if (cosLight > 0) {
+              const lift = lights!.offset[l];
+              lpx = qx + lift * qnx;
+              lpy = qy + lift * qny;
+              lpz = qz + lift * qnz;
+              lpdf = (lights!.prob[l] * d2) / (quads[o + Q_AREA] * cosLight);
+              sampled = lpdf < Infinity;
+            }
+          }
+        } else {
+          ls.refX = x;
+          ls.refY = y;
+          ls.refZ = z;
+          ls.u0 = u[DIM_LIGHT_POINT];
+          ls.u1 = u[DIM_LIGHT_POINT + 1];
+          if (sampleLight(lights!, spheres, quads, l, ls)) {
+            sampled = true;
+            wix = ls.wx;
+            wiy = ls.wy;
             wiz = ls.wz;
+            lpx = ls.px;
+            lpy = ls.py;
+            lpz = ls.pz;
+            lpdf = ls.pdf;
+            infinite = ls.distance === Infinity;
+          }
+        }
+        if (sampled) {
           const lwiz = wix * sx + wiy * sy + wiz * sz;
           // A frame facing wo sees light only above it; a transmissive glTF surface
           // (geometric side) reflects below it too when the path is inside.
@@ -454,16 +522,15 @@ export class PathTracer {
               const ox = x + nx * lift;
               const oy = y + ny * lift;
               const oz = z + nz * lift;
-              const infinite = ls.distance === Infinity;
               let len = Infinity;
               if (infinite) {
                 sr.dx = wix;
                 sr.dy = wiy;
                 sr.dz = wiz;
               } else {
-                const ex = ls.px - ox;
-                const ey = ls.py - oy;
-                const ez = ls.pz - oz;
+                const ex = lpx - ox;
+                const ey = lpy - oy;
+                const ez = lpz - oz;
                 len = Math.sqrt(ex * ex + ey * ey + ez * ez);
                 sr.dx = ex / len;
                 sr.dy = ey / len;
@@ -512,7 +579,7 @@ export class PathTracer {
                     eb = materials[lm + M_EMISSION + 2];
                   }
                 }
-                const pl = ls.pdf;
+                const pl = lpdf;
                 const w = (pl / (pl * pl + pb * pb)) * Math.abs(lwiz) * visible;
                 lr += br * fr * er * w;
                 lg += bg * fg * eg * w;
