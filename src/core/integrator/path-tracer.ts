@@ -173,8 +173,11 @@ export class PathTracer {
     stats: RenderStats,
   ): void {
     const width = this.width;
-    for (let s = sampleStart; s < sampleEnd; s++) {
-      for (let x = 0; x < width; x++) {
+    // The samples of one pixel one after another: their camera rays start
+    // alike (branches and cache lines of the first intersection repeat), and
+    // the film's exact sums make the order irrelevant to the bits.
+    for (let x = 0; x < width; x++) {
+      for (let s = sampleStart; s < sampleEnd; s++) {
         this.trace(x, y, s, stats);
         if (!film.addSample(x, y, this.lr, this.lg, this.lb)) stats.rejected++;
       }
