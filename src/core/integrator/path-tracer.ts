@@ -179,7 +179,7 @@ export class PathTracer {
     for (let x = 0; x < width; x++) {
       for (let s = sampleStart; s < sampleEnd; s++) {
         this.trace(x, y, s, stats);
-        if (!film.addSample(x, y, this.lr, this.lg, this.lb)) stats.rejected++;
+        if (!film.addRadiance(x, y, this)) stats.rejected++;
       }
     }
   }
