@@ -366,7 +366,13 @@ export class PathTracer {
         if (nee && !specular) {
           // Past alpha surfaces the light is farther than this last segment.
           const d = crossings === 0 ? t : Math.hypot(x - prevX, y - prevY, z - prevZ);
-          const pl = lightPdf(lights!, spheres, quads, light, prevX, prevY, prevZ, d, cosO);
+          // lightPdf's quad case written out: the call, not inlined, boxed
+          // its five double arguments and its result on the heap.
+          const pl =
+            lights!.kind[light] === SHAPE_QUAD
+              ? (lights!.prob[light] * d * d) /
+                (quads[lights!.shape[light] * QUAD_STRIDE + Q_AREA] * cosO)
+              : lightPdf(lights!, spheres, quads, light, prevX, prevY, prevZ, d, cosO);
           w = (prevPdf * prevPdf) / (prevPdf * prevPdf + pl * pl);
         }
         if (isGltf) {
