@@ -207,9 +207,11 @@ export class PathTracer {
     const sp = this.bq.shading;
 
     const u = this.u;
-    sampler.startPixelSample(py * this.width + px, sampleIndex, this.camera.aperture > 0);
-    // Film and lens dimensions are adjacent: one fill draws both pairs.
-    sampler.fill(DIM_FILM, DIM_LENS + 2 - DIM_FILM, u);
+    const aperture = this.camera.aperture > 0;
+    sampler.startPixelSample(py * this.width + px, sampleIndex, aperture);
+    // Film and lens dimensions are adjacent: one fill draws both pairs (the
+    // lens pair only with an aperture).
+    sampler.fillRange(DIM_FILM, 0, aperture ? DIM_LENS + 2 - DIM_FILM : DIM_LENS - DIM_FILM, u);
     const lens = DIM_LENS - DIM_FILM;
     this.camera.generateRayFromSamples(px, py, u, lens, ray);
     let segments = 1;
@@ -418,20 +420,28 @@ export class PathTracer {
       const lwox = wox * fsx + woy * fsy + woz * fsz;
       const lwoy = wox * ftx + woy * fty + woz * ftz;
       const lwoz = wox * sx + woy * sy + woz * sz;
-      bq.wox = lwox;
-      bq.woy = lwoy;
-      bq.woz = lwoz;
       const mtype = materials[mo + M_TYPE];
+      // The diffuse case below reads only lwoz: the BSDF calls take the rest.
+      if (mtype !== MATERIAL_DIFFUSE) {
+        bq.wox = lwox;
+        bq.woy = lwoy;
+        bq.woz = lwoz;
+      }
       const scale = Math.max(Math.abs(x), Math.abs(y), Math.abs(z), shapeScale) * OFFSET_SCALE;
-      // The roulette number only from the bounce where roulette starts.
-      sampler.fill(
+      // Only the numbers this bounce reads: the light's when it samples one
+      // (the choice only among several lights), the roulette number from the
+      // bounce where roulette starts. Dimensions by role: light choice, light
+      // point, BSDF direction, lobe, roulette (sampler.ts).
+      const sampleLights = nee && materials[mo + M_DELTA] === 0;
+      sampler.fillRange(
         DIM_BOUNCE + depth * DIM_PER_BOUNCE,
+        sampleLights ? (lights!.count > 1 ? DIM_LIGHT_CHOICE : DIM_LIGHT_POINT) : DIM_BSDF,
         depth + 1 >= ROULETTE_DEPTH ? DIM_ROULETTE + 1 : DIM_ROULETTE,
         u,
       );
 
       // Next-event estimation.
-      if (nee && materials[mo + M_DELTA] === 0) {
+      if (sampleLights) {
         const ls = this.ls;
         const l = lights!.choose(u[DIM_LIGHT_CHOICE]);
         // The sampled direction, the shadow ray's far end and the density.
