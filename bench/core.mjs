@@ -21,11 +21,11 @@
 // the pathwise figures are reported alone.
 //
 //   npm run bench:core [-- --reps N --threads N --sampler S --out FILE --native PATH --quick]
-import { execFileSync, spawnSync } from 'node:child_process';
-import { existsSync, mkdirSync, rmSync, writeFileSync } from 'node:fs';
+import { mkdirSync, rmSync, writeFileSync } from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { ROOT, machineInfo, median, renderOnce } from './lib.mjs';
+import { findNative, nativeOnce } from './native.mjs';
 import { writeSpheresField } from './scenes.mjs';
 
 const opt = {};
@@ -43,48 +43,10 @@ const outFile = path.resolve(ROOT, opt.out ?? 'bench/results/core.json');
 const tmpDir = path.join(os.tmpdir(), `pathwise-core-${process.pid}`);
 mkdirSync(tmpDir, { recursive: true });
 
-function findNative() {
-  const candidates = [opt.native, process.env.PATHWISE_NATIVE, '/tmp/pathwise-native-anchor/pt'];
-  for (const c of candidates) if (c && existsSync(c)) return c;
-  const build = path.resolve(ROOT, '../shared/anchors/native/build.sh');
-  if (existsSync(build)) {
-    process.stderr.write('building the native anchor (../shared/anchors/native/build.sh)\n');
-    const r = spawnSync('sh', [build], { encoding: 'utf8' });
-    if (r.status === 0 && existsSync('/tmp/pathwise-native-anchor/pt')) {
-      return '/tmp/pathwise-native-anchor/pt';
-    }
-    process.stderr.write(`native anchor build failed: ${r.stderr}\n`);
-  }
-  return null;
-}
-const native = findNative();
+const native = findNative(opt.native);
 if (!native) process.stderr.write('no native anchor: pathwise figures only\n');
-
-/** One render by the anchor: its JSON line plus the process wall time. */
-function nativeOnce(o) {
-  const args = [
-    o.scene,
-    '--width',
-    String(o.width),
-    '--height',
-    String(o.height),
-    '--spp',
-    String(o.spp),
-    '--threads',
-    String(o.threads),
-    '--seed',
-    '1',
-    '--max-bounces',
-    String(o.bounces),
-    '--out',
-    path.join(tmpDir, 'native.pfm'),
-    '--quiet',
-  ];
-  const t0 = performance.now();
-  const out = execFileSync(native, args, { encoding: 'utf8' });
-  const processSeconds = (performance.now() - t0) / 1000;
-  return { ...JSON.parse(out.trim().split('\n').pop()), process_seconds: processSeconds };
-}
+/** One render by the anchor, into the run's temporary folder. */
+const nativeRun = (o) => nativeOnce(native, { ...o, out: path.join(tmpDir, 'native.pfm') });
 
 const spheresFile = writeSpheresField(path.join(tmpDir, 'spheres-10k.json'), 10000);
 const cases = [
@@ -118,12 +80,12 @@ try {
       const side = threads > 4 ? 512 : 128;
       const o = { scene: c.scene, width: side, height: side, spp: c.spp, threads, bounces: 6 };
       pw({ ...o, spp: 1 }); // warm-up: file cache, CPU clocks
-      if (native) nativeOnce({ ...o, spp: 1 });
+      if (native) nativeRun({ ...o, spp: 1 });
       const pwRuns = [];
       const nativeRuns = [];
       for (let r = 0; r < reps; r++) {
         pwRuns.push(pw(o));
-        if (native) nativeRuns.push(nativeOnce(o));
+        if (native) nativeRuns.push(nativeRun(o));
       }
       const entry = {
         case: c.name,
@@ -156,12 +118,12 @@ try {
   for (const threads of [...new Set([2, threadsAll])]) {
     const o = { scene: spheresFile, width: 128, height: 128, spp: 1, threads, bounces: 6 };
     pw(o);
-    if (native) nativeOnce(o);
+    if (native) nativeRun(o);
     const pwRuns = [];
     const nativeRuns = [];
     for (let r = 0; r < Math.max(reps, 3); r++) {
       pwRuns.push(pw(o));
-      if (native) nativeRuns.push(nativeOnce(o));
+      if (native) nativeRuns.push(nativeRun(o));
     }
     const entry = {
       threads,

@@ -50,6 +50,9 @@ log "the browser's pool code in Node, shared and transfer modes"
 log "BVH build, 1M triangle-sized boxes"
 "$NODE" dist/bench/bvh-build.mjs 1000000 > "$OUT/bvh-build.jsonl"
 
+log "thread scaling of pathwise and of the native anchor, same run"
+"$NODE" bench/scaling.mjs --threads 16 --spp 8 --reps 2 --out "$OUT/scaling.json" >&2
+
 log "independent single-thread processes (the hardware's ceiling)"
 "$NODE" bench/processes.mjs --spp 16 --out "$OUT/processes.json" >&2
 log "done"
