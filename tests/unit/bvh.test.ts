@@ -6,7 +6,17 @@ import { describe, expect, it } from 'vitest';
 import { BVH_THRESHOLD, compileScene } from '../../src/core/index.ts';
 import { randomSpheresScene } from '../../src/core/scene/random-spheres.ts';
 import { loadScene, renderSampled } from '../helpers/render.ts';
-import { Hit, Ray } from '../../src/core/geometry/ray.ts';
+import { Hit, Ray, SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE } from '../../src/core/geometry/ray.ts';
+import {
+  QUAD_STRIDE,
+  Q_CORNER,
+  Q_NORMAL,
+  Q_PLANE,
+  Q_SAXIS,
+  Q_TAXIS,
+  SPHERE_STRIDE,
+} from '../../src/core/geometry/shapes.ts';
+import { AXIS_STRIDE, GENERAL_STRIDE, VERTICAL_STRIDE } from '../../src/core/geometry/quad-list.ts';
 import { intersectScene, occluded } from '../../src/core/geometry/trace.ts';
 import { pcgHash } from '../../src/core/rng/pcg.ts';
 import {
@@ -15,12 +25,14 @@ import {
   BVH_MAX_LEAF,
   BVH_NODE_WORDS,
   N_LEFT,
+  N_RIGHT,
+  N_RIGHT_BOX,
   buildBvh,
   f32Above,
   f32Below,
   type Bvh,
 } from '../../src/core/accel/bvh.ts';
-import { PRIM_KIND_BITS, PrimitiveBoxes } from '../../src/core/accel/primitives.ts';
+import { PRIM_KIND_BITS, PRIM_KIND_MASK, PrimitiveBoxes } from '../../src/core/accel/primitives.ts';
 
 /**
  * Walks the tree from the root: every reference must sit in exactly one
@@ -171,5 +183,19 @@ describe('BVH', () => {
     expect(compiled.lights).toBeNull();
     expect(compiled.quadCount).toBe(0);
     expect(compiled.quads.length).toBe(0);
+  });
+
+  it('has the layout that the traversal loops of trace.ts write as literals', () => {
+    // trace.ts and quad-list.ts spell these offsets out (a module constant costs a
+    // context load and a checked multiply in the loop); they must match the layout.
+    expect([BVH_NODE_WORDS, N_RIGHT_BOX, N_LEFT, N_RIGHT, BVH_LEAF_BITS]).toEqual([
+      16, 6, 12, 13, 3,
+    ]);
+    expect([PRIM_KIND_BITS, PRIM_KIND_MASK]).toEqual([2, 3]);
+    expect([SHAPE_SPHERE, SHAPE_QUAD, SHAPE_TRIANGLE, SPHERE_STRIDE, QUAD_STRIDE]).toEqual([
+      0, 1, 2, 4, 20,
+    ]);
+    expect([Q_CORNER, Q_NORMAL, Q_PLANE, Q_SAXIS, Q_TAXIS]).toEqual([0, 9, 12, 13, 16]);
+    expect([AXIS_STRIDE, VERTICAL_STRIDE, GENERAL_STRIDE]).toEqual([8, 9, 13]);
   });
 });

@@ -86,3 +86,23 @@ export function intersectQuad(
   const ok = Number(s >= 0) & Number(s <= 1) & Number(v >= 0) & Number(v <= 1);
   return ok !== 0 ? t : Infinity;
 }
+
+/** If sphere i lies on the ray before r[R_T], moves r[R_T] to the hit and returns true. */
+export function hitSphere(spheres: Float64Array, i: number, r: Float64Array): boolean {
+  const t = intersectSphere(spheres, i, r[0], r[1], r[2], r[3], r[4], r[5], r[6]);
+  if (t < r[6]) {
+    r[6] = t;
+    return true;
+  }
+  return false;
+}
+
+/** If quad i lies on the ray before r[R_T], moves r[R_T] to the hit and returns true. */
+export function hitQuad(quads: Float64Array, i: number, r: Float64Array): boolean {
+  const t = intersectQuad(quads, i, r[0], r[1], r[2], r[3], r[4], r[5], r[6]);
+  if (t < r[6]) {
+    r[6] = t;
+    return true;
+  }
+  return false;
+}

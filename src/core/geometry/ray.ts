@@ -31,3 +31,14 @@ export const SHAPE_QUAD = 1;
 export const SHAPE_TRIANGLE = 2;
 /** Not a shape: the environment map, as a kind of light (lights/lights.ts). */
 export const LIGHT_ENVIRONMENT = 3;
+
+/**
+ * Ray record layout (a Float64Array the queries of trace.ts fill): origin,
+ * direction, far bound. Primitive tests read the ray from it and move R_T
+ * to a closer hit; they take and return no double, which V8 would box
+ * whenever it does not inline the call.
+ */
+export const R_OX = 0;
+export const R_DX = 3;
+export const R_T = 6;
+export const RAY_RECORD_WORDS = 8;

@@ -79,7 +79,7 @@ export class TriangleHit {
   b2 = 0;
 }
 
-/** Index of the far bound in the scene's ray record (geometry/trace.ts R_T). */
+/** Index of the far bound in the scene's ray record (R_T of geometry/ray.ts). */
 const R_T = 6;
 
 /**

@@ -5,10 +5,11 @@
  * BVH_THRESHOLD), so the hot loops never pay for kinds that are absent.
  */
 import { BVH_NODE_WORDS, Bvh, buildBvh } from '../accel/bvh.ts';
+import { QuadList } from '../geometry/quad-list.ts';
 import { PrimitiveBoxes, quadBoxes, sphereBoxes, triangleBoxes } from '../accel/primitives.ts';
 import { compileMaterials, MATERIAL_STRIDE, M_EMISSION, M_EMISSIVE } from '../bsdf/materials.ts';
 import { LIGHT_ENVIRONMENT, SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE } from '../geometry/ray.ts';
-import { RAY_RECORD_WORDS } from '../geometry/trace.ts';
+import { RAY_RECORD_WORDS } from '../geometry/ray.ts';
 import { TriangleHit, TriangleRay } from '../geometry/triangle.ts';
 import {
   compileQuads,
@@ -153,6 +154,11 @@ export class CompiledScene {
   /** See SceneData.sphereScale. */
   readonly sphereScale: Float64Array;
   readonly quadScale: Float64Array;
+  /**
+   * The quads regrouped for the plain loops (geometry/quad-list.ts), derived from `quads`;
+   * empty when the scene has a BVH, which tests quads from `quads` itself.
+   */
+  readonly quadList: QuadList;
   /** The triangles of all meshes (compile-meshes.ts), or null without meshes. */
   readonly meshes: CompiledMeshes | null;
   readonly triCount: number;
@@ -196,6 +202,7 @@ export class CompiledScene {
     this.quadMaterial = data.quadMaterial;
     this.quadLight = data.quadLight;
     this.quadScale = data.quadScale;
+    this.quadList = new QuadList(data.bvhNodes.length > 0 ? new Float64Array(0) : data.quads);
     const meshes = data.meshMaterial.length > 0 ? new CompiledMeshes(data) : null;
     this.meshes = meshes;
     this.triCount = meshes?.triangleCount ?? 0;
