@@ -196,6 +196,39 @@ describe('sobol samples', () => {
     }
   });
 
+  it('keeps the numbers of a pixel when other pixels come between its samples', () => {
+    // The sampler keeps the Sobol keys of the last pixel; switching back and
+    // forth must recompute them, never reuse another pixel's.
+    const sampler = new Sampler(seed, 'sobol');
+    for (const [pixel, s] of [
+      [5, 0],
+      [5, 1],
+      [6, 0],
+      [5, 2],
+      [6, 1],
+      [6, 2],
+    ]) {
+      sampler.startPixelSample(pixel, s);
+      for (let d = 0; d < SOBOL_DIMENSIONS; d++) {
+        expect(sampler.get1D(d)).toBe(sobolSample(seed, pixel, s, d));
+      }
+    }
+  });
+
+  it('fillRange writes dimension + k into out[k] for k in [from, to) and nothing else', () => {
+    for (const kind of ['sobol', 'independent'] as const) {
+      const sampler = new Sampler(seed, kind);
+      for (const base of [0, DIM_BOUNCE, DIM_BOUNCE + 3 * DIM_PER_BOUNCE]) {
+        sampler.startPixelSample(321, 9);
+        const out = new Float64Array(DIM_PER_BOUNCE).fill(-1);
+        sampler.fillRange(base, 1, 5, out);
+        for (let k = 0; k < DIM_PER_BOUNCE; k++) {
+          expect(out[k]).toBe(k >= 1 && k < 5 ? sampler.get1D(base + k) : -1);
+        }
+      }
+    }
+  });
+
   it('is a pure function of (seed, pixel, sample, dimension): order does not matter', () => {
     const forward = new Sampler(3, 'sobol');
     const backward = new Sampler(3, 'sobol');

@@ -16,8 +16,10 @@
  */
 import { bsdfEval, bsdfSample } from '../bsdf/bsdf.ts';
 import {
+  MATERIAL_DIFFUSE,
   MATERIAL_GLTF,
   MATERIAL_STRIDE,
+  M_COLOR,
   M_DELTA,
   M_EMISSION,
   M_EMISSIVE,
@@ -27,8 +29,25 @@ import {
 import { BsdfQuery, BsdfSample, BsdfValue } from '../bsdf/records.ts';
 import { Camera } from '../camera/camera.ts';
 import type { Film } from '../film/film.ts';
-import { Hit, LIGHT_ENVIRONMENT, Ray, SHAPE_SPHERE, SHAPE_TRIANGLE } from '../geometry/ray.ts';
-import { OFFSET_SCALE, QUAD_STRIDE, Q_NORMAL, Q_PLANE, SPHERE_STRIDE } from '../geometry/shapes.ts';
+import {
+  Hit,
+  LIGHT_ENVIRONMENT,
+  Ray,
+  SHAPE_QUAD,
+  SHAPE_SPHERE,
+  SHAPE_TRIANGLE,
+} from '../geometry/ray.ts';
+import {
+  OFFSET_SCALE,
+  QUAD_STRIDE,
+  Q_AREA,
+  Q_CORNER,
+  Q_NORMAL,
+  Q_PLANE,
+  Q_U,
+  Q_V,
+  SPHERE_STRIDE,
+} from '../geometry/shapes.ts';
 import { intersectScene, occluded } from '../geometry/trace.ts';
 import { EnvironmentSample } from '../lights/environment-map.ts';
 import { LightSample, environmentLightPdf, lightPdf, sampleLight } from '../lights/lights.ts';
@@ -41,7 +60,6 @@ import {
   shadeGltfHit,
   shadowTransmittance,
 } from './gltf-surface.ts';
-import { Frame } from '../math/frame.ts';
 import {
   DIM_ALPHA,
   DIM_ALPHA_EXTRA,
@@ -81,6 +99,10 @@ export class RenderStats {
   rejected = 0;
 }
 
+const INV_PI = 1 / Math.PI;
+const PI_OVER_4 = Math.PI / 4;
+const PI_OVER_2 = Math.PI / 2;
+
 /** Russian roulette begins once a path has scattered this many times. */
 const ROULETTE_DEPTH = 3;
 
@@ -99,7 +121,6 @@ export class PathTracer {
   private readonly ray = new Ray();
   private readonly shadowRay = new Ray();
   private readonly hit = new Hit();
-  private readonly frame = new Frame();
   private readonly bs = new BsdfSample();
   private readonly fv = new BsdfValue();
   private readonly ls = new LightSample();
@@ -152,10 +173,13 @@ export class PathTracer {
     stats: RenderStats,
   ): void {
     const width = this.width;
-    for (let s = sampleStart; s < sampleEnd; s++) {
-      for (let x = 0; x < width; x++) {
+    // The samples of one pixel one after another: their camera rays start
+    // alike (branches and cache lines of the first intersection repeat), and
+    // the film's exact sums make the order irrelevant to the bits.
+    for (let x = 0; x < width; x++) {
+      for (let s = sampleStart; s < sampleEnd; s++) {
         this.trace(x, y, s, stats);
-        if (!film.addSample(x, y, this.lr, this.lg, this.lb)) stats.rejected++;
+        if (!film.addRadiance(x, y, this)) stats.rejected++;
       }
     }
   }
@@ -173,7 +197,6 @@ export class PathTracer {
     const sampler = this.sampler;
     const ray = this.ray;
     const hit = this.hit;
-    const frame = this.frame;
     const bs = this.bs;
     const fv = this.fv;
     const nee = this.estimator === 'nee-mis' && lights !== null;
@@ -184,9 +207,11 @@ export class PathTracer {
     const sp = this.bq.shading;
 
     const u = this.u;
-    sampler.startPixelSample(py * this.width + px, sampleIndex, this.camera.aperture > 0);
-    // Film and lens dimensions are adjacent: one fill draws both pairs.
-    sampler.fill(DIM_FILM, DIM_LENS + 2 - DIM_FILM, u);
+    const aperture = this.camera.aperture > 0;
+    sampler.startPixelSample(py * this.width + px, sampleIndex, aperture);
+    // Film and lens dimensions are adjacent: one fill draws both pairs (the
+    // lens pair only with an aperture).
+    sampler.fillRange(DIM_FILM, 0, aperture ? DIM_LENS + 2 - DIM_FILM : DIM_LENS - DIM_FILM, u);
     const lens = DIM_LENS - DIM_FILM;
     this.camera.generateRayFromSamples(px, py, u, lens, ray);
     let segments = 1;
@@ -343,7 +368,13 @@ export class PathTracer {
         if (nee && !specular) {
           // Past alpha surfaces the light is farther than this last segment.
           const d = crossings === 0 ? t : Math.hypot(x - prevX, y - prevY, z - prevZ);
-          const pl = lightPdf(lights!, spheres, quads, light, prevX, prevY, prevZ, d, cosO);
+          // lightPdf's quad case written out: the call, not inlined, boxed
+          // its five double arguments and its result on the heap.
+          const pl =
+            lights!.kind[light] === SHAPE_QUAD
+              ? (lights!.prob[light] * d * d) /
+                (quads[lights!.shape[light] * QUAD_STRIDE + Q_AREA] * cosO)
+              : lightPdf(lights!, spheres, quads, light, prevX, prevY, prevZ, d, cosO);
           w = (prevPdf * prevPdf) / (prevPdf * prevPdf + pl * pl);
         }
         if (isGltf) {
@@ -374,44 +405,134 @@ export class PathTracer {
         sy = -sny;
         sz = -snz;
       }
-      frame.nx = sx;
-      frame.ny = sy;
-      frame.nz = sz;
-      frame.setFromN();
+      // The tangents of the frame around s, in locals (Frame.setFromN written
+      // out: the call was not inlined once trace's inlining budget was spent).
+      const fsign = sz >= 0 ? 1 : -1;
+      const fa = -1 / (fsign + sz);
+      const fb = sx * sy * fa;
+      const fsx = 1 + fsign * sx * sx * fa;
+      const fsy = fsign * fb;
+      const fsz = -fsign * sx;
+      const ftx = fb;
+      const fty = fsign + sy * sy * fa;
+      const ftz = -sy;
       const bq = this.bq;
-      bq.wox = wox * frame.sx + woy * frame.sy + woz * frame.sz;
-      bq.woy = wox * frame.tx + woy * frame.ty + woz * frame.tz;
-      bq.woz = wox * sx + woy * sy + woz * sz;
+      const lwox = wox * fsx + woy * fsy + woz * fsz;
+      const lwoy = wox * ftx + woy * fty + woz * ftz;
+      const lwoz = wox * sx + woy * sy + woz * sz;
+      const mtype = materials[mo + M_TYPE];
+      // The diffuse case below reads only lwoz: the BSDF calls take the rest.
+      if (mtype !== MATERIAL_DIFFUSE) {
+        bq.wox = lwox;
+        bq.woy = lwoy;
+        bq.woz = lwoz;
+      }
       const scale = Math.max(Math.abs(x), Math.abs(y), Math.abs(z), shapeScale) * OFFSET_SCALE;
-      // The roulette number only from the bounce where roulette starts.
-      sampler.fill(
+      // Only the numbers this bounce reads: the light's when it samples one
+      // (the choice only among several lights), the roulette number from the
+      // bounce where roulette starts. Dimensions by role: light choice, light
+      // point, BSDF direction, lobe, roulette (sampler.ts).
+      const sampleLights = nee && materials[mo + M_DELTA] === 0;
+      sampler.fillRange(
         DIM_BOUNCE + depth * DIM_PER_BOUNCE,
+        sampleLights ? (lights!.count > 1 ? DIM_LIGHT_CHOICE : DIM_LIGHT_POINT) : DIM_BSDF,
         depth + 1 >= ROULETTE_DEPTH ? DIM_ROULETTE + 1 : DIM_ROULETTE,
         u,
       );
 
       // Next-event estimation.
-      if (nee && materials[mo + M_DELTA] === 0) {
+      if (sampleLights) {
         const ls = this.ls;
         const l = lights!.choose(u[DIM_LIGHT_CHOICE]);
-        ls.refX = x;
-        ls.refY = y;
-        ls.refZ = z;
-        ls.u0 = u[DIM_LIGHT_POINT];
-        ls.u1 = u[DIM_LIGHT_POINT + 1];
-        if (sampleLight(lights!, spheres, quads, l, ls)) {
-          const wix = ls.wx,
-            wiy = ls.wy,
+        // The sampled direction, the shadow ray's far end and the density.
+        let sampled = false;
+        let wix = 0,
+          wiy = 0,
+          wiz = 0;
+        let lpx = 0,
+          lpy = 0,
+          lpz = 0;
+        let lpdf = 0;
+        let infinite = false;
+        if (lights!.kind[l] === SHAPE_QUAD) {
+          // sampleLight's quad case (and finishAreaSample) written out,
+          // the same arithmetic: the call was not inlined.
+          const o = lights!.shape[l] * QUAD_STRIDE;
+          const u0 = u[DIM_LIGHT_POINT],
+            u1 = u[DIM_LIGHT_POINT + 1];
+          const qx = quads[o + Q_CORNER] + u0 * quads[o + Q_U] + u1 * quads[o + Q_V];
+          const qy = quads[o + Q_CORNER + 1] + u0 * quads[o + Q_U + 1] + u1 * quads[o + Q_V + 1];
+          const qz = quads[o + Q_CORNER + 2] + u0 * quads[o + Q_U + 2] + u1 * quads[o + Q_V + 2];
+          const qnx = quads[o + Q_NORMAL],
+            qny = quads[o + Q_NORMAL + 1],
+            qnz = quads[o + Q_NORMAL + 2];
+          wix = qx - x;
+          wiy = qy - y;
+          wiz = qz - z;
+          const d2 = wix * wix + wiy * wiy + wiz * wiz;
+          if (d2 > 0) {
+            const dist = Math.sqrt(d2);
+            wix /= dist;
+            wiy /= dist;
+            wiz /= dist;
+            const cosLight = -(qnx * wix + qny * wiy + qnz * wiz);
+            if (cosLight > 0) {
+              const lift = lights!.offset[l];
+              lpx = qx + lift * qnx;
+              lpy = qy + lift * qny;
+              lpz = qz + lift * qnz;
+              lpdf = (lights!.prob[l] * d2) / (quads[o + Q_AREA] * cosLight);
+              sampled = lpdf < Infinity;
+            }
+          }
+        } else {
+          ls.refX = x;
+          ls.refY = y;
+          ls.refZ = z;
+          ls.u0 = u[DIM_LIGHT_POINT];
+          ls.u1 = u[DIM_LIGHT_POINT + 1];
+          if (sampleLight(lights!, spheres, quads, l, ls)) {
+            sampled = true;
+            wix = ls.wx;
+            wiy = ls.wy;
             wiz = ls.wz;
+            lpx = ls.px;
+            lpy = ls.py;
+            lpz = ls.pz;
+            lpdf = ls.pdf;
+            infinite = ls.distance === Infinity;
+          }
+        }
+        if (sampled) {
           const lwiz = wix * sx + wiy * sy + wiz * sz;
           // A frame facing wo sees light only above it; a transmissive glTF surface
           // (geometric side) reflects below it too when the path is inside.
           if (geometricSide ? lwiz !== 0 : lwiz > 0) {
-            bq.wix = wix * frame.sx + wiy * frame.sy + wiz * frame.sz;
-            bq.wiy = wix * frame.tx + wiy * frame.ty + wiz * frame.tz;
-            bq.wiz = lwiz;
-            bsdfEval(materials, m, bq, fv);
-            if (fv.r !== 0 || fv.g !== 0 || fv.b !== 0) {
+            let fr: number, fg: number, fb: number, pb: number;
+            if (mtype === MATERIAL_DIFFUSE) {
+              // diffuseEval written out (diffuse.ts).
+              if (lwoz <= 0 || lwiz <= 0) {
+                fr = 0;
+                fg = 0;
+                fb = 0;
+                pb = 0;
+              } else {
+                fr = materials[mo + M_COLOR] * INV_PI;
+                fg = materials[mo + M_COLOR + 1] * INV_PI;
+                fb = materials[mo + M_COLOR + 2] * INV_PI;
+                pb = lwiz * INV_PI;
+              }
+            } else {
+              bq.wix = wix * fsx + wiy * fsy + wiz * fsz;
+              bq.wiy = wix * ftx + wiy * fty + wiz * ftz;
+              bq.wiz = lwiz;
+              bsdfEval(materials, m, bq, fv);
+              fr = fv.r;
+              fg = fv.g;
+              fb = fv.b;
+              pb = fv.pdf;
+            }
+            if (fr !== 0 || fg !== 0 || fb !== 0) {
               // Both ends lifted off their surfaces (see lights.ts): the
               // segment between them crosses neither. The origin leaves by
               // the geometric side wi is on.
@@ -420,16 +541,15 @@ export class PathTracer {
               const ox = x + nx * lift;
               const oy = y + ny * lift;
               const oz = z + nz * lift;
-              const infinite = ls.distance === Infinity;
               let len = Infinity;
               if (infinite) {
                 sr.dx = wix;
                 sr.dy = wiy;
                 sr.dz = wiz;
               } else {
-                const ex = ls.px - ox;
-                const ey = ls.py - oy;
-                const ez = ls.pz - oz;
+                const ex = lpx - ox;
+                const ey = lpy - oy;
+                const ez = lpz - oz;
                 len = Math.sqrt(ex * ex + ey * ey + ez * ez);
                 sr.dx = ex / len;
                 sr.dy = ey / len;
@@ -478,12 +598,11 @@ export class PathTracer {
                     eb = materials[lm + M_EMISSION + 2];
                   }
                 }
-                const pb = fv.pdf;
-                const pl = ls.pdf;
+                const pl = lpdf;
                 const w = (pl / (pl * pl + pb * pb)) * Math.abs(lwiz) * visible;
-                lr += br * fv.r * er * w;
-                lg += bg * fv.g * eg * w;
-                lb += bb * fv.b * eb * w;
+                lr += br * fr * er * w;
+                lg += bg * fg * eg * w;
+                lb += bb * fb * eb * w;
               }
             }
           }
@@ -491,20 +610,55 @@ export class PathTracer {
       }
 
       // Continue the path by sampling the BSDF.
-      bq.u0 = u[DIM_BSDF];
-      bq.u1 = u[DIM_BSDF + 1];
-      bq.u2 = u[DIM_BSDF_LOBE];
-      if (!bsdfSample(materials, m, bq, bs)) break;
-      br *= bs.weightR;
-      bg *= bs.weightG;
-      bb *= bs.weightB;
-      if (br === 0 && bg === 0 && bb === 0) break;
-      etaScale *= bs.etaScale;
-      const wix = bs.wx * frame.sx + bs.wy * frame.tx + bs.wz * sx;
-      const wiy = bs.wx * frame.sy + bs.wy * frame.ty + bs.wz * sy;
-      const wiz = bs.wx * frame.sz + bs.wy * frame.tz + bs.wz * sz;
-      specular = bs.isDelta;
-      prevPdf = bs.pdf;
+      let bwx: number, bwy: number, bwz: number;
+      if (mtype === MATERIAL_DIFFUSE) {
+        // diffuseSample written out (diffuse.ts; the concentric map and
+        // Malley's method of warps.ts): the same arithmetic, no calls.
+        if (lwoz <= 0) break;
+        const ox = 2 * u[DIM_BSDF] - 1;
+        const oy = 2 * u[DIM_BSDF + 1] - 1;
+        if (ox === 0 && oy === 0) {
+          bwx = 0;
+          bwy = 0;
+        } else {
+          let r: number, theta: number;
+          if (Math.abs(ox) > Math.abs(oy)) {
+            r = ox;
+            theta = PI_OVER_4 * (oy / ox);
+          } else {
+            r = oy;
+            theta = PI_OVER_2 - PI_OVER_4 * (ox / oy);
+          }
+          bwx = r * Math.cos(theta);
+          bwy = r * Math.sin(theta);
+        }
+        bwz = Math.sqrt(Math.max(0, 1 - bwx * bwx - bwy * bwy));
+        if (bwz <= 0) break;
+        br *= materials[mo + M_COLOR];
+        bg *= materials[mo + M_COLOR + 1];
+        bb *= materials[mo + M_COLOR + 2];
+        if (br === 0 && bg === 0 && bb === 0) break;
+        specular = false;
+        prevPdf = bwz * INV_PI;
+      } else {
+        bq.u0 = u[DIM_BSDF];
+        bq.u1 = u[DIM_BSDF + 1];
+        bq.u2 = u[DIM_BSDF_LOBE];
+        if (!bsdfSample(materials, m, bq, bs)) break;
+        br *= bs.weightR;
+        bg *= bs.weightG;
+        bb *= bs.weightB;
+        if (br === 0 && bg === 0 && bb === 0) break;
+        etaScale *= bs.etaScale;
+        bwx = bs.wx;
+        bwy = bs.wy;
+        bwz = bs.wz;
+        specular = bs.isDelta;
+        prevPdf = bs.pdf;
+      }
+      const wix = bwx * fsx + bwy * ftx + bwz * sx;
+      const wiy = bwx * fsy + bwy * fty + bwz * sy;
+      const wiz = bwx * fsz + bwy * ftz + bwz * sz;
       prevX = x;
       prevY = y;
       prevZ = z;

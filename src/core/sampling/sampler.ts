@@ -16,8 +16,10 @@ import {
   SOBOL_DIMENSIONS,
   SOBOL_GROUP_OF,
   SOBOL_NO_LENS,
+  SOBOL_PIXEL_KEYS,
   pixelKeyBits,
-  sobolFill,
+  sobolFillKeyed,
+  sobolPixelKeys,
 } from './sobol.ts';
 
 export const DIM_FILM = 0;
@@ -61,6 +63,9 @@ export class Sampler {
   private key = 0;
   /** Low-discrepancy numbers of the current (pixel, sample), filled once in startPixelSample. */
   private readonly ld = new Float64Array(SOBOL_DIMENSIONS);
+  /** The Sobol keys of pixel `keysPixel` (they depend on the pixel only). */
+  private readonly pixelKeys = new Int32Array(SOBOL_PIXEL_KEYS);
+  private keysPixel = -1;
 
   constructor(seed: number, kind: SamplerKind = DEFAULT_SAMPLER) {
     this.seed = seed >>> 0;
@@ -78,12 +83,12 @@ export class Sampler {
     // The low-discrepancy groups are computed here, once per path: fill()
     // then reads them, and hashes the dimensions no group covers.
     if (this.lowDiscrepancy) {
-      sobolFill(
-        pixelKeyBits(this.seed, pixelIndex),
-        sampleIndex,
-        this.ld,
-        lens ? 0 : SOBOL_NO_LENS,
-      );
+      // Consecutive samples of one pixel (PathTracer.renderRow) share its keys.
+      if (pixelIndex !== this.keysPixel) {
+        sobolPixelKeys(pixelKeyBits(this.seed, pixelIndex), this.pixelKeys);
+        this.keysPixel = pixelIndex;
+      }
+      sobolFillKeyed(this.pixelKeys, sampleIndex, this.ld, lens ? 0 : SOBOL_NO_LENS);
     }
   }
 
@@ -101,6 +106,28 @@ export class Sampler {
         out[k] = this.ld[d];
       } else {
         // hashToUnit with the PCG hash inlined by hand, in int32 arithmetic.
+        const input = (key + Math.imul(d, 0x9e3779b9)) | 0;
+        const state = (Math.imul(input, 747796405) + 2891336453) | 0;
+        const word = Math.imul((state >>> ((state >>> 28) + 4)) ^ state, 277803737);
+        out[k] = (((word >>> 22) ^ word) >>> 0) * INV_2_32;
+      }
+    }
+  }
+
+  /**
+   * Like fill, for dimensions dimension + k with k in [from, to), each into
+   * out[k]; the rest of out is left as it was. A bounce draws only the
+   * numbers it reads (no light numbers on a mirror, no light choice with one
+   * light): every number is the same function of its dimension, so skipping
+   * one changes no other.
+   */
+  fillRange(dimension: number, from: number, to: number, out: Float64Array): void {
+    const key = this.key;
+    for (let k = from; k < to; k++) {
+      const d = dimension + k;
+      if (this.lowDiscrepancy && d < SOBOL_DIMENSIONS && SOBOL_GROUP_OF[d] >= 0) {
+        out[k] = this.ld[d];
+      } else {
         const input = (key + Math.imul(d, 0x9e3779b9)) | 0;
         const state = (Math.imul(input, 747796405) + 2891336453) | 0;
         const word = Math.imul((state >>> ((state >>> 28) + 4)) ^ state, 277803737);

@@ -150,17 +150,50 @@ SOBOL_GROUPS.forEach(([first, size], g) => SOBOL_GROUP_OF.fill(g, first, first +
 /** sobolFill's `skip` mask for the lens group (dimensions 2–3). */
 export const SOBOL_NO_LENS = 1 << SOBOL_GROUP_OF[2];
 
+/** Length of the key array of one pixel (sobolPixelKeys): three keys per group. */
+export const SOBOL_PIXEL_KEYS = 3 * GROUP_COUNT;
+
+/**
+ * The hash keys of one pixel, for every group g (key = pixelKey(seed,
+ * pixel), either form): gk = pcgHash(key + (g + 1)·φ), the key of the
+ * index shuffle (the odd multiplier spreads small g), and the keys of the
+ * two coordinates' scrambles, pcgHash(gk ^ A) and pcgHash(gk ^ B), as
+ * keys[3g], keys[3g + 1], keys[3g + 2] (int32). They depend on the pixel
+ * only: a sampler drawing several samples of one pixel computes them once.
+ */
+export function sobolPixelKeys(key: number, keys: Int32Array): void {
+  for (let g = 0; g < GROUP_COUNT; g++) {
+    let h = (key + Math.imul(g + 1, 0x9e3779b9)) | 0;
+    h = (Math.imul(h, 747796405) + 2891336453) | 0;
+    h = Math.imul((h >>> ((h >>> 28) + 4)) ^ h, 277803737);
+    const gk = (h >>> 22) ^ h;
+    keys[3 * g] = gk;
+    keys[3 * g + 1] = pcgHashBits(gk ^ 0x68e31da4);
+    keys[3 * g + 2] = pcgHashBits(gk ^ 0xb5297a4d);
+  }
+}
+
+/** Scratch keys of sobolFill. */
+const FILL_KEYS = new Int32Array(SOBOL_PIXEL_KEYS);
+
 /**
  * Fills the dimensions of every group of out[0 .. SOBOL_DIMENSIONS) with the
  * low-discrepancy numbers of one (pixel, sample), but the groups whose bit
  * is set in `skip`; `key` is pixelKey(seed, pixel) (either form: only its
  * bits count). Dimensions in no group are left alone: the sampler hashes
  * them, as sobolSample does.
- *
- * For group g with key gk = pcgHash(key + g·φ):
+ */
+export function sobolFill(key: number, sample: number, out: Float64Array, skip = 0): void {
+  sobolPixelKeys(key, FILL_KEYS);
+  sobolFillKeyed(FILL_KEYS, sample, out, skip);
+}
+
+/**
+ * sobolFill with the pixel's keys already computed (sobolPixelKeys).
+ * For group g with keys gk, k0, k1:
  *   index = owenScramble(sample, gk)                      (the shuffle)
- *   out[first]     = owenScramble(vdc(index), pcgHash(gk ^ A))
- *   out[first + 1] = owenScramble(sobol1(index), pcgHash(gk ^ B))
+ *   out[first]     = owenScramble(vdc(index), k0)
+ *   out[first + 1] = owenScramble(sobol1(index), k1)
  * Written to do few bit reversals: with rs the reversed sample, the index is
  * rev(LK_gk(rs)); the van der Corput point of index i is rev(i), so its
  * scramble rev(LK(rev(rev(i)))) is rev(LK(i)); rev(sobol1(i)) comes from a
@@ -169,7 +202,12 @@ export const SOBOL_NO_LENS = 1 << SOBOL_GROUP_OF[2];
  * helper calls (not inlined by V8 at this size) costing as much as the
  * arithmetic.
  */
-export function sobolFill(key: number, sample: number, out: Float64Array, skip = 0): void {
+export function sobolFillKeyed(
+  keys: Int32Array,
+  sample: number,
+  out: Float64Array,
+  skip = 0,
+): void {
   const t = SOBOL1_REV_TABLE;
   let rs = sample >>> 0;
   rs = ((rs >>> 1) & 0x55555555) | ((rs & 0x55555555) << 1);
@@ -179,11 +217,7 @@ export function sobolFill(key: number, sample: number, out: Float64Array, skip =
   rs = (rs >>> 16) | (rs << 16);
   for (let g = 0; g < GROUP_COUNT; g++) {
     if ((skip >> g) & 1) continue;
-    // gk = pcgHash(key + (g + 1)·φ); the odd multiplier spreads small g.
-    let h = (key + Math.imul(g + 1, 0x9e3779b9)) | 0;
-    h = (Math.imul(h, 747796405) + 2891336453) | 0;
-    h = Math.imul((h >>> ((h >>> 28) + 4)) ^ h, 277803737);
-    const gk = (h >>> 22) ^ h;
+    const gk = keys[3 * g];
     // Shuffled index, still bit-reversed: LK_gk(rs) (see lkPermute).
     let x = rs ^ Math.imul(rs, 0x3d20adea);
     x = (x + gk) | 0;
@@ -197,28 +231,24 @@ export function sobolFill(key: number, sample: number, out: Float64Array, skip =
     x = ((x >>> 8) & 0x00ff00ff) | ((x & 0x00ff00ff) << 8);
     const index = ((x >>> 16) | (x << 16)) >>> 0;
     const first = GROUP_FIRST[g];
-    scrambleInto(index, gk ^ 0x68e31da4, out, first);
+    scrambleInto(index, keys[3 * g + 1], out, first);
     if (GROUP_SIZE[g] === 2) {
       const v1 =
         t[index & 255] ^
         t[256 + ((index >>> 8) & 255)] ^
         t[512 + ((index >>> 16) & 255)] ^
         t[768 + (index >>> 24)];
-      scrambleInto(v1, gk ^ 0xb5297a4d, out, first + 1);
+      scrambleInto(v1, keys[3 * g + 2], out, first + 1);
     }
   }
 }
 
 /**
- * out[at] = rev(LK_k(y)) · 2^-32 with k = pcgHash(seedInput): the
- * Owen-scrambled coordinate whose bit-reversed digits are y, in [0, 1).
- * Written to the array rather than returned: a returned double is boxed
- * when the call is not inlined.
+ * out[at] = rev(LK_k(y)) · 2^-32: the Owen-scrambled coordinate whose
+ * bit-reversed digits are y, in [0, 1). Written to the array rather than
+ * returned: a returned double is boxed when the call is not inlined.
  */
-function scrambleInto(y: number, seedInput: number, out: Float64Array, at: number): void {
-  let h = (Math.imul(seedInput, 747796405) + 2891336453) | 0;
-  h = Math.imul((h >>> ((h >>> 28) + 4)) ^ h, 277803737);
-  const k = (h >>> 22) ^ h;
+function scrambleInto(y: number, k: number, out: Float64Array, at: number): void {
   y ^= Math.imul(y, 0x3d20adea);
   y = (y + k) | 0;
   y = Math.imul(y, (k >>> 16) | 1);
