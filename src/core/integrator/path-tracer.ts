@@ -1,7 +1,7 @@
 /**
  * The path tracer: a scene, a camera, a sampler and the scratch records of
  * the hot loop, and the loops over pixels and samples that feed a film. One
- * path is traced by tracePath (trace-path.ts), which holds the estimators.
+ * path is traced by `trace` (trace-path.ts), which holds the estimators.
  */
 import { BsdfQuery, BsdfSample, BsdfValue } from '../bsdf/records.ts';
 import { Camera } from '../camera/camera.ts';
@@ -15,7 +15,7 @@ import { GltfWork } from './gltf-surface.ts';
 import { DIM_PER_BOUNCE, DEFAULT_SAMPLER, Sampler, type SamplerKind } from '../sampling/sampler.ts';
 import type { CompiledScene } from '../scene/compile.ts';
 import type { CameraDesc } from '../scene/types.ts';
-import { tracePath } from './trace-path.ts';
+import { trace } from './trace-path.ts';
 
 export type Estimator = 'nee-mis' | 'bsdf';
 
@@ -48,7 +48,7 @@ export class PathTracer {
   lr = 0;
   lg = 0;
   lb = 0;
-  // Scratch records of tracePath (trace-path.ts), created once: the hot loop
+  // Scratch records of trace (trace-path.ts), created once: the hot loop
   // allocates nothing. Not for other callers.
   readonly ray = new Ray();
   readonly shadowRay = new Ray();
@@ -110,7 +110,7 @@ export class PathTracer {
     // the film's exact sums make the order irrelevant to the bits.
     for (let x = 0; x < width; x++) {
       for (let s = sampleStart; s < sampleEnd; s++) {
-        tracePath(this, x, y, s, stats);
+        this.trace(x, y, s, stats);
         if (!film.addRadiance(x, y, this)) stats.rejected++;
       }
     }
@@ -118,11 +118,9 @@ export class PathTracer {
 
   /**
    * Traces sample `sampleIndex` of pixel (px, py); the radiance lands in
-   * lr, lg, lb.
+   * lr, lg, lb. The hot loop, in trace-path.ts (set on the prototype below).
    */
-  trace(px: number, py: number, sampleIndex: number, stats: RenderStats): void {
-    tracePath(this, px, py, sampleIndex, stats);
-  }
+  declare trace: (px: number, py: number, sampleIndex: number, stats: RenderStats) => void;
 
   /**
    * Distance along the camera's forward axis to the surface seen through
@@ -140,3 +138,5 @@ export class PathTracer {
     return this.hit.t * (r.dx * cam.fx + r.dy * cam.fy + r.dz * cam.fz);
   }
 }
+
+PathTracer.prototype.trace = trace;

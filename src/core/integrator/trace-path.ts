@@ -82,42 +82,46 @@ const PI_OVER_2 = Math.PI / 2;
 const ROULETTE_DEPTH = 3;
 
 /**
- * Traces sample `sampleIndex` of pixel (px, py) with `tracer`'s scene,
- * camera, sampler and scratch records; the radiance lands in tracer.lr,
- * tracer.lg, tracer.lb.
+ * Traces sample `sampleIndex` of pixel (px, py); the radiance lands in
+ * this.lr, this.lg, this.lb. PathTracer's `trace` method (path-tracer.ts
+ * sets it on the prototype): a method, not a function of the tracer, so
+ * that its code and the call in renderRow stay those V8 was measured with —
+ * as a plain function V8 compiled renderRow earlier, inlined the film's
+ * addRadiance there with only half of its addFixed calls, and Cornell
+ * lost ~2 %.
  */
-export function tracePath(
-  tracer: PathTracer,
+export function trace(
+  this: PathTracer,
   px: number,
   py: number,
   sampleIndex: number,
   stats: RenderStats,
 ): void {
-  const scene = tracer.scene;
+  const scene = this.scene;
   const materials = scene.materials;
   const spheres = scene.spheres;
   const quads = scene.quads;
   const lights = scene.lights;
-  const sampler = tracer.sampler;
-  const ray = tracer.ray;
-  const hit = tracer.hit;
-  const bs = tracer.bs;
-  const fv = tracer.fv;
-  const nee = tracer.estimator === 'nee-mis' && lights !== null;
-  const maxBounces = tracer.maxBounces;
+  const sampler = this.sampler;
+  const ray = this.ray;
+  const hit = this.hit;
+  const bs = this.bs;
+  const fv = this.fv;
+  const nee = this.estimator === 'nee-mis' && lights !== null;
+  const maxBounces = this.maxBounces;
   // glTF: null in scenes without glTF shapes, which then never take its branches.
   const gltf = scene.gltf;
   const alphaShadows = gltf !== null && gltf.hasAlpha;
-  const sp = tracer.bq.shading;
+  const sp = this.bq.shading;
 
-  const u = tracer.u;
-  const aperture = tracer.camera.aperture > 0;
-  sampler.startPixelSample(py * tracer.width + px, sampleIndex, aperture);
+  const u = this.u;
+  const aperture = this.camera.aperture > 0;
+  sampler.startPixelSample(py * this.width + px, sampleIndex, aperture);
   // Film and lens dimensions are adjacent: one fill draws both pairs (the
   // lens pair only with an aperture).
   sampler.fillRange(DIM_FILM, 0, aperture ? DIM_LENS + 2 - DIM_FILM : DIM_LENS - DIM_FILM, u);
   const lens = DIM_LENS - DIM_FILM;
-  tracer.camera.generateRayFromSamples(px, py, u, lens, ray);
+  this.camera.generateRayFromSamples(px, py, u, lens, ray);
   let segments = 1;
   let lr = 0,
     lg = 0,
@@ -139,7 +143,7 @@ export function tracePath(
     if (!intersectScene(scene, ray, hit)) {
       const env = scene.envMap;
       if (env !== null) {
-        const es = tracer.es;
+        const es = this.es;
         env.eval(ray.dx, ray.dy, ray.dz, es);
         let w = 1;
         if (nee && !specular) {
@@ -170,7 +174,7 @@ export function tracePath(
     let m: number;
     let light: number;
     let shapeScale: number;
-    // The hit's material is glTF: its parameters are in sp (tracer.bq.shading).
+    // The hit's material is glTF: its parameters are in sp (this.bq.shading).
     let isGltf = false;
     if (hit.kind === SHAPE_SPHERE) {
       const o = index * SPHERE_STRIDE;
@@ -194,7 +198,7 @@ export function tracePath(
       light = scene.sphereLight[index];
       shapeScale = scene.sphereScale[index];
     } else if (hit.kind === SHAPE_TRIANGLE) {
-      const ts = tracer.ts;
+      const ts = this.ts;
       completeTriangleHit(scene, hit, ts);
       x = ts.x;
       y = ts.y;
@@ -209,10 +213,10 @@ export function tracePath(
       light = ts.light;
       shapeScale = ts.scale;
       if (gltf !== null && materials[m * MATERIAL_STRIDE + M_TYPE] === MATERIAL_GLTF) {
-        shadeGltfHit(scene, gltf, index, hit.b1, hit.b2, gltfRow(materials, m), ts, sp, tracer.gw);
+        shadeGltfHit(scene, gltf, index, hit.b1, hit.b2, gltfRow(materials, m), ts, sp, this.gw);
         if (sp.opacity < 1 && crossings < MAX_ALPHA_CROSSINGS) {
           // Stochastic opacity: the surface is there with probability `opacity`.
-          const au = tracer.au;
+          const au = this.au;
           sampler.fill(
             crossings === 0
               ? DIM_BOUNCE + depth * DIM_PER_BOUNCE + DIM_ALPHA
@@ -320,7 +324,7 @@ export function tracePath(
     const ftx = fb;
     const fty = fsign + sy * sy * fa;
     const ftz = -sy;
-    const bq = tracer.bq;
+    const bq = this.bq;
     const lwox = wox * fsx + woy * fsy + woz * fsz;
     const lwoy = wox * ftx + woy * fty + woz * ftz;
     const lwoz = wox * sx + woy * sy + woz * sz;
@@ -346,7 +350,7 @@ export function tracePath(
 
     // Next-event estimation.
     if (sampleLights) {
-      const ls = tracer.ls;
+      const ls = this.ls;
       const l = lights!.choose(u[DIM_LIGHT_CHOICE]);
       // The sampled direction, the shadow ray's far end and the density.
       let sampled = false;
@@ -440,7 +444,7 @@ export function tracePath(
             // Both ends lifted off their surfaces (see lights.ts): the
             // segment between them crosses neither. The origin leaves by
             // the geometric side wi is on.
-            const sr = tracer.shadowRay;
+            const sr = this.shadowRay;
             const lift = wix * nx + wiy * ny + wiz * nz >= 0 ? scale : -scale;
             const ox = x + nx * lift;
             const oy = y + ny * lift;
@@ -467,7 +471,7 @@ export function tracePath(
             const visible =
               len > 0
                 ? alphaShadows
-                  ? shadowTransmittance(scene, gltf!, sr, tracer.gw)
+                  ? shadowTransmittance(scene, gltf!, sr, this.gw)
                   : occluded(scene, sr)
                     ? 0
                     : 1
@@ -483,7 +487,7 @@ export function tracePath(
                 const lm = lmi * MATERIAL_STRIDE;
                 if (materials[lm + M_TYPE] === MATERIAL_GLTF) {
                   // Emission varies over the mesh: looked up at the sampled point.
-                  const gw = tracer.gw;
+                  const gw = this.gw;
                   gltfLightEmission(
                     scene,
                     gltf!,
@@ -597,7 +601,7 @@ export function tracePath(
   }
   stats.paths++;
   stats.segments += segments;
-  tracer.lr = lr;
-  tracer.lg = lg;
-  tracer.lb = lb;
+  this.lr = lr;
+  this.lg = lg;
+  this.lb = lb;
 }
