@@ -37,6 +37,14 @@ export const C_RECLAIMS = 9;
  */
 export const C_JOURNAL_ROW = 10;
 export const C_JOURNAL_PASS = 11;
+/**
+ * Test hook (shared mode): when > 0, the next worker to take a claim throws
+ * after committing that many rows (see render-worker.ts). Armed in shared
+ * memory rather than by message, so it lands whichever worker runs next: a
+ * message to one worker can miss when that worker is descheduled while the
+ * others finish the render.
+ */
+export const C_CRASH = 12;
 
 /**
  * Workers a control block keeps records for: one slot per live worker of

@@ -28,6 +28,7 @@ import { unpackScene } from '../src/core/scene/pack.ts';
 import type { CompiledScene } from '../src/core/index.ts';
 import {
   C_CONFIG,
+  C_CRASH,
   C_DONE,
   C_GEN,
   C_PAUSED,
@@ -218,6 +219,9 @@ function renderOneStripe(job: Job): boolean {
   const gen = ctrl[C_GEN];
   unlock(ctrl);
   if (claim < 0) return false;
+  // Test hook: a crash armed in shared memory falls to whoever claims next.
+  const armed = Atomics.exchange(ctrl, C_CRASH, 0);
+  if (armed > 0) crashAfterRows = armed;
 
   // Pass `pass` of this stripe may start only once pass − 1 is committed.
   // Claims are taken in order, so the worker holding that pass is already

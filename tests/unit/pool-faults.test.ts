@@ -27,7 +27,7 @@ import { WorkerPool, type PoolClient } from '../../src/view/pool.ts';
 import { SharedFilmJob } from '../../src/view/shared-job.ts';
 import { TransferFilmJob } from '../../src/view/transfer-job.ts';
 import { faults } from '../../src/view/worker-deaths.ts';
-import { C_LOCK, type JobConfig } from '../../workers/render-protocol.ts';
+import { C_CRASH, C_LOCK, type JobConfig } from '../../workers/render-protocol.ts';
 import { differingWords, mulberry32 } from '../helpers/faults.ts';
 import { NodeWebWorker } from '../../bench/node-web-worker.ts';
 
@@ -153,7 +153,14 @@ async function renderWithFaults(
         while (!pool.killWorker(index)) await sleep(2);
       } else if (kind === 'crash') {
         const crashed = faults.crashed;
-        while (!pool.crashWorker(index, 1)) await sleep(2);
+        if (shared) {
+          // Armed in shared memory: whichever worker claims next crashes one
+          // row into that stripe. (A message to one worker could miss: on a
+          // loaded machine the other can finish the render while it sleeps.)
+          Atomics.store(new Int32Array(shared.ctrlBuffer), C_CRASH, 1);
+        } else {
+          while (!pool.crashWorker(index, 1)) await sleep(2);
+        }
         // It crashes in its next stripe (or task): wait for it.
         while (faults.crashed === crashed && job.passesDone() < SPP) {
           extend();

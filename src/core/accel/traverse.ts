@@ -14,8 +14,15 @@
  */
 import type { CompiledScene } from '../scene/compile.ts';
 import { hitQuad, hitSphere } from '../geometry/intersect.ts';
-import { SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE, type Hit } from '../geometry/ray.ts';
-import { hitTriangle } from '../geometry/triangle.ts';
+import {
+  loadRay,
+  SHAPE_QUAD,
+  SHAPE_SPHERE,
+  SHAPE_TRIANGLE,
+  type Hit,
+  type Ray,
+} from '../geometry/ray.ts';
+import { hitTriangle, setTriangleRay } from '../geometry/triangle.ts';
 
 /**
  * Nearest hit through the BVH (layout in accel/bvh.ts). The loop visits
@@ -239,9 +246,16 @@ export function intersectBvh(scene: CompiledScene, r: Float64Array, hit: Hit): b
   return true;
 }
 
-/** Any hit through the BVH: the box test of intersectBvh; the first hit ends the search. */
-export function occludedBvh(scene: CompiledScene, r: Float64Array): boolean {
+/**
+ * Any hit through the BVH: the box test of intersectBvh; the first hit ends
+ * the search. It loads the ray record itself (rather than trace.ts's
+ * `occluded`, which stays small enough to be inlined; see there).
+ */
+export function occludedBvh(scene: CompiledScene, ray: Ray): boolean {
   const bvh = scene.bvh!;
+  const r = scene.ray;
+  loadRay(r, ray);
+  if (scene.triCount > 0) setTriangleRay(r[0], r[1], r[2], r[3], r[4], r[5], scene.triRay);
   const ox = r[0],
     oy = r[1],
     oz = r[2];

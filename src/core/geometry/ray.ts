@@ -42,3 +42,14 @@ export const R_OX = 0;
 export const R_DX = 3;
 export const R_T = 6;
 export const RAY_RECORD_WORDS = 8;
+
+/** Copies a ray into a ray record. */
+export function loadRay(r: Float64Array, ray: Ray): void {
+  r[0] = ray.ox;
+  r[1] = ray.oy;
+  r[2] = ray.oz;
+  r[3] = ray.dx;
+  r[4] = ray.dy;
+  r[5] = ray.dz;
+  r[6] = ray.tMax;
+}
