@@ -1,0 +1,607 @@
+/**
+ * The hot loop of unidirectional path tracing (Kajiya 1986; pbr-book 4e
+ * §13.4): one sample of one pixel, traced from the camera to its end. Two
+ * estimators share the loop:
+ * - 'nee-mis': next-event estimation on every emitter combined with BSDF
+ *   sampling by multiple importance sampling with the power heuristic
+ *   (Veach & Guibas 1995; pbr-book 4e §13.4 "PathIntegrator");
+ * - 'bsdf': BSDF sampling only, paths score emission where they land —
+ *   the estimator of the original WebGL demos, kept for comparison.
+ *
+ * `maxBounces` = B keeps exactly the light reaching the eye over paths with
+ * at most B scattering events. Russian roulette starts after the third
+ * bounce (pbr-book 3e §14.5.5); it changes noise, not the expected value.
+ *
+ * The loop allocates nothing: rays, hits and BSDF records are the tracer's
+ * fields, created once, and the scene is read from typed arrays copied into
+ * locals.
+ *
+ * Why one long function: V8 inlines calls into it only while its cumulative
+ * inlining budget (920 bytes of bytecode) lasts, and a call it does not
+ * inline boxes its double arguments. The common cases (the diffuse BSDF,
+ * quad lights, the shading frame) are therefore written out here, with the
+ * generic calls (bsdf.ts, lights.ts) for every other kind; cutting the loop
+ * into helpers would turn them back into calls (docs/performance.md).
+ * PathTracer (path-tracer.ts) owns the state and runs the loop per pixel.
+ */
+import { bsdfEval, bsdfSample } from '../bsdf/bsdf.ts';
+import {
+  MATERIAL_DIFFUSE,
+  MATERIAL_GLTF,
+  MATERIAL_STRIDE,
+  M_COLOR,
+  M_DELTA,
+  M_EMISSION,
+  M_EMISSIVE,
+  M_GEOMETRIC_SIDE,
+  M_TYPE,
+} from '../bsdf/materials.ts';
+import { LIGHT_ENVIRONMENT, SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE } from '../geometry/ray.ts';
+import {
+  OFFSET_SCALE,
+  QUAD_STRIDE,
+  Q_AREA,
+  Q_CORNER,
+  Q_NORMAL,
+  Q_PLANE,
+  Q_U,
+  Q_V,
+  SPHERE_STRIDE,
+} from '../geometry/shapes.ts';
+import { intersectScene, occluded } from '../geometry/trace.ts';
+import { environmentLightPdf, lightPdf, sampleLight } from '../lights/lights.ts';
+import { completeTriangleHit } from './triangle-surface.ts';
+import {
+  MAX_ALPHA_CROSSINGS,
+  gltfLightEmission,
+  gltfRow,
+  shadeGltfHit,
+  shadowTransmittance,
+} from './gltf-surface.ts';
+import {
+  DIM_ALPHA,
+  DIM_ALPHA_EXTRA,
+  DIM_ALPHA_STRIDE,
+  DIM_BOUNCE,
+  DIM_BSDF,
+  DIM_BSDF_LOBE,
+  DIM_FILM,
+  DIM_LENS,
+  DIM_LIGHT_CHOICE,
+  DIM_LIGHT_POINT,
+  DIM_PER_BOUNCE,
+  DIM_ROULETTE,
+} from '../sampling/sampler.ts';
+import type { PathTracer, RenderStats } from './path-tracer.ts';
+
+const INV_PI = 1 / Math.PI;
+const PI_OVER_4 = Math.PI / 4;
+const PI_OVER_2 = Math.PI / 2;
+
+/** Russian roulette begins once a path has scattered this many times. */
+const ROULETTE_DEPTH = 3;
+
+/**
+ * Traces sample `sampleIndex` of pixel (px, py); the radiance lands in
+ * this.lr, this.lg, this.lb. PathTracer's `trace` method (path-tracer.ts
+ * sets it on the prototype): a method, not a function of the tracer, so
+ * that its code and the call in renderRow stay those V8 was measured with —
+ * as a plain function V8 compiled renderRow earlier, inlined the film's
+ * addRadiance there with only half of its addFixed calls, and Cornell
+ * lost ~2 %.
+ */
+export function trace(
+  this: PathTracer,
+  px: number,
+  py: number,
+  sampleIndex: number,
+  stats: RenderStats,
+): void {
+  const scene = this.scene;
+  const materials = scene.materials;
+  const spheres = scene.spheres;
+  const quads = scene.quads;
+  const lights = scene.lights;
+  const sampler = this.sampler;
+  const ray = this.ray;
+  const hit = this.hit;
+  const bs = this.bs;
+  const fv = this.fv;
+  const nee = this.estimator === 'nee-mis' && lights !== null;
+  const maxBounces = this.maxBounces;
+  // glTF: null in scenes without glTF shapes, which then never take its branches.
+  const gltf = scene.gltf;
+  const alphaShadows = gltf !== null && gltf.hasAlpha;
+  const sp = this.bq.shading;
+
+  const u = this.u;
+  const aperture = this.camera.aperture > 0;
+  sampler.startPixelSample(py * this.width + px, sampleIndex, aperture);
+  // Film and lens dimensions are adjacent: one fill draws both pairs (the
+  // lens pair only with an aperture).
+  sampler.fillRange(DIM_FILM, 0, aperture ? DIM_LENS + 2 - DIM_FILM : DIM_LENS - DIM_FILM, u);
+  const lens = DIM_LENS - DIM_FILM;
+  this.camera.generateRayFromSamples(px, py, u, lens, ray);
+  let segments = 1;
+  let lr = 0,
+    lg = 0,
+    lb = 0;
+  let br = 1,
+    bg = 1,
+    bb = 1;
+  let etaScale = 1;
+  // The camera ray counts as "specular": emission it finds is not light-sampled.
+  let specular = true;
+  let prevPdf = 0;
+  let prevX = 0,
+    prevY = 0,
+    prevZ = 0;
+  // Alpha surfaces the current segment passed through (see gltf-surface.ts).
+  let crossings = 0;
+
+  for (let depth = 0; ; depth++) {
+    if (!intersectScene(scene, ray, hit)) {
+      const env = scene.envMap;
+      if (env !== null) {
+        const es = this.es;
+        env.eval(ray.dx, ray.dy, ray.dz, es);
+        let w = 1;
+        if (nee && !specular) {
+          const pl = environmentLightPdf(lights!, ray.dx, ray.dy, ray.dz);
+          w = (prevPdf * prevPdf) / (prevPdf * prevPdf + pl * pl);
+        }
+        lr += br * es.r * w;
+        lg += bg * es.g * w;
+        lb += bb * es.b * w;
+      } else if (scene.hasEnvironment) {
+        // The constant environment: no light sampling, no lookup.
+        lr += br * scene.envR;
+        lg += bg * scene.envG;
+        lb += bb * scene.envB;
+      }
+      break;
+    }
+    const t = hit.t;
+    const index = hit.index;
+    let x = ray.ox + t * ray.dx;
+    let y = ray.oy + t * ray.dy;
+    let z = ray.oz + t * ray.dz;
+    let nx: number, ny: number, nz: number;
+    // Shading normal: the geometric one except on meshes with vertex normals.
+    let snx = 0,
+      sny = 0,
+      snz = 0;
+    let m: number;
+    let light: number;
+    let shapeScale: number;
+    // The hit's material is glTF: its parameters are in sp (this.bq.shading).
+    let isGltf = false;
+    if (hit.kind === SHAPE_SPHERE) {
+      const o = index * SPHERE_STRIDE;
+      const cx = spheres[o],
+        cy = spheres[o + 1],
+        cz = spheres[o + 2],
+        r = spheres[o + 3];
+      // Re-project the hit point onto the sphere: removes the error that
+      // accumulated along a long ray (pbr-book 4e §6.8.5).
+      nx = x - cx;
+      ny = y - cy;
+      nz = z - cz;
+      const inv = 1 / Math.sqrt(nx * nx + ny * ny + nz * nz);
+      nx *= inv;
+      ny *= inv;
+      nz *= inv;
+      x = cx + r * nx;
+      y = cy + r * ny;
+      z = cz + r * nz;
+      m = scene.sphereMaterial[index];
+      light = scene.sphereLight[index];
+      shapeScale = scene.sphereScale[index];
+    } else if (hit.kind === SHAPE_TRIANGLE) {
+      const ts = this.ts;
+      completeTriangleHit(scene, hit, ts);
+      x = ts.x;
+      y = ts.y;
+      z = ts.z;
+      nx = ts.nx;
+      ny = ts.ny;
+      nz = ts.nz;
+      snx = ts.snx;
+      sny = ts.sny;
+      snz = ts.snz;
+      m = ts.material;
+      light = ts.light;
+      shapeScale = ts.scale;
+      if (gltf !== null && materials[m * MATERIAL_STRIDE + M_TYPE] === MATERIAL_GLTF) {
+        shadeGltfHit(scene, gltf, index, hit.b1, hit.b2, gltfRow(materials, m), ts, sp, this.gw);
+        if (sp.opacity < 1 && crossings < MAX_ALPHA_CROSSINGS) {
+          // Stochastic opacity: the surface is there with probability `opacity`.
+          const au = this.au;
+          sampler.fill(
+            crossings === 0
+              ? DIM_BOUNCE + depth * DIM_PER_BOUNCE + DIM_ALPHA
+              : DIM_ALPHA_EXTRA + depth * DIM_ALPHA_STRIDE + crossings,
+            1,
+            au,
+          );
+          if (au[0] >= sp.opacity) {
+            // Not there: the same ray goes on from the far side. No scattering
+            // event, so the depth stays (the loop's increment is undone).
+            crossings++;
+            const lift =
+              (ray.dx * nx + ray.dy * ny + ray.dz * nz >= 0 ? 1 : -1) *
+              Math.max(Math.abs(x), Math.abs(y), Math.abs(z), shapeScale) *
+              OFFSET_SCALE;
+            ray.ox = x + nx * lift;
+            ray.oy = y + ny * lift;
+            ray.oz = z + nz * lift;
+            segments++;
+            depth--;
+            continue;
+          }
+        }
+        isGltf = true;
+        snx = ts.snx;
+        sny = ts.sny;
+        snz = ts.snz;
+      }
+    } else {
+      const o = index * QUAD_STRIDE;
+      nx = quads[o + Q_NORMAL];
+      ny = quads[o + Q_NORMAL + 1];
+      nz = quads[o + Q_NORMAL + 2];
+      // Re-project onto the plane for the same reason.
+      const off = nx * x + ny * y + nz * z - quads[o + Q_PLANE];
+      x -= off * nx;
+      y -= off * ny;
+      z -= off * nz;
+      m = scene.quadMaterial[index];
+      light = scene.quadLight[index];
+      shapeScale = scene.quadScale[index];
+    }
+    if (hit.kind !== SHAPE_TRIANGLE) {
+      snx = nx;
+      sny = ny;
+      snz = nz;
+    }
+    const mo = m * MATERIAL_STRIDE;
+    const wox = -ray.dx,
+      woy = -ray.dy,
+      woz = -ray.dz;
+    const cosO = nx * wox + ny * woy + nz * woz;
+
+    // Emission, front side only.
+    if (materials[mo + M_EMISSIVE] !== 0 && cosO > 0) {
+      let w = 1;
+      if (nee && !specular) {
+        // Past alpha surfaces the light is farther than this last segment.
+        const d = crossings === 0 ? t : Math.hypot(x - prevX, y - prevY, z - prevZ);
+        // lightPdf's quad case written out: the call, not inlined, boxed
+        // its five double arguments and its result on the heap.
+        const pl =
+          lights!.kind[light] === SHAPE_QUAD
+            ? (lights!.prob[light] * d * d) /
+              (quads[lights!.shape[light] * QUAD_STRIDE + Q_AREA] * cosO)
+            : lightPdf(lights!, spheres, quads, light, prevX, prevY, prevZ, d, cosO);
+        w = (prevPdf * prevPdf) / (prevPdf * prevPdf + pl * pl);
+      }
+      if (isGltf) {
+        lr += br * sp.emR * w;
+        lg += bg * sp.emG * w;
+        lb += bb * sp.emB * w;
+      } else {
+        lr += br * materials[mo + M_EMISSION] * w;
+        lg += bg * materials[mo + M_EMISSION + 1] * w;
+        lb += bb * materials[mo + M_EMISSION + 2] * w;
+      }
+    }
+    if (depth >= maxBounces) break;
+
+    // Shading frame: glass needs the outward normal to know inside from
+    // outside; every other surface scatters on both sides, so its frame
+    // faces wo. With vertex normals the shading normal decides both, as in
+    // Mitsuba 3 (the geometric normal still decides emission and offsets):
+    // wo behind the shading normal flips it (Mitsuba's 'twosided' mirrors wi
+    // in the shading frame), even where wo is in front of the geometric one.
+    let sx = snx,
+      sy = sny,
+      sz = snz;
+    // Glass (and transmissive glTF) keeps its outward normal: M_GEOMETRIC_SIDE.
+    const geometricSide = materials[mo + M_GEOMETRIC_SIDE] !== 0;
+    if (!geometricSide && snx * wox + sny * woy + snz * woz < 0) {
+      sx = -snx;
+      sy = -sny;
+      sz = -snz;
+    }
+    // The tangents of the frame around s, in locals (Frame.setFromN written
+    // out: the call was not inlined once trace's inlining budget was spent).
+    const fsign = sz >= 0 ? 1 : -1;
+    const fa = -1 / (fsign + sz);
+    const fb = sx * sy * fa;
+    const fsx = 1 + fsign * sx * sx * fa;
+    const fsy = fsign * fb;
+    const fsz = -fsign * sx;
+    const ftx = fb;
+    const fty = fsign + sy * sy * fa;
+    const ftz = -sy;
+    const bq = this.bq;
+    const lwox = wox * fsx + woy * fsy + woz * fsz;
+    const lwoy = wox * ftx + woy * fty + woz * ftz;
+    const lwoz = wox * sx + woy * sy + woz * sz;
+    const mtype = materials[mo + M_TYPE];
+    // The diffuse case below reads only lwoz: the BSDF calls take the rest.
+    if (mtype !== MATERIAL_DIFFUSE) {
+      bq.wox = lwox;
+      bq.woy = lwoy;
+      bq.woz = lwoz;
+    }
+    const scale = Math.max(Math.abs(x), Math.abs(y), Math.abs(z), shapeScale) * OFFSET_SCALE;
+    // Only the numbers this bounce reads: the light's when it samples one
+    // (the choice only among several lights), the roulette number from the
+    // bounce where roulette starts. Dimensions by role: light choice, light
+    // point, BSDF direction, lobe, roulette (sampler.ts).
+    const sampleLights = nee && materials[mo + M_DELTA] === 0;
+    sampler.fillRange(
+      DIM_BOUNCE + depth * DIM_PER_BOUNCE,
+      sampleLights ? (lights!.count > 1 ? DIM_LIGHT_CHOICE : DIM_LIGHT_POINT) : DIM_BSDF,
+      depth + 1 >= ROULETTE_DEPTH ? DIM_ROULETTE + 1 : DIM_ROULETTE,
+      u,
+    );
+
+    // Next-event estimation.
+    if (sampleLights) {
+      const ls = this.ls;
+      const l = lights!.choose(u[DIM_LIGHT_CHOICE]);
+      // The sampled direction, the shadow ray's far end and the density.
+      let sampled = false;
+      let wix = 0,
+        wiy = 0,
+        wiz = 0;
+      let lpx = 0,
+        lpy = 0,
+        lpz = 0;
+      let lpdf = 0;
+      let infinite = false;
+      if (lights!.kind[l] === SHAPE_QUAD) {
+        // sampleLight's quad case (and finishAreaSample) written out,
+        // the same arithmetic: the call was not inlined.
+        const o = lights!.shape[l] * QUAD_STRIDE;
+        const u0 = u[DIM_LIGHT_POINT],
+          u1 = u[DIM_LIGHT_POINT + 1];
+        const qx = quads[o + Q_CORNER] + u0 * quads[o + Q_U] + u1 * quads[o + Q_V];
+        const qy = quads[o + Q_CORNER + 1] + u0 * quads[o + Q_U + 1] + u1 * quads[o + Q_V + 1];
+        const qz = quads[o + Q_CORNER + 2] + u0 * quads[o + Q_U + 2] + u1 * quads[o + Q_V + 2];
+        const qnx = quads[o + Q_NORMAL],
+          qny = quads[o + Q_NORMAL + 1],
+          qnz = quads[o + Q_NORMAL + 2];
+        wix = qx - x;
+        wiy = qy - y;
+        wiz = qz - z;
+        const d2 = wix * wix + wiy * wiy + wiz * wiz;
+        if (d2 > 0) {
+          const dist = Math.sqrt(d2);
+          wix /= dist;
+          wiy /= dist;
+          wiz /= dist;
+          const cosLight = -(qnx * wix + qny * wiy + qnz * wiz);
+          if (cosLight > 0) {
+            const lift = lights!.offset[l];
+            lpx = qx + lift * qnx;
+            lpy = qy + lift * qny;
+            lpz = qz + lift * qnz;
+            lpdf = (lights!.prob[l] * d2) / (quads[o + Q_AREA] * cosLight);
+            sampled = lpdf < Infinity;
+          }
+        }
+      } else {
+        ls.refX = x;
+        ls.refY = y;
+        ls.refZ = z;
+        ls.u0 = u[DIM_LIGHT_POINT];
+        ls.u1 = u[DIM_LIGHT_POINT + 1];
+        if (sampleLight(lights!, spheres, quads, l, ls)) {
+          sampled = true;
+          wix = ls.wx;
+          wiy = ls.wy;
+          wiz = ls.wz;
+          lpx = ls.px;
+          lpy = ls.py;
+          lpz = ls.pz;
+          lpdf = ls.pdf;
+          infinite = ls.distance === Infinity;
+        }
+      }
+      if (sampled) {
+        const lwiz = wix * sx + wiy * sy + wiz * sz;
+        // A frame facing wo sees light only above it; a transmissive glTF surface
+        // (geometric side) reflects below it too when the path is inside.
+        if (geometricSide ? lwiz !== 0 : lwiz > 0) {
+          let fr: number, fg: number, fb: number, pb: number;
+          if (mtype === MATERIAL_DIFFUSE) {
+            // diffuseEval written out (diffuse.ts).
+            if (lwoz <= 0 || lwiz <= 0) {
+              fr = 0;
+              fg = 0;
+              fb = 0;
+              pb = 0;
+            } else {
+              fr = materials[mo + M_COLOR] * INV_PI;
+              fg = materials[mo + M_COLOR + 1] * INV_PI;
+              fb = materials[mo + M_COLOR + 2] * INV_PI;
+              pb = lwiz * INV_PI;
+            }
+          } else {
+            bq.wix = wix * fsx + wiy * fsy + wiz * fsz;
+            bq.wiy = wix * ftx + wiy * fty + wiz * ftz;
+            bq.wiz = lwiz;
+            bsdfEval(materials, m, bq, fv);
+            fr = fv.r;
+            fg = fv.g;
+            fb = fv.b;
+            pb = fv.pdf;
+          }
+          if (fr !== 0 || fg !== 0 || fb !== 0) {
+            // Both ends lifted off their surfaces (see lights.ts): the
+            // segment between them crosses neither. The origin leaves by
+            // the geometric side wi is on.
+            const sr = this.shadowRay;
+            const lift = wix * nx + wiy * ny + wiz * nz >= 0 ? scale : -scale;
+            const ox = x + nx * lift;
+            const oy = y + ny * lift;
+            const oz = z + nz * lift;
+            let len = Infinity;
+            if (infinite) {
+              sr.dx = wix;
+              sr.dy = wiy;
+              sr.dz = wiz;
+            } else {
+              const ex = lpx - ox;
+              const ey = lpy - oy;
+              const ez = lpz - oz;
+              len = Math.sqrt(ex * ex + ey * ey + ez * ez);
+              sr.dx = ex / len;
+              sr.dy = ey / len;
+              sr.dz = ez / len;
+            }
+            sr.ox = ox;
+            sr.oy = oy;
+            sr.oz = oz;
+            sr.tMax = len;
+            segments++;
+            const visible =
+              len > 0
+                ? alphaShadows
+                  ? shadowTransmittance(scene, gltf!, sr, this.gw)
+                  : occluded(scene, sr)
+                    ? 0
+                    : 1
+                : 0;
+            if (visible > 0) {
+              let er: number, eg: number, eb: number;
+              if (lights!.kind[l] === LIGHT_ENVIRONMENT) {
+                er = ls.r;
+                eg = ls.g;
+                eb = ls.b;
+              } else {
+                const lmi = lights!.material[l];
+                const lm = lmi * MATERIAL_STRIDE;
+                if (materials[lm + M_TYPE] === MATERIAL_GLTF) {
+                  // Emission varies over the mesh: looked up at the sampled point.
+                  const gw = this.gw;
+                  gltfLightEmission(
+                    scene,
+                    gltf!,
+                    ls.triangle,
+                    ls.b1,
+                    ls.b2,
+                    gltfRow(materials, lmi),
+                    gw,
+                  );
+                  er = gw.emission.r;
+                  eg = gw.emission.g;
+                  eb = gw.emission.b;
+                } else {
+                  er = materials[lm + M_EMISSION];
+                  eg = materials[lm + M_EMISSION + 1];
+                  eb = materials[lm + M_EMISSION + 2];
+                }
+              }
+              const pl = lpdf;
+              const w = (pl / (pl * pl + pb * pb)) * Math.abs(lwiz) * visible;
+              lr += br * fr * er * w;
+              lg += bg * fg * eg * w;
+              lb += bb * fb * eb * w;
+            }
+          }
+        }
+      }
+    }
+
+    // Continue the path by sampling the BSDF.
+    let bwx: number, bwy: number, bwz: number;
+    if (mtype === MATERIAL_DIFFUSE) {
+      // diffuseSample written out (diffuse.ts; the concentric map and
+      // Malley's method of warps.ts): the same arithmetic, no calls.
+      if (lwoz <= 0) break;
+      const ox = 2 * u[DIM_BSDF] - 1;
+      const oy = 2 * u[DIM_BSDF + 1] - 1;
+      if (ox === 0 && oy === 0) {
+        bwx = 0;
+        bwy = 0;
+      } else {
+        let r: number, theta: number;
+        if (Math.abs(ox) > Math.abs(oy)) {
+          r = ox;
+          theta = PI_OVER_4 * (oy / ox);
+        } else {
+          r = oy;
+          theta = PI_OVER_2 - PI_OVER_4 * (ox / oy);
+        }
+        bwx = r * Math.cos(theta);
+        bwy = r * Math.sin(theta);
+      }
+      bwz = Math.sqrt(Math.max(0, 1 - bwx * bwx - bwy * bwy));
+      if (bwz <= 0) break;
+      br *= materials[mo + M_COLOR];
+      bg *= materials[mo + M_COLOR + 1];
+      bb *= materials[mo + M_COLOR + 2];
+      if (br === 0 && bg === 0 && bb === 0) break;
+      specular = false;
+      prevPdf = bwz * INV_PI;
+    } else {
+      bq.u0 = u[DIM_BSDF];
+      bq.u1 = u[DIM_BSDF + 1];
+      bq.u2 = u[DIM_BSDF_LOBE];
+      if (!bsdfSample(materials, m, bq, bs)) break;
+      br *= bs.weightR;
+      bg *= bs.weightG;
+      bb *= bs.weightB;
+      if (br === 0 && bg === 0 && bb === 0) break;
+      etaScale *= bs.etaScale;
+      bwx = bs.wx;
+      bwy = bs.wy;
+      bwz = bs.wz;
+      specular = bs.isDelta;
+      prevPdf = bs.pdf;
+    }
+    const wix = bwx * fsx + bwy * ftx + bwz * sx;
+    const wiy = bwx * fsy + bwy * fty + bwz * sy;
+    const wiz = bwx * fsz + bwy * ftz + bwz * sz;
+    prevX = x;
+    prevY = y;
+    prevZ = z;
+
+    if (depth + 1 >= ROULETTE_DEPTH) {
+      // Survival in proportion to throughput; etaScale undoes the (n1/n2)²
+      // of refraction so a path inside glass is not killed for it.
+      const rr = Math.max(br, bg, bb) * etaScale;
+      if (rr < 1) {
+        const q = Math.max(0.05, 1 - rr);
+        if (u[DIM_ROULETTE] < q) break;
+        const inv = 1 / (1 - q);
+        br *= inv;
+        bg *= inv;
+        bb *= inv;
+      }
+    }
+
+    // Spawn the next ray from the side of the surface it leaves by.
+    const side = wix * nx + wiy * ny + wiz * nz >= 0 ? scale : -scale;
+    ray.ox = x + nx * side;
+    ray.oy = y + ny * side;
+    ray.oz = z + nz * side;
+    // Renormalise: keeps long specular chains at unit length.
+    const inv = 1 / Math.sqrt(wix * wix + wiy * wiy + wiz * wiz);
+    ray.dx = wix * inv;
+    ray.dy = wiy * inv;
+    ray.dz = wiz * inv;
+    ray.tMax = Infinity;
+    segments++;
+    crossings = 0;
+  }
+  stats.paths++;
+  stats.segments += segments;
+  this.lr = lr;
+  this.lg = lg;
+  this.lb = lb;
+}
