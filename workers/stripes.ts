@@ -23,10 +23,6 @@ export interface StripeJob {
   stripeRows: number;
 }
 
-export function stripeCount(height: number, stripeRows: number): number {
-  return Math.ceil(height / stripeRows);
-}
-
 /** Builds the tracer for a job over an already compiled scene (each worker does this once). */
 export function createTracer(job: StripeJob, scene: CompiledScene): PathTracer {
   return new PathTracer(scene, {

@@ -7,7 +7,7 @@
  * code) is what a cold first round would otherwise spend its time on.
  */
 import { Film } from '../src/core/film/film.ts';
-import { RenderStats } from '../src/core/integrator/path-tracer.ts';
+import { RenderStats } from '../src/core/integrator/render-stats.ts';
 import { compileScene } from '../src/core/scene/compile.ts';
 import type { MaterialDesc, Scene, ShapeDesc } from '../src/core/scene/types.ts';
 import { createTracer, type StripeJob } from './stripes.ts';

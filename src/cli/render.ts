@@ -15,12 +15,11 @@
 import { availableParallelism } from 'node:os';
 import { Worker } from 'node:worker_threads';
 import { Film } from '../core/film/film.ts';
-import { RenderStats } from '../core/integrator/path-tracer.ts';
+import { RenderStats } from '../core/integrator/render-stats.ts';
 import { compileScene } from '../core/scene/compile.ts';
 import { packScene } from '../core/scene/pack.ts';
 import type { Scene } from '../core/scene/types.ts';
 import type { StripeJob } from '../../workers/stripes.ts';
-import { stripeCount } from '../../workers/stripes.ts';
 import type {
   InitMessage,
   ReadyReport,
@@ -181,7 +180,10 @@ export class RenderPool {
     this.film = new Film(req.width, req.height, this.filmBuffer);
     this.threads = threads;
     this.stripeRows = stripeRows;
-    this.stripes = stripeCount(req.height, stripeRows);
+    // Not stripes.ts's helper: importing that module would bundle the tracer
+    // (path-tracer.ts sets trace on its prototype, a side effect) into the
+    // main thread's code, which never traces.
+    this.stripes = Math.ceil(req.height / stripeRows);
     this.memory = roundMemory(this.stripes, threads);
     this.roundBuffers = roundBuffers(this.memory);
     this.faultWords = new Int32Array(early?.faults ?? new SharedArrayBuffer(4 * threads));

@@ -15,7 +15,10 @@ import { GltfWork } from './gltf-surface.ts';
 import { DIM_PER_BOUNCE, DEFAULT_SAMPLER, Sampler, type SamplerKind } from '../sampling/sampler.ts';
 import type { CompiledScene } from '../scene/compile.ts';
 import type { CameraDesc } from '../scene/types.ts';
+import { RenderStats } from './render-stats.ts';
 import { trace } from './trace-path.ts';
+
+export { RenderStats };
 
 export type Estimator = 'nee-mis' | 'bsdf';
 
@@ -27,13 +30,6 @@ export interface TracerOptions {
   estimator?: Estimator;
   sampler?: SamplerKind;
   camera: CameraDesc;
-}
-
-/** Counters a render adds to; `segments` counts every ray traced (camera, bounce, shadow). */
-export class RenderStats {
-  paths = 0;
-  segments = 0;
-  rejected = 0;
 }
 
 export class PathTracer {
