@@ -703,13 +703,18 @@ const readJsonLines = (f) =>
 /**
  * The section on speed against the native anchor (issue 10): bench:core
  * figures of this machine (outDir/core.json) and of the 16-core device
- * (bench/results/device/speed-*), each with its machine, date and commit.
+ * (bench/results/device/s4/core.json and speed-*), each with its machine,
+ * date and commit.
  */
 function anchorSection(L) {
   const dev = (f) => path.join(ROOT, 'bench/results/device', f);
-  const cores = [readJson(path.join(outDir, 'core.json')), readJson(dev('speed-core.json'))].filter(
-    (c) => c && c.schema === 'pathwise-bench-core/2',
-  );
+  // The device: its latest bench:core (s4/, issue 10's last round), then the
+  // first one (524651a), so that the page shows where the rounds took it.
+  const cores = [
+    readJson(path.join(outDir, 'core.json')),
+    readJson(dev('s4/core.json')),
+    readJson(dev('speed-core.json')),
+  ].filter((c) => c && c.schema === 'pathwise-bench-core/2');
   if (cores.length === 0) return;
   L.push('## Speed against the native anchor');
   L.push('');
