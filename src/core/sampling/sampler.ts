@@ -99,19 +99,7 @@ export class Sampler {
    * be allocated on the heap.
    */
   fill(dimension: number, count: number, out: Float64Array): void {
-    const key = this.key;
-    for (let k = 0; k < count; k++) {
-      const d = dimension + k;
-      if (this.lowDiscrepancy && d < SOBOL_DIMENSIONS && SOBOL_GROUP_OF[d] >= 0) {
-        out[k] = this.ld[d];
-      } else {
-        // hashToUnit with the PCG hash inlined by hand, in int32 arithmetic.
-        const input = (key + Math.imul(d, 0x9e3779b9)) | 0;
-        const state = (Math.imul(input, 747796405) + 2891336453) | 0;
-        const word = Math.imul((state >>> ((state >>> 28) + 4)) ^ state, 277803737);
-        out[k] = (((word >>> 22) ^ word) >>> 0) * INV_2_32;
-      }
-    }
+    this.fillRange(dimension, 0, count, out);
   }
 
   /**
@@ -128,6 +116,7 @@ export class Sampler {
       if (this.lowDiscrepancy && d < SOBOL_DIMENSIONS && SOBOL_GROUP_OF[d] >= 0) {
         out[k] = this.ld[d];
       } else {
+        // hashToUnit with the PCG hash inlined by hand, in int32 arithmetic.
         const input = (key + Math.imul(d, 0x9e3779b9)) | 0;
         const state = (Math.imul(input, 747796405) + 2891336453) | 0;
         const word = Math.imul((state >>> ((state >>> 28) + 4)) ^ state, 277803737);
