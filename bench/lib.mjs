@@ -45,10 +45,11 @@ function machineFields(commit, dirty) {
 const TIME = existsSync('/usr/bin/time') ? '/usr/bin/time' : null;
 
 /**
- * Renders one configuration in a fresh process (so no run warms the JIT of
- * another) and returns the CLI's JSON statistics plus the process wall time.
+ * The command line (node's arguments) of one render: scene, width, height,
+ * spp, threads, out; seed (default 1); bounces, estimator and sampler when
+ * given, else the CLI's defaults apply (what bench:core measures).
  */
-export function renderOnce(opts) {
+export function cliArgs(opts) {
   const args = [
     CLI,
     'render',
@@ -68,9 +69,17 @@ export function renderOnce(opts) {
     opts.out,
   ];
   if (opts.bounces !== undefined) args.push('--bounces', String(opts.bounces));
-  // Left out, the CLI's defaults apply (what bench:core measures).
   if (opts.estimator !== undefined) args.push('--estimator', opts.estimator);
   if (opts.sampler !== undefined) args.push('--sampler', opts.sampler);
+  return args;
+}
+
+/**
+ * Renders one configuration in a fresh process (so no run warms the JIT of
+ * another) and returns the CLI's JSON statistics plus the process wall time.
+ */
+export function renderOnce(opts) {
+  const args = cliArgs(opts);
   const t0 = performance.now();
   // GNU time, where there is one, adds the CPU seconds of the process: unlike
   // wall time they barely change when other processes share the cores.

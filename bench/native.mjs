@@ -26,12 +26,11 @@ export function findNative(explicit) {
 }
 
 /**
- * One render by the anchor at `native`: its JSON line (`seconds` = threads
- * started to joined) plus the process wall time. o: scene, width, height,
- * spp, threads, bounces, out.
+ * The anchor's arguments for one render. o: scene, width, height, spp,
+ * threads, bounces, out; seed 1, as pathwise's benchmarks use.
  */
-export function nativeOnce(native, o) {
-  const args = [
+export function nativeArgs(o) {
+  return [
     o.scene,
     '--width',
     String(o.width),
@@ -49,8 +48,15 @@ export function nativeOnce(native, o) {
     o.out,
     '--quiet',
   ];
+}
+
+/**
+ * One render by the anchor at `native`: its JSON line (`seconds` = threads
+ * started to joined) plus the process wall time (o as for nativeArgs).
+ */
+export function nativeOnce(native, o) {
   const t0 = performance.now();
-  const out = execFileSync(native, args, { encoding: 'utf8' });
+  const out = execFileSync(native, nativeArgs(o), { encoding: 'utf8' });
   const processSeconds = (performance.now() - t0) / 1000;
   return { ...JSON.parse(out.trim().split('\n').pop()), process_seconds: processSeconds };
 }

@@ -20,8 +20,8 @@ import { spawn } from 'node:child_process';
 import { mkdirSync, rmSync, writeFileSync } from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { CLI, ROOT, machineInfo, median } from './lib.mjs';
-import { findNative } from './native.mjs';
+import { ROOT, cliArgs, machineInfo, median } from './lib.mjs';
+import { findNative, nativeArgs } from './native.mjs';
 import { writeSpheresField } from './scenes.mjs';
 
 const opt = {};
@@ -62,36 +62,19 @@ function runJson(command, args) {
 
 /** One render by `who` (pathwise | native): its reported seconds. */
 async function render(who, scene, samples, threads, k) {
-  const out = path.join(tmpDir, `${who}-${k}.pfm`);
-  const size = ['--width', '512', '--height', '512', '--spp', String(samples)];
+  const o = {
+    scene,
+    width: 512,
+    height: 512,
+    spp: samples,
+    threads,
+    bounces: 6,
+    out: path.join(tmpDir, `${who}-${k}.pfm`),
+  };
   const r =
     who === 'pathwise'
-      ? await runJson(process.execPath, [
-          CLI,
-          'render',
-          scene,
-          ...size,
-          '--threads',
-          String(threads),
-          '--bounces',
-          '6',
-          '--json',
-          '--out',
-          out,
-        ])
-      : await runJson(native, [
-          scene,
-          ...size,
-          '--threads',
-          String(threads),
-          '--max-bounces',
-          '6',
-          '--seed',
-          '1',
-          '--quiet',
-          '--out',
-          out,
-        ]);
+      ? await runJson(process.execPath, cliArgs(o))
+      : await runJson(native, nativeArgs(o));
   return r.seconds;
 }
 
