@@ -479,14 +479,25 @@ export class Controller extends EventTarget implements PathTracerController {
   }
 
   /**
-   * The render scale in use, whether it was chosen automatically, and the
-   * measured speed (samples per second) it was chosen from.
+   * The render scale in use, whether it was chosen automatically, the
+   * measured speed (samples per second) it was chosen from, and whether a
+   * measurement that may still change it is under way (the quick pass, or
+   * the warm one over the full film's next passes).
    */
-  renderScaleInfo(): { scale: number; auto: boolean; samplesPerSecond: number } {
+  renderScaleInfo(): {
+    scale: number;
+    auto: boolean;
+    samplesPerSecond: number;
+    measuring: boolean;
+  } {
+    const full = this.films.full;
     return {
       scale: this.films.renderScale,
       auto: this.films.autoScale,
       samplesPerSecond: this.firstPass.rate,
+      measuring:
+        this.films.autoScale &&
+        this.firstPass.measuring(full !== null && full.passesDone() >= this.target),
     };
   }
 

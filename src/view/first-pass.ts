@@ -60,6 +60,15 @@ export class FirstPass {
     if (this.steady) this.steady = new SpeedProbe(1, STEADY_PROBE_MS);
   }
 
+  /**
+   * The automatic scale may still change: the quick pass runs, or the warm
+   * measurement waits for the full film's passes (`fullDone`: the full film
+   * reached its target, so none will come until the target rises).
+   */
+  measuring(fullDone: boolean): boolean {
+    return this.active || (this.steady !== null && !fullDone);
+  }
+
   /** The user set the scale: nothing left to measure. */
   manual(): void {
     this.steady = null;

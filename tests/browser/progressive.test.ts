@@ -15,6 +15,15 @@ import { openDemo, waitForSpp } from './harness.ts';
 
 const ctx = useDemo();
 
+/** Waits until no speed measurement may change the automatic scale any more. */
+async function waitForScaleSettled(page: Page): Promise<void> {
+  await page.waitForFunction(
+    () => !(window as any).__pathwise.controller.renderScaleInfo().measuring,
+    undefined,
+    { timeout: 60_000 },
+  );
+}
+
 /** A frame darker than this fraction of the image at rest fails the drag test. */
 const MIN_BRIGHTNESS = 0.6;
 
@@ -95,6 +104,9 @@ describe('progressive display while dragging (Chromium)', () => {
       await page.goto(`${ctx.url}?seed=1&${query}`);
       await page.waitForFunction(() => (window as any).__pathwise?.controller);
       await waitForSpp(page, 8);
+      // The warm speed measurement may still raise the scale once (it needs
+      // 300 ms of the full film's passes); the drag starts after it.
+      await waitForScaleSettled(page);
       const rest = await meanBrightness(page);
       expect(rest).toBeGreaterThan(20);
       const fullWidth = await page.evaluate(
@@ -197,7 +209,7 @@ describe('progressive display while dragging (Chromium)', () => {
     await page.goto(`${ctx.url}?seed=1`);
     await page.waitForFunction(() => (window as any).__pathwise?.controller.stats().spp >= 1);
     // The warm measurement may raise the scale once, a few passes in.
-    await page.waitForTimeout(1500);
+    await waitForScaleSettled(page);
     const r = await page.evaluate(() => {
       const c = (window as any).__pathwise.controller;
       const s = c.stats();
