@@ -74,7 +74,10 @@ async function meanBrightness(page: Page): Promise<number> {
 /**
  * Drags back and forth across the middle of the canvas for about 1.5 s
  * (small moves, so the view stays inside the box and its brightness is the
- * scene's, not the dark outside), then releases and waits 1.5 s.
+ * scene's, not the dark outside), then releases and waits until the full
+ * film is back with two passes and at least 20 frames were sampled after
+ * the release (a frame count, not a fixed time: a loaded machine draws
+ * fewer frames per second).
  */
 async function dragAndRelease(page: Page): Promise<{ releasedAt: number }> {
   const box = (await page.locator('#view').boundingBox())!;
@@ -89,7 +92,15 @@ async function dragAndRelease(page: Page): Promise<{ releasedAt: number }> {
   }
   await page.mouse.up();
   const releasedAt = await page.evaluate(() => performance.now());
-  await page.waitForTimeout(1500);
+  await page.waitForFunction(
+    (t) => {
+      const frames = (window as any).__frames as { t: number; spp: number }[];
+      const after = frames.filter((f) => f.t >= t);
+      return after.length >= 20 && after[after.length - 1].spp >= 2;
+    },
+    releasedAt,
+    { timeout: 60_000 },
+  );
   return { releasedAt };
 }
 
