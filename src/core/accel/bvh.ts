@@ -44,6 +44,14 @@ export const BVH_MAX_LEAF = 4;
 /** Leaf codes hold first << BVH_LEAF_BITS in 31 bits. */
 export const BVH_MAX_PRIMS = 2 ** (31 - BVH_LEAF_BITS);
 const BINS = 16;
+/** The largest finite Float32. */
+const F32_MAX = 3.4028234663852886e38;
+/**
+ * SAH splits go this many levels deeper than a balanced tree's 2·log2 n at most;
+ * past that, ranges are split at their median (ordinary scenes stay far above it:
+ * the 10,000-sphere field and the million-triangle mesh reach about 2·log2 n).
+ */
+const SAH_DEPTH = 32;
 /**
  * SAH cost of a node visit (two boxes, tested branch-free) relative to one
  * primitive test. On the 10,000-sphere scene's recorded rays, node costs of
@@ -159,8 +167,11 @@ export function buildBvh(
   );
 }
 
-/** Per task on the build stack: start, end, slot (node·2 + side, −1 for the root), depth. */
-const T_WORDS = 4;
+/**
+ * Per task on the build stack: start, end, slot (node·2 + side, −1 for the root), depth,
+ * and 1 when its range is already in median order (see `medianSplit`).
+ */
+const T_WORDS = 5;
 /** Per task: its primitives' box (6) and centroid bounds (6). */
 const T_BOUNDS = 12;
 
@@ -175,6 +186,8 @@ class Builder {
   nodeCount = 0;
   maxDepth = 0;
   private tasks = new Int32Array(64 * T_WORDS);
+  /** Depth past which ranges are split at their median (see `medianSplit`). */
+  private readonly sahDepth: number;
   private taskBounds = new Float64Array(64 * T_BOUNDS);
   private top = 0;
   private readonly binCount = new Int32Array(BINS);
@@ -190,6 +203,7 @@ class Builder {
 
   constructor(boxes: Float32Array, refs: Int32Array, n: number, nodeCost: number) {
     this.nodeCost = nodeCost;
+    this.sahDepth = SAH_DEPTH + 2 * Math.ceil(Math.log2(n));
     this.boxes = boxes;
     this.refs = refs;
     this.n = n;
@@ -211,7 +225,11 @@ class Builder {
       for (let a = 0; a < 3; a++) {
         const lo = boxes[b + a];
         const hi = boxes[b + 3 + a];
-        const c = lo + hi;
+        // The centre of the box with its sides held to the finite Float32 range: a
+        // primitive beyond it (valid in double precision) has an infinite side, and
+        // an infinite centroid would leave every bin plane without a side to put it.
+        // Halving is exact, so ordinary scenes bin exactly as with lo + hi.
+        const c = 0.5 * ((lo < -F32_MAX ? -F32_MAX : lo) + (hi > F32_MAX ? F32_MAX : hi));
         cen[i * 3 + a] = c;
         if (lo < root[a]) root[a] = lo;
         if (hi > root[3 + a]) root[3 + a] = hi;
@@ -219,7 +237,7 @@ class Builder {
         if (c > root[9 + a]) root[9 + a] = c;
       }
     }
-    this.push(0, n, -1, 0, root, 0);
+    this.push(0, n, -1, 0, root, 0, 0);
     this.nodeCount = 1;
     while (this.top > 0) this.step();
   }
@@ -231,6 +249,7 @@ class Builder {
     depth: number,
     bounds: Float64Array,
     at: number,
+    sorted: number,
   ): void {
     if (this.top * T_WORDS === this.tasks.length) {
       const t = new Int32Array(this.tasks.length * 2);
@@ -245,6 +264,7 @@ class Builder {
     this.tasks[t + 1] = end;
     this.tasks[t + 2] = slot;
     this.tasks[t + 3] = depth;
+    this.tasks[t + 4] = sorted;
     const tb = this.top * T_BOUNDS;
     for (let k = 0; k < T_BOUNDS; k++) this.taskBounds[tb + k] = bounds[at + k];
     this.top++;
@@ -258,6 +278,7 @@ class Builder {
     const end = this.tasks[t + 1];
     const slot = this.tasks[t + 2];
     const depth = this.tasks[t + 3];
+    const sorted = this.tasks[t + 4];
     const tb = top * T_BOUNDS;
     const bounds = this.taskBounds;
     const count = end - start;
@@ -270,19 +291,23 @@ class Builder {
     const cMin = bounds[tb + 6 + axis];
     const isRoot = slot < 0;
     let mid: number;
+    let childSorted = 0;
     if (count === 1) {
       this.leaf(slot, start, count);
       return;
-    } else if (!(extent > 0)) {
-      // Every centroid coincides: no plane separates them (the root must
-      // split all the same: it is a node).
+    } else if (!(extent > 0) || sorted === 1 || depth >= this.sahDepth) {
+      // Every centroid coincides, so no plane separates them; or the SAH has
+      // gone deeper than any ordinary scene takes it (primitives spread over
+      // many orders of magnitude peel off a few per level): split at the
+      // median, so the build stays O(n log n) whatever the magnitudes. The
+      // root must split all the same: it is a node.
       if (count <= BVH_MAX_LEAF && !isRoot) {
         this.leaf(slot, start, count);
         return;
       }
-      mid = start + (count >> 1);
-      this.rangeBounds(start, mid, 0);
-      this.rangeBounds(mid, end, 6);
+      if (extent > 0 && sorted === 0) this.sortRange(start, end, axis);
+      childSorted = extent > 0 ? 1 : 0;
+      mid = this.middleSplit(start, end);
     } else {
       const scale = (BINS * (1 - 1e-6)) / extent;
       this.bin(start, end, axis, cMin, scale);
@@ -302,7 +327,11 @@ class Builder {
         this.leaf(slot, start, count);
         return;
       }
-      mid = this.partition(start, end, axis, cMin, scale, this.bestPlane);
+      // No plane with primitives on both sides: the centroids differ by less
+      // than their Float32 rounding. They are split in the middle.
+      mid =
+        this.bestPlane < 0 ? start : this.partition(start, end, axis, cMin, scale, this.bestPlane);
+      if (mid === start || mid === end) mid = this.middleSplit(start, end);
     }
     // An interior node: the children's boxes go into it, their ranges onto
     // the stack (right first, so that the left child is built next and
@@ -323,12 +352,12 @@ class Builder {
       this.childTask[k] = split[6 + k];
       this.childTask[6 + k] = cb[6 + k];
     }
-    this.push(mid, end, node * 2 + 1, depth + 1, this.childTask, 0);
+    this.push(mid, end, node * 2 + 1, depth + 1, this.childTask, 0, childSorted);
     for (let k = 0; k < 6; k++) {
       this.childTask[k] = split[k];
       this.childTask[6 + k] = cb[k];
     }
-    this.push(start, mid, node * 2, depth + 1, this.childTask, 0);
+    this.push(start, mid, node * 2, depth + 1, this.childTask, 0, childSorted);
   }
 
   private readonly childTask = new Float64Array(T_BOUNDS);
@@ -351,7 +380,7 @@ class Builder {
       binBox[b + 3] = binBox[b + 4] = binBox[b + 5] = -Infinity;
     }
     for (let p = start; p < end; p++) {
-      const bin = ((cen[p * 3 + axis] - cMin) * scale) | 0;
+      const bin = binOf(cen[p * 3 + axis], cMin, scale);
       binCount[bin]++;
       const o = bin * 6;
       const b = p * 6;
@@ -462,7 +491,7 @@ class Builder {
         z = cen[i * 3 + 2];
       const c = axis === 0 ? x : axis === 1 ? y : z;
       let side = 0;
-      if ((((c - cMin) * scale) | 0) <= plane) i++;
+      if (binOf(c, cMin, scale) <= plane) i++;
       else {
         side = 6;
         // Swap primitive i with primitive j.
@@ -494,6 +523,40 @@ class Builder {
     return i;
   }
 
+  /** Splits [start, end) in the middle of its order: boxes into split, centroids into childCen. */
+  private middleSplit(start: number, end: number): number {
+    const mid = start + ((end - start) >> 1);
+    this.rangeBounds(start, mid, 0);
+    this.rangeBounds(mid, end, 6);
+    return mid;
+  }
+
+  /**
+   * Orders the primitives [start, end) by centroid along `axis` (ties by their
+   * present order, so the result is deterministic). Done once per range that
+   * falls back to median splits; its halves stay ordered, so the subtree below
+   * costs O(m log m) in all.
+   */
+  private sortRange(start: number, end: number, axis: number): void {
+    const { boxes, cen, refs } = this;
+    const m = end - start;
+    const order = new Int32Array(m);
+    for (let k = 0; k < m; k++) order[k] = start + k;
+    const key = new Float64Array(m);
+    for (let k = 0; k < m; k++) key[k] = cen[(start + k) * 3 + axis];
+    const sortedOrder = Array.from(order).sort((a, b) => key[a - start] - key[b - start] || a - b);
+    const box = boxes.slice(start * 6, end * 6);
+    const c = cen.slice(start * 3, end * 3);
+    const r = refs.slice(start, end);
+    for (let k = 0; k < m; k++) {
+      const from = sortedOrder[k] - start;
+      const to = start + k;
+      for (let q = 0; q < 6; q++) boxes[to * 6 + q] = box[from * 6 + q];
+      for (let q = 0; q < 3; q++) cen[to * 3 + q] = c[from * 3 + q];
+      refs[to] = r[from];
+    }
+  }
+
   /**
    * Box (into split[at, at + 6)) and centroid bounds (into childCen[at,
    * at + 6)) of primitives [start, end), for the middle split of
@@ -517,6 +580,15 @@ class Builder {
       }
     }
   }
+}
+
+/**
+ * The bin of centroid coordinate c: held to [0, BINS), since a Float32 centroid may round
+ * a little outside the bounds its task was given in double precision.
+ */
+function binOf(c: number, cMin: number, scale: number): number {
+  const bin = ((c - cMin) * scale) | 0;
+  return bin < 0 ? 0 : bin >= BINS ? BINS - 1 : bin;
 }
 
 function halfArea(

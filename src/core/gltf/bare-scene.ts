@@ -10,6 +10,7 @@ import { type LoadStage, type ResolveOptions, type SceneFileReader } from '../sc
 import { markValidated, SceneError } from '../scene/load.ts';
 import { DEFAULT_SETTINGS, LIMITS, type Scene } from '../scene/types.ts';
 import { sanitize } from '../scene/message.ts';
+import { sceneRangeProblem } from '../scene/extent.ts';
 import { frameModel } from './framing.ts';
 import { isGlb } from './glb.ts';
 import { GLTF_FILE_BYTES, type GltfModel, loadGltf } from './load.ts';
@@ -80,5 +81,8 @@ export async function loadBareModel(
     const message = e instanceof Error ? e.message : String(e);
     throw new SceneError([sanitize(message, 400)]);
   }
-  return bareModelScene(file, model, options);
+  const scene = bareModelScene(file, model, options);
+  const range = sceneRangeProblem(scene, () => 'the model');
+  if (range !== undefined) throw new SceneError([range]);
+  return scene;
 }

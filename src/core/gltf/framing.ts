@@ -28,22 +28,39 @@ export function frameModel(
     };
   }
   const empty = !(bounds[3] >= bounds[0]);
-  const cx = empty ? 0 : 0.5 * (bounds[0] + bounds[3]);
-  const cy = empty ? 0 : 0.5 * (bounds[1] + bounds[4]);
-  const cz = empty ? 0 : 0.5 * (bounds[2] + bounds[5]);
-  const r = empty
+  // Halves first: the sum of two bounds near the double range would overflow.
+  const cx = empty ? 0 : 0.5 * bounds[0] + 0.5 * bounds[3];
+  const cy = empty ? 0 : 0.5 * bounds[1] + 0.5 * bounds[4];
+  const cz = empty ? 0 : 0.5 * bounds[2] + 0.5 * bounds[5];
+  const radius = empty
     ? 1
-    : Math.max(
-        1e-6,
-        0.5 * Math.hypot(bounds[3] - bounds[0], bounds[4] - bounds[1], bounds[5] - bounds[2]),
+    : Math.hypot(
+        0.5 * (bounds[3] - bounds[0]),
+        0.5 * (bounds[4] - bounds[1]),
+        0.5 * (bounds[5] - bounds[2]),
       );
+  // A model of one point gets a sphere in proportion to where it is.
+  const r = radius > 0 ? radius : 1e-6 * Math.max(Math.abs(cx), Math.abs(cy), Math.abs(cz)) || 1e-6;
   const half = ((FRAMING_FOV_Y / 2) * Math.PI) / 180;
   // The narrower of the vertical and horizontal half-angles must hold the sphere.
   const halfX = Math.atan(Math.tan(half) * aspect);
-  const d = (r / Math.sin(Math.min(half, halfX))) * 1.05;
-  // From the front and 20° above.
+  let d = Math.min((r / Math.sin(Math.min(half, halfX))) * 1.05, Number.MAX_VALUE);
+  // From the front and 20° above. A model near the end of the double range is seen
+  // from the side that has room (behind, below), and from nearer still if neither has:
+  // the camera's position must be finite.
   const el = (20 * Math.PI) / 180;
-  const position: [number, number, number] = [cx, cy + d * Math.sin(el), cz + d * Math.cos(el)];
+  const sy = cy + d * Math.sin(el) < Infinity ? 1 : -1;
+  const sz = cz + d * Math.cos(el) < Infinity ? 1 : -1;
+  while (!(
+    Number.isFinite(cy + sy * d * Math.sin(el)) && Number.isFinite(cz + sz * d * Math.cos(el))
+  )) {
+    d *= 0.5;
+  }
+  const position: [number, number, number] = [
+    cx,
+    cy + sy * d * Math.sin(el),
+    cz + sz * d * Math.cos(el),
+  ];
   return {
     position,
     target: [cx, cy, cz],

@@ -19,6 +19,7 @@ import { parseObj } from '../io/obj.ts';
 import { decodePfm } from '../io/pfm.ts';
 import { parsePly } from '../io/ply.ts';
 import { envMapFileKind } from './environment-desc.ts';
+import { sceneRangeProblem } from './extent.ts';
 import { sanitize } from './message.ts';
 import { checkTexelRadiance } from './radiance.ts';
 import { SceneError, markValidated, parseScene } from './load.ts';
@@ -133,7 +134,10 @@ export async function resolveSceneFiles(
     const image = decodeEnvironmentImage(bytes, map, where);
     environmentMap = { ...map, image };
   }
-  return markValidated({ ...scene, shapes, environmentMap });
+  const loaded: Scene = { ...scene, shapes, environmentMap };
+  const range = sceneRangeProblem(loaded);
+  if (range !== undefined) throw new SceneError([range]);
+  return markValidated(loaded);
 }
 
 /**

@@ -48,6 +48,7 @@ import { Q_NORMAL, QUAD_STRIDE, writeQuadRecord } from '../geometry/shapes.ts';
 import { checkEnvironment } from './environment-desc.ts';
 import { GLTF_KEYS, checkGltfShape } from './gltf-desc.ts';
 import { MESH_KEYS, checkMesh } from './mesh-desc.ts';
+import { sceneRangeProblem } from './extent.ts';
 
 const FORMAT = 'pathwise-scene/1';
 
@@ -134,7 +135,7 @@ export function validateScene(value: unknown): Scene {
 
   if (problems.length > 0) throw new SceneError(problems);
   // No problem was recorded, so every part validated and is defined.
-  return markValidated({
+  const scene: Scene = {
     format: FORMAT,
     name: name!,
     camera: camera!,
@@ -143,7 +144,10 @@ export function validateScene(value: unknown): Scene {
     shapes: shapes!,
     environment: environment!.constant,
     environmentMap: environment!.map,
-  });
+  };
+  const range = sceneRangeProblem(scene);
+  if (range !== undefined) throw new SceneError([range]);
+  return markValidated(scene);
 }
 
 /**
