@@ -8,7 +8,14 @@
  */
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import { compileScene, Film, PathTracer, RenderStats, SceneError } from '../../src/core/index.ts';
+import {
+  compileScene,
+  encodePfm,
+  Film,
+  PathTracer,
+  RenderStats,
+  SceneError,
+} from '../../src/core/index.ts';
 import { buildBvh } from '../../src/core/accel/bvh.ts';
 import { sceneWithFiles } from '../helpers/gltf.ts';
 import { KINDS, magnitudeCase, magnitudeScene, type MagnitudeCase } from './magnitudes.ts';
@@ -174,5 +181,37 @@ describe('scenes at every magnitude of the double range', () => {
     expect(bvh.depth).toBeLessThanOrEqual(32 + 3 * Math.ceil(Math.log2(n)) + 1);
     // Every reference is in exactly one leaf.
     expect([...bvh.refs].sort((a, b) => a - b)).toEqual([...Array(n).keys()]);
+  });
+});
+
+describe('angles at the edge of the double range', () => {
+  it('environment.rotationY 1e308 renders the map, no sample dropped', async () => {
+    const { json, files } = await magnitudeScene({
+      kind: 'sphere',
+      count: 1,
+      sizeExp: 0,
+      offsetExp: 0,
+      signs: [1, 1, 1],
+      scaleExp: 0,
+      spreadExp: 0,
+      emissive: false,
+    });
+    const rgb = new Float32Array(4 * 2 * 3).fill(0.5);
+    files.set('sky.pfm', encodePfm(4, 2, rgb));
+    for (const rotationY of [1e308, -1.7976931348623157e308, 5e-324]) {
+      json.environment = { type: 'map', file: 'sky.pfm', rotationY };
+      const scene = await sceneWithFiles(json, files);
+      const film = new Film(16, 16);
+      const stats = new RenderStats();
+      new PathTracer(compileScene(scene), {
+        width: 16,
+        height: 16,
+        maxBounces: 3,
+        seed: 1,
+        camera: scene.camera,
+      }).renderRows(film, 0, 16, 0, 1, stats);
+      expect(stats.rejected, `rotationY ${rotationY}`).toBe(0);
+      expect(film.mean().some((v) => v > 0)).toBe(true);
+    }
   });
 });

@@ -64,7 +64,9 @@ export class EnvironmentMap {
     this.height = height;
     this.rgb = rgb;
     [this.scaleR, this.scaleG, this.scaleB] = desc.scale;
-    const theta = (desc.rotationY * Math.PI) / 180;
+    // Whole turns first: any finite angle is valid, and 1e308 · π would overflow. The
+    // remainder is exact, so angles within a turn are as before.
+    const theta = ((desc.rotationY % 360) * Math.PI) / 180;
     this.cosRot = Math.cos(theta);
     this.sinRot = Math.sin(theta);
     this.rowCos = new Float64Array(height + 1);
