@@ -27,7 +27,7 @@ rmSync(new URL('../dist/cli/chunks', import.meta.url), { recursive: true, force:
 await Promise.all([
   build({
     ...common,
-    entryPoints: { pathwise: 'src/cli/main.ts' },
+    entryPoints: { pathwise: 'src/cli/main.ts', command: 'src/cli/command.ts' },
     splitting: true,
     chunkNames: 'chunks/[name]-[hash]',
   }),

@@ -23,6 +23,7 @@
  */
 import { estimateNoise } from '../core/film/noise.ts';
 import type { RenderPool } from './render.ts';
+import { processSeconds } from './host.ts';
 
 export interface BatchPlan {
   /** Range start A (the noise schedule counts from it). */
@@ -72,9 +73,7 @@ export interface BatchResult {
 }
 
 /** Seconds since the process started (the clock of --time). */
-export function processSeconds(): number {
-  return performance.now() / 1000;
-}
+export { processSeconds };
 
 /** Is `n` one of the sample counts at which --noise is checked (range starting at `start`)? */
 export function isNoiseCheck(start: number, n: number): boolean {

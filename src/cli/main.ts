@@ -1,96 +1,58 @@
 /**
- * The `pathwise` command line. Exit status: 0 on success; 2 with one printable line on
- * stderr for bad arguments, a bad or unreadable scene, or an output that cannot be
- * written; 1 for anything else (a bug).
+ * The `pathwise` process's main thread: it runs the command (command.ts) in a worker
+ * thread and does nothing else but wait, so that SIGINT and SIGTERM are handled within
+ * milliseconds at every stage of the command, however long its synchronous work (reading
+ * a FIFO, parsing a 16 MiB scene, loading a large mesh or model, building a BVH,
+ * encoding a large image, merging parts). The handler removes the command's temporary
+ * files (temp-registry.ts: recorded in shared memory before each is created) and exits
+ * with 130 (SIGINT) or 143 (SIGTERM); earlier outputs and checkpoints are renamed into
+ * place whole or not at all, so they stay as they were or loadable.
+ *
+ * Measured before choosing this (docs/performance.md, "Signals"): cooperative yields
+ * would have to reach into every loader, the BVH builder and the encoders, and still
+ * leave a long JSON.parse or a synchronous read uninterruptible.
  */
-import { availableParallelism } from 'node:os';
-import { FilmFileError } from '../core/film/film-file.ts';
-import { SceneError, validateSettingsOverride } from '../core/scene/load.ts';
-import { countSkippedTriangles } from '../core/scene/mesh-desc.ts';
-import { sceneWarnings } from '../core/scene/warnings.ts';
-import { printableLine, quote } from '../core/scene/message.ts';
-import { DEFAULT_SETTINGS } from '../core/scene/types.ts';
-import { SYNOPSIS, USAGE, UsageError, parseRenderArgs, type RenderArgs } from './args.ts';
-import { CliError } from './errors.ts';
-import { merge } from './merge.ts';
-import { renderCommand, renderWorkerUrl } from './render-command.ts';
-import type { EarlyWorkers } from './render.ts';
-import { loadSceneFile } from './scene-file.ts';
-import { startWarmWorkers } from './warm-up.ts';
+import { Worker } from 'node:worker_threads';
+import type { HostData } from './host.ts';
+import { TempRegistry } from './temp-registry.ts';
 
-async function render(argv: string[]): Promise<void> {
-  if (argv.includes('--help')) {
-    process.stdout.write(USAGE + '\n');
-    return;
-  }
-  const args = parseRenderArgs(argv);
-  // The workers start (and warm up) while the scene is read and compiled.
-  const early = startWarmWorkers(args.threads ?? availableParallelism(), renderWorkerUrl(), {
-    maxBounces: args.bounces ?? DEFAULT_SETTINGS.maxBounces,
-    seed: args.seed,
-    estimator: args.estimator,
-    sampler: args.sampler,
-  });
-  try {
-    await renderScene(args, early);
-  } finally {
-    await early.close();
-  }
+const temps = new TempRegistry();
+const data: HostData = {
+  argv: process.argv.slice(2),
+  temps: temps.buffer,
+  stderrColumns: process.stderr.isTTY === true ? process.stderr.columns || 80 : 0,
+  timeOrigin: performance.timeOrigin,
+};
+
+const sleep = (ms: number) => new Promise<false>((resolve) => setTimeout(resolve, ms, false));
+
+/** Most milliseconds to wait for the command's thread to stop before leaving without it. */
+const STOP_MS = 300;
+
+async function onSignal(signal: NodeJS.Signals): Promise<void> {
+  temps.removeAll();
+  // The command's thread is stopped first (V8 interrupts even a busy loop), then any file
+  // it created meanwhile is removed too.
+  const stopped = await Promise.race([command.terminate().then(() => true), sleep(STOP_MS)]);
+  temps.removeAll();
+  if (stopped) process.exit(signal === 'SIGINT' ? 130 : 143);
+  // A thread blocked in a read the system cannot cancel (a FIFO nobody writes to, a pipe
+  // without data) never stops, and process.exit would wait for it: the process leaves by
+  // the signal itself, as it would without a handler (a shell still reports 130 / 143).
+  process.removeAllListeners(signal);
+  process.kill(process.pid, signal);
 }
+process.once('SIGINT', onSignal);
+process.once('SIGTERM', onSignal);
 
-async function renderScene(args: RenderArgs, early: EarlyWorkers): Promise<void> {
-  const scene = await loadSceneFile(args.scenePath, { width: args.width, height: args.height });
-  for (const w of sceneWarnings(scene)) {
-    process.stderr.write(`pathwise: note: ${printableLine(w)}\n`);
-  }
-  const skipped = countSkippedTriangles(scene);
-  if (skipped > 0) {
-    process.stderr.write(`pathwise: note: skipped ${skipped} triangles of zero area\n`);
-  }
-  const names: Record<string, string> = {
-    width: '--width',
-    height: '--height',
-    maxBounces: '--bounces',
-    spp: '--spp',
-  };
-  const settings = validateSettingsOverride(
-    scene.settings,
-    { width: args.width, height: args.height, maxBounces: args.bounces, spp: args.spp },
-    (key) => names[key],
-  );
-  await renderCommand(args, scene, settings, skipped, early);
-}
-
-async function main(argv: string[]): Promise<number> {
-  const [command, ...rest] = argv;
-  try {
-    if (command === 'render') {
-      await render(rest);
-      return 0;
-    }
-    if (command === 'merge') {
-      await merge(rest);
-      return 0;
-    }
-    if (command === undefined) {
-      // Nothing to do: say how to use it, on stderr (stdout may be a pipe into a file).
-      throw new UsageError(`no command given; ${SYNOPSIS} (pathwise --help for the options)`);
-    }
-    if (command === '--help' || command === 'help') {
-      process.stdout.write(USAGE + '\n');
-      return 0;
-    }
-    throw new UsageError(
-      `unknown command ${quote(command)} (try: pathwise render --help, pathwise merge --help)`,
-    );
-  } catch (e) {
-    if (e instanceof CliError || e instanceof SceneError || e instanceof FilmFileError) {
-      process.stderr.write(`pathwise: ${printableLine(e.message)}\n`);
-      return 2;
-    }
-    process.stderr.write(`pathwise: ${(e as Error).stack ?? e}\n`);
-    return 1;
-  }
-}
-
-process.exitCode = await main(process.argv.slice(2));
+const command = new Worker(new URL('./command.js', import.meta.url), { workerData: data });
+command.on('error', (e) => {
+  // A bug that escaped the command's own handling.
+  process.stderr.write(`pathwise: ${e.stack ?? e}\n`);
+  process.exitCode = 1;
+});
+command.on('exit', (code) => {
+  process.exitCode ||= code;
+  process.off('SIGINT', onSignal);
+  process.off('SIGTERM', onSignal);
+});

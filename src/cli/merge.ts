@@ -27,7 +27,8 @@ import { encodeOutput } from './encode-output.ts';
 import { CliError } from './errors.ts';
 import { explainMismatch } from './film-compat.ts';
 import { makeHeader, readFilmFile, readFilmHeader } from './film-file.ts';
-import { Interrupts } from './interrupt.ts';
+import { OutputFile } from './output.ts';
+import { testStage } from './test-stages.ts';
 import { showPath } from './read-bounded.ts';
 
 export async function merge(argv: string[]): Promise<void> {
@@ -36,6 +37,7 @@ export async function merge(argv: string[]): Promise<void> {
     return;
   }
   const args = parseMergeArgs(argv);
+  testStage('read');
   const headers: FilmHeader[] = args.parts.map((p) => readFilmHeader(p));
   const first = headers[0];
   const name = (k: number) => showPath(basename(args.parts[k]));
@@ -80,13 +82,11 @@ export async function merge(argv: string[]): Promise<void> {
   }
   if (held === 0) throw new CliError('the parts hold no samples');
 
-  const interrupts = new Interrupts();
-  const output = await interrupts.prepare(args.out).catch((e) => {
-    interrupts.dispose();
-    throw e;
-  });
+  // Ctrl-C or SIGTERM from here on removes the temporary file (temp-registry.ts).
+  const output = await OutputFile.prepare(args.out);
   try {
     // Pixels, one part at a time.
+    testStage('merge');
     const acc = readFilmFile(args.parts[0]);
     const stats = { ...acc.header.stats };
     for (let k = 1; k < args.parts.length; k++) {
@@ -97,11 +97,11 @@ export async function merge(argv: string[]): Promise<void> {
       stats.rejected += part.header.stats.rejected;
     }
     const header = makeHeader(first, total, union, stats);
+    testStage('write');
     await output.commit(encodeOutput(args.out, acc.film, () => header, args.exposure));
     report(args, header, acc.film, missing, held, total);
   } finally {
     await output.discard();
-    interrupts.dispose();
   }
 }
 

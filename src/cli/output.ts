@@ -9,16 +9,18 @@
  * the old file or the new one, never half of one. On any failure the temporary file is
  * removed.
  */
-import { closeSync, unlinkSync } from 'node:fs';
 import { lstat, open, realpath, rename, stat, unlink, type FileHandle } from 'node:fs/promises';
 import { basename, dirname, join, resolve } from 'node:path';
 import { randomBytes } from 'node:crypto';
 import { CliError } from './errors.ts';
+import { temps } from './host.ts';
 import { reason, showPath } from './read-bounded.ts';
 
 export class OutputFile {
   private handle: FileHandle | null;
   private done = false;
+  /** The temporary file's slot in the registry the main thread cleans up from. */
+  private readonly slot: number;
 
   private constructor(
     /** The path as the user gave it (for messages). */
@@ -28,8 +30,10 @@ export class OutputFile {
     /** The temporary file beside the target. */
     readonly temp: string,
     handle: FileHandle,
+    slot: number,
   ) {
     this.handle = handle;
+    this.slot = slot;
   }
 
   /** Writes `bytes` to the temporary file, flushes it, and renames it onto the target. */
@@ -47,6 +51,7 @@ export class OutputFile {
       this.handle = null;
       await rename(this.temp, this.target);
       this.done = true;
+      temps.release(this.slot);
     } catch (e) {
       await this.discard();
       throw new CliError(`cannot write ${showPath(this.path)}: ${reason(e)}`);
@@ -61,24 +66,7 @@ export class OutputFile {
     this.handle = null;
     await handle?.close().catch(() => undefined);
     await unlink(this.temp).catch(() => undefined);
-  }
-
-  /** The same, synchronously: for signal and exit handlers. */
-  discardSync(): void {
-    if (this.done) return;
-    this.done = true;
-    const handle = this.handle;
-    this.handle = null;
-    try {
-      if (handle !== null) closeSync(handle.fd);
-    } catch {
-      // already closed
-    }
-    try {
-      unlinkSync(this.temp);
-    } catch {
-      // already gone
-    }
+    temps.release(this.slot);
   }
 
   /**
@@ -115,13 +103,17 @@ export class OutputFile {
       dir,
       `.${basename(target)}.${process.pid}-${randomBytes(4).toString('hex')}.tmp`,
     );
+    // Recorded before it exists: a signal from here on removes it (temp-registry.ts).
+    const slot = temps.creating(temp);
     let handle: FileHandle;
     try {
       handle = await open(temp, 'wx');
+      temps.created(slot);
     } catch (e) {
+      temps.release(slot);
       return fail(`cannot create a file in ${showPath(dir)}: ${reason(e)}`);
     }
-    return new OutputFile(path, target, temp, handle);
+    return new OutputFile(path, target, temp, handle, slot);
   }
 }
 

@@ -84,15 +84,17 @@ export function formatProgress(p: ProgressState, columns = 80): string {
 
 /** Redraws one line of stderr in place (only when stderr is a terminal). */
 export class ProgressBar {
-  private readonly stream: NodeJS.WriteStream;
+  private readonly stream: NodeJS.WritableStream;
+  private readonly columns: number;
   private drawn = false;
 
-  constructor(stream: NodeJS.WriteStream) {
+  constructor(stream: NodeJS.WritableStream, columns: number) {
     this.stream = stream;
+    this.columns = columns;
   }
 
   update(p: ProgressState): void {
-    this.stream.write(`\r${formatProgress(p, this.stream.columns || 80)}\x1b[K`);
+    this.stream.write(`\r${formatProgress(p, this.columns)}\x1b[K`);
     this.drawn = true;
   }
 

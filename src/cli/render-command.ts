@@ -15,11 +15,13 @@ import { encodeOutput, isFilmPath } from './encode-output.ts';
 import { CliError } from './errors.ts';
 import { explainMismatch } from './film-compat.ts';
 import { filmIdentity, makeHeader, readFilmFile, type FilmIdentity } from './film-file.ts';
-import { Interrupts } from './interrupt.ts';
+import { stderrColumns } from './host.ts';
+import { OutputFile } from './output.ts';
 import { ProgressBar, type ProgressState } from './progress.ts';
 import { showPath } from './read-bounded.ts';
 import { RenderPool, type EarlyWorkers } from './render.ts';
 import { startTestFaults, TEST_FAULTS_ENV } from './test-faults.ts';
+import { testStage } from './test-stages.ts';
 
 interface Resumed {
   film: Film;
@@ -71,16 +73,11 @@ export async function renderCommand(
     return identity_;
   };
   const resumed = b.resume ? await loadCheckpoint(b.resume, identity(), start, end) : undefined;
-  // Ctrl-C or SIGTERM from here on removes the temporary files (interrupt.ts).
-  const interrupts = new Interrupts();
-  try {
+  // Ctrl-C or SIGTERM from here on removes the temporary files (temp-registry.ts).
+  {
     // The outputs are checked (the output's temporary file created) before the render starts.
-    const output = await interrupts.prepare(args.out);
-    if (b.checkpoint) {
-      const probe = await interrupts.prepare(b.checkpoint);
-      await probe.discard();
-      interrupts.release(probe);
-    }
+    const output = await OutputFile.prepare(args.out);
+    if (b.checkpoint) await (await OutputFile.prepare(b.checkpoint)).discard();
 
     const pool = new RenderPool({
       scene,
@@ -108,7 +105,8 @@ export async function renderCommand(
           segments: prior.segments + pool.stats.segments,
           rejected: prior.rejected + pool.stats.rejected,
         });
-      const bar = process.stderr.isTTY === true ? new ProgressBar(process.stderr) : undefined;
+      const columns = stderrColumns();
+      const bar = columns > 0 ? new ProgressBar(process.stderr, columns) : undefined;
       const renderStart = processSeconds();
       const progressState = (p: BatchProgress): ProgressState => ({
         spp: p.at - start,
@@ -121,6 +119,7 @@ export async function renderCommand(
         noiseSpp: Number.isFinite(p.noiseAt) ? p.noiseAt - start : undefined,
       });
       const pixels = settings.width * settings.height;
+      testStage('render');
       const result = await runBatch(
         pool,
         {
@@ -138,9 +137,9 @@ export async function renderCommand(
         {
           checkpoint: b.checkpoint
             ? async (n) => {
-                const file = await interrupts.prepare(b.checkpoint!);
+                const file = await OutputFile.prepare(b.checkpoint!);
+                testStage('checkpoint');
                 await file.commit(encodeOutput(b.checkpoint!, pool.film, () => header(n, end), 1));
-                interrupts.release(file);
               }
             : undefined,
           progress: bar ? (p: BatchProgress) => bar.update(progressState(p)) : undefined,
@@ -162,6 +161,7 @@ export async function renderCommand(
       // nothing; it is the guarantee that no Inf or NaN is ever written silently.
       const bad = countNonFinite(pool.film.mean());
       if (bad > 0) throw new Error(`${bad} pixel values are not finite; nothing was written`);
+      testStage('write');
       await output.commit(
         encodeOutput(args.out, pool.film, () => header(result.end, spp), args.exposure),
       );
@@ -216,8 +216,6 @@ export async function renderCommand(
       await pool.close();
       await output.discard();
     }
-  } finally {
-    interrupts.dispose();
   }
 }
 

@@ -38,6 +38,7 @@ import {
   type RoundMemory,
   type RoundRecovery,
 } from '../../workers/round-claims.ts';
+import { testStage } from './test-stages.ts';
 
 export interface PoolRequest {
   scene: Scene;
@@ -209,6 +210,7 @@ export class RenderPool {
     // Compiled once here; every worker maps the same shared buffer. Should that
     // fail, the workers are ended (they would keep the process alive).
     try {
+      testStage('compile');
       this.scene = packScene(compileScene(req.scene), true);
     } catch (e) {
       this.closed = true;

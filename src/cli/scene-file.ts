@@ -10,6 +10,7 @@ import { LIMITS, type Scene } from '../core/scene/types.ts';
 import { CliError } from './errors.ts';
 import { ReadLimitError, readBounded, showPath } from './read-bounded.ts';
 import { nodeSceneFiles } from './scene-files.ts';
+import { testStage } from './test-stages.ts';
 
 export interface SceneFileOptions {
   /** Image size asked for on the command line: a bare model's camera frames it at this aspect. */
@@ -28,6 +29,7 @@ export async function loadSceneFile(path: string, options: SceneFileOptions = {}
   const limit = model ? GLTF_FILE_BYTES : LIMITS.fileBytes;
   let bytes: Uint8Array;
   try {
+    testStage('read');
     bytes = await readBounded(path, limit);
   } catch (e) {
     if (e instanceof ReadLimitError && !model) {
@@ -44,14 +46,17 @@ export async function loadSceneFile(path: string, options: SceneFileOptions = {}
       return { generateTangents: await nodeTangentGenerator() };
     };
     if (model) {
+      testStage('load');
       const { loadBareModel } = await import('../core/gltf/bare-scene.ts');
       return await loadBareModel(bytes, basename(path), files, {
         ...(await tangents()),
         ...options,
       });
     }
+    testStage('parse');
     const scene = parseScene(bytes);
     if (!sceneNeedsFiles(scene)) return scene;
+    testStage('load');
     const { resolveSceneFiles } = await import('../core/scene/files.ts');
     const gltf = scene.shapes.some((s) => s.type === 'gltf');
     return await resolveSceneFiles(scene, files, gltf ? await tangents() : {});

@@ -18,6 +18,7 @@ import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
 import { CliError } from '../../src/cli/errors.ts';
 import { OutputFile } from '../../src/cli/output.ts';
+import { temps } from '../../src/cli/host.ts';
 import { ReadLimitError, readBounded } from '../../src/cli/read-bounded.ts';
 import {
   ByteLimitError,
@@ -123,14 +124,16 @@ describe('OutputFile', () => {
     expect(existsSync(out.temp)).toBe(false);
   });
 
-  it('discards its temporary file when the work is abandoned', async () => {
+  it('discards its temporary file when the work is abandoned or the process is signalled', async () => {
     const sub = mkdtempSync(join(dir, 'discard-'));
     const out = await OutputFile.prepare(join(sub, 'image.png'));
     await out.discard();
     expect(readdirSync(sub)).toEqual([]);
     mkdirSync(join(sub, 'x'));
-    const other = await OutputFile.prepare(join(sub, 'x', 'image.png'));
-    other.discardSync();
+    // A signal's handler (main.ts) removes it through the shared registry.
+    await OutputFile.prepare(join(sub, 'x', 'image.png'));
+    expect(readdirSync(join(sub, 'x'))).toHaveLength(1);
+    temps.removeAll();
     expect(readdirSync(join(sub, 'x'))).toEqual([]);
   });
 });
