@@ -50,7 +50,13 @@ describe('live error plot (Chromium)', () => {
       await pointAt(step);
     }
     const series = await points(page);
-    const truth = series.filter((p) => Number.isFinite(p.truth));
+    // Only the points of the steps are compared: when the target is reached, every pixel
+    // holds exactly that many samples, so each is a fixed number for this seed. A point
+    // taken between steps (when the meter's tick falls inside a pass) is labelled with
+    // the fewest samples a stripe holds while most hold one more; how many more depends
+    // on when it was taken, which a loaded machine changes.
+    const steps = new Set([2, 4, 8, 16, 32, SPP]);
+    const truth = series.filter((p) => Number.isFinite(p.truth) && steps.has(p.spp));
     expect(truth.length).toBeGreaterThanOrEqual(5);
     for (let i = 1; i < series.length; i++) {
       expect(series[i].seconds).toBeGreaterThan(series[i - 1].seconds);
