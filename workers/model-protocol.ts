@@ -1,29 +1,51 @@
 /**
- * Messages between the page and the model worker (model-worker.ts), which loads a bare
- * glTF model — parse, texture decode, flattening, tangents — and compiles and packs it
- * (the BVH build), so that none of that blocks the page.
+ * Messages between the page and the scene worker (model-worker.ts), which reads every
+ * scene off the page's thread: a pathwise-scene/1 file (parse, validation, its mesh,
+ * map and glTF files) or a bare glTF model (parse, texture decode, flattening,
+ * tangents), then compiles and packs it (the BVH build), so that none of that blocks the
+ * page however large or degenerate the scene.
  */
 import type { LoadStage, PackedScene, Scene } from '../src/core/index.ts';
 import type { FileSource } from './scene-files.ts';
 
-export interface ModelRequest {
-  /** The model file (transferred). */
+interface Common {
+  /** Where the files the scene names are read from. */
+  source: FileSource;
+  /** Texels and the packed scene in SharedArrayBuffers (a cross-origin isolated page). */
+  shared: boolean;
+  /**
+   * One Int32 the page sets to 1 to stop the load at its next check (isolated pages:
+   * a busy worker is stopped by terminate() only after about 2 s in Chromium).
+   */
+  stop: SharedArrayBuffer | null;
+}
+
+/** A bare glTF model. */
+export interface ModelRequest extends Common {
+  kind: 'model';
+  /** The model file. */
   bytes: Uint8Array;
   /** Its name, for the scene, the shape and messages. */
   name: string;
-  /** Where its buffers and images are read from. */
-  source: FileSource;
   /** Image size whose aspect ratio the framing camera takes. */
   width: number;
   height: number;
-  /** Texels and the packed scene in SharedArrayBuffers (a cross-origin isolated page). */
-  shared: boolean;
 }
+
+/** A pathwise-scene/1 scene: its bytes or text, or a scene object (validated there). */
+export interface SceneRequest extends Common {
+  kind: 'scene';
+  input: Uint8Array | string | unknown;
+  /** `input` is a Scene this page's loader made already (its arrays are trusted). */
+  validated: boolean;
+}
+
+export type LoadRequest = ModelRequest | SceneRequest;
 
 export type ModelReply =
   | { type: 'progress'; stage: LoadStage; done: number; total: number }
   /**
-   * The scene compiled and packed, and the scene itself without the model's arrays (its
+   * The scene compiled and packed, and the scene itself (a model's arrays left out: its
    * shape's `data` null, as before its file was read: they live on in `packed`, and the
    * page need not hold them twice); the skipped-triangle count and warnings they gave.
    */

@@ -1,66 +1,116 @@
 /**
- * The model worker: loads one bare glTF model (core/gltf/bare-scene.ts) with the
- * browser's decoders (gltf-browser.ts), compiles it and packs it (pack.ts), and posts
- * both back, every array transferred (or shared), so the page only unpacks views. One
- * worker per load; the page terminates it when done or superseded.
+ * The scene worker: reads one scene off the page's thread — a pathwise-scene/1 file
+ * (parse, validation, its mesh, map and glTF files) or a bare glTF model
+ * (core/gltf/bare-scene.ts) with the browser's decoders (gltf-browser.ts) — compiles it
+ * and packs it (pack.ts), and posts both back, every array transferred (or shared), so
+ * the page only installs views: no task of a load runs on the page, however large or
+ * degenerate the scene. One worker per load; the page stops it when done or superseded
+ * (the stop word first, checked in the long loops of loading and the BVH build, then
+ * terminate()).
  */
 import {
+  CancelledError,
   compileScene,
   countSkippedTriangles,
   loadBareModel,
+  markValidated,
   packScene,
+  parseScene,
+  resolveSceneFiles,
+  sceneNeedsFiles,
   sceneWarnings,
+  setCancelCheck,
+  validateScene,
   type LoadStage,
+  type ResolveOptions,
   type Scene,
 } from '../src/core/index.ts';
 import { browserTangentGenerator, decodeImageBrowser } from './gltf-browser.ts';
-import type { ModelReply, ModelRequest } from './model-protocol.ts';
+import type { LoadRequest, ModelReply } from './model-protocol.ts';
 import { readerOf } from './scene-files.ts';
 
 const post = (reply: ModelReply, transfer: Transferable[] = []) =>
   (self as unknown as Worker).postMessage(reply, transfer);
 
 /**
- * The scene as the page keeps it: the model's arrays left out (`data: null`, as before
+ * The scene as the page keeps it: a model's arrays left out (`data: null`, as before
  * the file was read), so that they are not held twice — the packed scene has them. A
  * page that hands this scene back to setScene reads the file again; compileScene
- * refuses it rather than rendering nothing.
+ * refuses it rather than rendering nothing. Mesh and map arrays stay (transferred), so
+ * a scene handed back needs no file.
  */
-function withoutModelData(scene: Scene): Scene {
+function forThePage(scene: Scene, transfer: Transferable[]): Scene {
+  const own = (a: ArrayBufferView | null) => {
+    if (a !== null && a.buffer instanceof ArrayBuffer && !transfer.includes(a.buffer)) {
+      transfer.push(a.buffer);
+    }
+  };
+  for (const s of scene.shapes) {
+    if (s.type === 'mesh' && s.data !== null) {
+      own(s.data.positions);
+      own(s.data.indices);
+      own(s.data.normals);
+    }
+  }
+  own(scene.environmentMap?.image?.rgb ?? null);
   return {
     ...scene,
     shapes: scene.shapes.map((s) => (s.type === 'gltf' ? { ...s, data: null } : s)),
   };
 }
 
-self.onmessage = async (e: MessageEvent<ModelRequest>) => {
-  const req = e.data;
-  const onProgress = (stage: LoadStage, done: number, total: number) =>
-    post({ type: 'progress', stage, done, total });
-  try {
-    const scene = await loadBareModel(req.bytes, req.name, readerOf(req.source), {
-      decodeImage: decodeImageBrowser,
-      // Without it, normal maps of primitives that have no tangents are ignored with a
-      // warning (the loader says so) rather than failing the whole model.
-      generateTangents: await browserTangentGenerator().catch(() => null),
-      sharedTextures: req.shared,
-      onProgress,
+async function platform(req: LoadRequest, onProgress: ResolveOptions['onProgress']) {
+  return {
+    decodeImage: decodeImageBrowser,
+    // Without it, normal maps of primitives that have no tangents are ignored with a
+    // warning (the loader says so) rather than failing the whole model.
+    generateTangents: await browserTangentGenerator().catch(() => null),
+    sharedTextures: req.shared,
+    onProgress,
+  };
+}
+
+async function read(req: LoadRequest, onProgress: ResolveOptions['onProgress']): Promise<Scene> {
+  const files = readerOf(req.source);
+  if (req.kind === 'model') {
+    return loadBareModel(req.bytes, req.name, files, {
+      ...(await platform(req, onProgress)),
       width: req.width,
       height: req.height,
     });
+  }
+  const input = req.input;
+  const scene = req.validated
+    ? markValidated(input as Scene)
+    : typeof input === 'string' || input instanceof Uint8Array
+      ? parseScene(input)
+      : validateScene(input);
+  if (!sceneNeedsFiles(scene)) return scene;
+  const gltf = scene.shapes.some((s) => s.type === 'gltf' && s.data === null);
+  return resolveSceneFiles(scene, files, gltf ? await platform(req, onProgress) : { onProgress });
+}
+
+self.onmessage = async (e: MessageEvent<LoadRequest>) => {
+  const req = e.data;
+  if (req.stop !== null) {
+    const stop = new Int32Array(req.stop);
+    setCancelCheck(() => {
+      if (Atomics.load(stop, 0) !== 0) throw new CancelledError();
+    });
+  }
+  const onProgress = (stage: LoadStage, done: number, total: number) =>
+    post({ type: 'progress', stage, done, total });
+  try {
+    const scene = await read(req, onProgress);
     onProgress('compile', 0, 1);
     const packed = packScene(compileScene(scene), req.shared);
     onProgress('compile', 1, 1);
     const transfer: Transferable[] = [];
     if (packed.buffer instanceof ArrayBuffer) transfer.push(packed.buffer);
+    const skippedTriangles = countSkippedTriangles(scene);
+    const warnings = sceneWarnings(scene);
     post(
-      {
-        type: 'done',
-        scene: withoutModelData(scene),
-        packed,
-        skippedTriangles: countSkippedTriangles(scene),
-        warnings: sceneWarnings(scene),
-      },
+      { type: 'done', scene: forThePage(scene, transfer), packed, skippedTriangles, warnings },
       transfer,
     );
   } catch (err) {

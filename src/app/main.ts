@@ -89,6 +89,10 @@ const sceneKey = (scene: unknown) =>
 const presetKeys = new Map(
   (Object.keys(PRESETS) as PresetName[]).map((p) => [sceneKey(validateScene(PRESETS[p])), p]),
 );
+/** Shapes of the largest preset: a scene with more is none of them (and is not stringified). */
+const presetShapes = Math.max(
+  ...(Object.keys(PRESETS) as PresetName[]).map((p) => validateScene(PRESETS[p]).shapes.length),
+);
 
 const controls = attachControls(controller);
 controls.sync();
@@ -107,7 +111,10 @@ controller.addEventListener('load', (e) => {
   const { warnings } = (e as CustomEvent<{ warnings: string[] }>).detail;
   showNotice(warnings.length > 0 ? `Note: ${warnings.join('; ')}` : null);
   const scene = controller.scene;
-  const name = scene ? (presetKeys.get(sceneKey(scene)) ?? null) : null;
+  const name =
+    scene && scene.shapes.length <= presetShapes
+      ? (presetKeys.get(sceneKey(scene)) ?? null)
+      : null;
   // Before the quick first pass ends and sizes the film.
   controller.setSizeStep(sizeStepFor(name));
   meter.setPreset(name);

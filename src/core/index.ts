@@ -8,8 +8,10 @@ export {
   validateScene,
   validateSettingsOverride,
   isValidatedScene,
+  markValidated,
   SceneError,
 } from './scene/load.ts';
+export { setCancelCheck, CancelledError } from './cancel.ts';
 export {
   loadScene,
   resolveSceneFiles,

@@ -30,6 +30,7 @@
  * (fallbacks.ts), click-to-focus (focus-pick.ts) and export (film-export.ts).
  */
 import {
+  unpackScene,
   encodePfm,
   type CameraDesc,
   type CompiledScene,
@@ -143,7 +144,7 @@ export class Controller extends EventTarget implements PathTracerController {
       hasScene: () => this.currentScene !== null,
       destroyed: () => this.destroyed,
       emit,
-      use: (scene, compiled, packed, first) => this.use(scene, compiled, packed, first),
+      use: (scene, packed, first, compiled) => this.use(scene, packed, first, compiled),
     });
     this.loop = new FrameLoop(
       {
@@ -228,8 +229,15 @@ export class Controller extends EventTarget implements PathTracerController {
   }
 
   /** Installs a scene the requests compiled and packed, and restarts on it. */
-  private use(scene: Scene, compiled: CompiledScene, packed: PackedScene, first: boolean): void {
+  private use(
+    scene: Scene,
+    packed: PackedScene,
+    first: boolean,
+    compiled: CompiledScene | null,
+  ): void {
     this.currentScene = scene;
+    // Views of the packed scene, made when click-to-focus first needs them (unpacking
+    // rebuilds light tables: a task the page need not run at every load).
     this.compiled = compiled;
     this.packed = packed;
     this.focus.invalidate();
@@ -394,7 +402,8 @@ export class Controller extends EventTarget implements PathTracerController {
   }
 
   focusAt(x: number, y: number): boolean {
-    if (!this.camera || !this.compiled || !this.films.full) return false;
+    if (!this.camera || !this.packed || !this.films.full) return false;
+    this.compiled ??= unpackScene(this.packed);
     const { width, height } = this.films.full;
     const distance = this.focus.distance(
       this.canvas,

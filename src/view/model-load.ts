@@ -1,13 +1,13 @@
 /**
- * Loading a bare glTF model off the page's thread: one module worker
- * (workers/model-worker.ts) parses it, decodes its images, flattens it, builds its BVH
- * and packs the compiled scene; the page only unpacks views of the result, so it stays
- * responsive however large the model. Where the worker cannot start (a host whose
- * bundler or CDN breaks the worker's URL), the result is null and the caller loads the
- * model on the page instead.
+ * Loading a scene off the page's thread: one module worker (workers/model-worker.ts)
+ * reads a pathwise-scene/1 file and the files it names, or a bare glTF model (parse,
+ * images, flattening), builds its BVH and packs the compiled scene; the page only
+ * installs views of the result, so it stays responsive however large the scene. Where
+ * the worker cannot start (a host whose bundler or CDN breaks the worker's URL), the
+ * result is null and the caller loads the scene on the page instead.
  */
 import type { LoadStage, PackedScene, Scene } from '../core/index.ts';
-import type { ModelReply, ModelRequest } from '../../workers/model-protocol.ts';
+import type { LoadRequest, ModelReply } from '../../workers/model-protocol.ts';
 import { startModuleWorker } from './worker-source.ts';
 
 /** `new Worker` through the same-origin shim (see pool.ts: Vite bundles the worker by this pattern). */
@@ -26,15 +26,36 @@ export interface LoadedModel {
 export interface ModelJob {
   /** The loaded model; null when the worker could not run at all; rejects with the loader's message. */
   readonly promise: Promise<LoadedModel | null>;
-  /** Stops the worker (a newer scene superseded this one); the promise then never settles. */
+  /**
+   * Stops the worker (a newer scene superseded this one): its stop word is raised, which
+   * its loops check, then it is terminated; the promise then never settles.
+   */
   cancel(): void;
 }
 
+/** Scene workers running now (tests: a superseded load leaves none behind). */
+let live = 0;
+export function liveSceneWorkers(): number {
+  return live;
+}
+
+/** A request as the caller gives it: the stop word is the job's own. */
+type WithoutStop<T> = T extends unknown ? Omit<T, 'stop'> : never;
+
 export function loadModelInWorker(
-  request: ModelRequest,
+  request: WithoutStop<LoadRequest>,
   onProgress: (stage: LoadStage, done: number, total: number) => void,
 ): ModelJob {
   let worker: Worker | null = null;
+  const stop = typeof SharedArrayBuffer === 'function' ? new SharedArrayBuffer(4) : null;
+  let ended = false;
+  const end = () => {
+    if (ended || worker === null) return;
+    ended = true;
+    live--;
+    if (stop !== null) Atomics.store(new Int32Array(stop), 0, 1);
+    worker.terminate();
+  };
   const promise = new Promise<LoadedModel | null>((resolve, reject) => {
     try {
       const Worker = ModuleWorker;
@@ -45,6 +66,7 @@ export function loadModelInWorker(
       resolve(null);
       return;
     }
+    live++;
     const w = worker;
     let heard = false;
     w.onmessage = (e: MessageEvent<ModelReply>) => {
@@ -54,7 +76,7 @@ export function loadModelInWorker(
         onProgress(reply.stage, reply.done, reply.total);
         return;
       }
-      w.terminate();
+      end();
       if (reply.type === 'done') {
         const { scene, packed, skippedTriangles, warnings } = reply;
         resolve({ scene, packed, skippedTriangles, warnings });
@@ -62,16 +84,13 @@ export function loadModelInWorker(
     };
     w.onerror = (e: ErrorEvent) => {
       e.preventDefault();
-      w.terminate();
+      end();
       // Nothing heard: the script did not load or start; the caller loads on the page.
       if (!heard) resolve(null);
       else reject(new Error(`the model worker failed: ${e.message || 'unknown error'}`));
     };
     // Copied, not transferred: the bytes must survive for the fallback.
-    w.postMessage(request);
+    w.postMessage({ ...request, stop } as LoadRequest);
   });
-  return {
-    promise,
-    cancel: () => worker?.terminate(),
-  };
+  return { promise, cancel: end };
 }

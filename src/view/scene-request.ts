@@ -22,7 +22,7 @@ import {
   sceneNeedsFiles,
   validateScene,
   packScene,
-  unpackScene,
+  markValidated,
   type CompiledScene,
   type PackedScene,
   type Scene,
@@ -53,8 +53,12 @@ export interface SceneHost {
   hasScene(): boolean;
   destroyed(): boolean;
   emit(type: string, detail: unknown): void;
-  /** Installs a compiled scene and restarts; `load` and `warning` follow. */
-  use(scene: Scene, compiled: CompiledScene, packed: PackedScene, first: boolean): void;
+  /**
+   * Installs a packed scene and restarts; `load` and `warning` follow. `compiled`: the
+   * compiled scene when the page made it (else the controller unpacks `packed` when it
+   * needs one).
+   */
+  use(scene: Scene, packed: PackedScene, first: boolean, compiled: CompiledScene | null): void;
 }
 
 /** A model file's bytes, at most GLTF_FILE_BYTES (checked by its size before reading). */
@@ -139,6 +143,20 @@ export class SceneRequests {
     if (value instanceof Uint8Array && isGlbBytes(value)) {
       return this.readModel(value, 'model.glb', files);
     }
+    // Parsed, validated, its files read and compiled in the scene worker when the files
+    // can be read there (a URL, dropped files; the reader of a scene without files is
+    // never asked): the page keeps no long task of a large scene.
+    const source = (files as Partial<PortableReader>).source;
+    if (source !== undefined && typeof Worker !== 'undefined') {
+      const loaded = await this.inWorker({
+        kind: 'scene',
+        input: value,
+        validated: isValidatedScene(value),
+        source,
+        shared: this.host.shared(),
+      });
+      if (loaded !== null) return loaded;
+    }
     const scene = isValidatedScene(value)
       ? value
       : typeof value === 'string' || value instanceof Uint8Array
@@ -169,20 +187,15 @@ export class SceneRequests {
     const clamp = (n: number) => Math.min(4096, Math.max(1, n));
     const source = (files as Partial<PortableReader>).source;
     if (source !== undefined && typeof Worker !== 'undefined') {
-      this.modelJob?.cancel();
-      const job = loadModelInWorker(
-        {
-          bytes,
-          name,
-          source,
-          width: clamp(width),
-          height: clamp(height),
-          shared: this.host.shared(),
-        },
-        (stage, done, total) => this.progressLoad(stage, done, total),
-      );
-      this.modelJob = job;
-      const loaded = await job.promise;
+      const loaded = await this.inWorker({
+        kind: 'model',
+        bytes,
+        name,
+        source,
+        width: clamp(width),
+        height: clamp(height),
+        shared: this.host.shared(),
+      });
       if (loaded !== null) return loaded;
     }
     const scene = await loadBareModel(bytes, name, files, {
@@ -191,6 +204,22 @@ export class SceneRequests {
       height: clamp(height),
     });
     return { scene };
+  }
+
+  /** Loads in the scene worker (model-load.ts); null when it could not start. */
+  private async inWorker(
+    request: Parameters<typeof loadModelInWorker>[0],
+  ): Promise<LoadedModel | null> {
+    this.modelJob?.cancel();
+    const job = loadModelInWorker(request, (stage, done, total) =>
+      this.progressLoad(stage, done, total),
+    );
+    this.modelJob = job;
+    const loaded = await job.promise;
+    if (loaded === null) return null;
+    // The page's own loader made it (in the worker): handed back, it is trusted as is.
+    markValidated(loaded.scene);
+    return loaded;
   }
 
   /**
@@ -245,12 +274,12 @@ export class SceneRequests {
       await new Promise((resolve) => setTimeout(resolve, 0));
       if (request !== this.sceneRequest || host.destroyed()) return;
     }
-    let compiled: CompiledScene;
+    let compiled: CompiledScene | null = null;
     let packedScene: PackedScene;
     try {
       if (packed !== undefined) {
-        // Compiled and packed by the model worker: views into its buffer.
-        compiled = unpackScene(packed);
+        // Compiled and packed by the scene worker: the controller makes views of it
+        // when it needs them (click-to-focus).
         packedScene = packed;
       } else {
         compiled = compileScene(scene);
@@ -266,7 +295,7 @@ export class SceneRequests {
       host.emit('error', { message });
       throw new Error(message);
     }
-    host.use(scene, compiled, packedScene, first);
+    host.use(scene, packedScene, first, compiled);
     const warnings = 'warnings' in loaded ? loaded.warnings : sceneWarnings(scene);
     const skippedTriangles =
       'skippedTriangles' in loaded ? loaded.skippedTriangles : countSkippedTriangles(scene);

@@ -28,6 +28,8 @@
  * empty box that no ray enters).
  */
 
+import { checkCancel } from '../cancel.ts';
+
 export const BVH_NODE_WORDS = 16;
 /** Word offsets inside a node. */
 export const N_LEFT_BOX = 0;
@@ -239,7 +241,10 @@ class Builder {
     }
     this.push(0, n, -1, 0, root, 0, 0);
     this.nodeCount = 1;
-    while (this.top > 0) this.step();
+    for (let k = 1; this.top > 0; k++) {
+      this.step();
+      if ((k & 4095) === 0) checkCancel();
+    }
   }
 
   private push(

@@ -14,6 +14,7 @@
  * Two passes over the bytes: the first counts vertices and triangles, so the limits are
  * checked and every array is allocated once at its final size; the second fills them.
  */
+import { checkCancel } from '../cancel.ts';
 import type { RawMesh } from '../geometry/mesh-data.ts';
 import { FormatError } from './format-error.ts';
 import {
@@ -64,7 +65,7 @@ function countObj(bytes: Uint8Array, limits: MeshLimits): Counts {
   let line = 0;
   for (let start = 0; start < bytes.length;) {
     const end = lineEnd(bytes, start);
-    line++;
+    if ((++line & 16383) === 0) checkCancel();
     const k = skipBlanks(bytes, start, end);
     const ke = tokenEnd(bytes, k, end);
     if (bytesEqual(bytes, k, ke, 'v')) c.vertices++;
@@ -132,7 +133,7 @@ function fillObj(bytes: Uint8Array, c: Counts): RawMesh {
   let line = 0;
   for (let start = 0; start < bytes.length;) {
     const end = lineEnd(bytes, start);
-    line++;
+    if ((++line & 16383) === 0) checkCancel();
     const k = skipBlanks(bytes, start, end);
     const ke = tokenEnd(bytes, k, end);
     if (bytesEqual(bytes, k, ke, 'v')) {

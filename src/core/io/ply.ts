@@ -11,6 +11,7 @@
  * size; the second fills them. Problems name the header line, or the element and its
  * index (and, in an ASCII body, the line).
  */
+import { checkCancel } from '../cancel.ts';
 import type { RawMesh } from '../geometry/mesh-data.ts';
 import type { MeshLimits } from './obj.ts';
 import { FormatError } from './format-error.ts';
@@ -377,6 +378,7 @@ function countPass(h: Header, layout: Layout, reader: Reader, limits: MeshLimits
     if (e.properties.length === 0) return;
     const list = ei === layout.face ? layout.list : -1;
     for (let i = 0; i < e.count; i++) {
+      if ((i & 16383) === 16383) checkCancel();
       const n = skipInstance(reader, e, i, list);
       if (list < 0) continue;
       if (n < 3) {
@@ -421,6 +423,7 @@ function fillPass(h: Header, layout: Layout, reader: Reader, triangles: number):
     if (e.properties.length === 0) return;
     if (ei === layout.vertex) {
       for (let i = 0; i < e.count; i++) {
+        if ((i & 16383) === 16383) checkCancel();
         for (let k = 0; k < e.properties.length; k++) {
           const p = e.properties[k];
           if (p.countType >= 0) {
