@@ -26,7 +26,7 @@ import {
   type Scene,
 } from '../src/core/index.ts';
 import { browserTangentGenerator, decodeImageBrowser } from './gltf-browser.ts';
-import type { LoadRequest, ModelReply } from './model-protocol.ts';
+import { SHAPES_PER_MESSAGE, type LoadRequest, type ModelReply } from './model-protocol.ts';
 import { readerOf } from './scene-files.ts';
 
 const post = (reply: ModelReply, transfer: Transferable[] = []) =>
@@ -109,10 +109,14 @@ self.onmessage = async (e: MessageEvent<LoadRequest>) => {
     if (packed.buffer instanceof ArrayBuffer) transfer.push(packed.buffer);
     const skippedTriangles = countSkippedTriangles(scene);
     const warnings = sceneWarnings(scene);
-    post(
-      { type: 'done', scene: forThePage(scene, transfer), packed, skippedTriangles, warnings },
-      transfer,
-    );
+    let page = forThePage(scene, transfer);
+    if (page.shapes.length > SHAPES_PER_MESSAGE) {
+      for (let i = 0; i < page.shapes.length; i += SHAPES_PER_MESSAGE) {
+        post({ type: 'shapes', shapes: page.shapes.slice(i, i + SHAPES_PER_MESSAGE) });
+      }
+      page = { ...page, shapes: [] };
+    }
+    post({ type: 'done', scene: page, packed, skippedTriangles, warnings }, transfer);
   } catch (err) {
     post({ type: 'error', message: err instanceof Error ? err.message : String(err) });
   }

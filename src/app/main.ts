@@ -112,9 +112,7 @@ controller.addEventListener('load', (e) => {
   showNotice(warnings.length > 0 ? `Note: ${warnings.join('; ')}` : null);
   const scene = controller.scene;
   const name =
-    scene && scene.shapes.length <= presetShapes
-      ? (presetKeys.get(sceneKey(scene)) ?? null)
-      : null;
+    scene && scene.shapes.length <= presetShapes ? (presetKeys.get(sceneKey(scene)) ?? null) : null;
   // Before the quick first pass ends and sizes the film.
   controller.setSizeStep(sizeStepFor(name));
   meter.setPreset(name);

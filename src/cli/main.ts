@@ -27,7 +27,7 @@ const data: HostData = {
 const sleep = (ms: number) => new Promise<false>((resolve) => setTimeout(resolve, ms, false));
 
 /** Most milliseconds to wait for the command's thread to stop before leaving without it. */
-const STOP_MS = 300;
+const STOP_MS = 600;
 
 async function onSignal(signal: NodeJS.Signals): Promise<void> {
   temps.removeAll();

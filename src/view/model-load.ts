@@ -69,6 +69,7 @@ export function loadModelInWorker(
     live++;
     const w = worker;
     let heard = false;
+    const shapes: Scene['shapes'][] = [];
     w.onmessage = (e: MessageEvent<ModelReply>) => {
       heard = true;
       const reply = e.data;
@@ -76,9 +77,14 @@ export function loadModelInWorker(
         onProgress(reply.stage, reply.done, reply.total);
         return;
       }
+      if (reply.type === 'shapes') {
+        shapes.push(reply.shapes);
+        return;
+      }
       end();
       if (reply.type === 'done') {
-        const { scene, packed, skippedTriangles, warnings } = reply;
+        const { packed, skippedTriangles, warnings } = reply;
+        const scene = shapes.length > 0 ? { ...reply.scene, shapes: shapes.flat() } : reply.scene;
         resolve({ scene, packed, skippedTriangles, warnings });
       } else reject(new Error(reply.message));
     };

@@ -58,6 +58,13 @@ describe('<pathwise-view> lifecycle faults (Chromium)', () => {
           el.remove();
           if (i % 3 === 0) await Promise.resolve();
         }
+        // One more cycle, connected until its scene has loaded: however slow the machine
+        // (a loaded one may load no scene within the rapid cycles), workers were made.
+        const loaded = new Promise((r) => el.addEventListener('load', r, { once: true }));
+        document.body.append(el);
+        await loaded;
+        if (el.mode) modes.add(el.mode.display);
+        el.remove();
         await frame();
         const h = (window as any).__held;
         return { workers: h.workersMade, contexts: h.contexts.size, modes: [...modes] };

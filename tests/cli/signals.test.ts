@@ -101,9 +101,11 @@ describe('signals end the command at every stage', () => {
   });
 
   /**
-   * The checks every interrupted run must pass; `out` held "kept" before the run. A
-   * command blocked in a read the system cannot cancel (`blocked`) leaves by the signal
-   * itself (a shell reports 130 / 143 all the same); any other exits with 130 / 143.
+   * The checks every interrupted run must pass; `out` held "kept" before the run. The
+   * process exits with 130 / 143; where the command's thread does not stop within
+   * main.ts's STOP_MS (a read the system cannot cancel: a FIFO nobody writes to, a pipe
+   * without data; or a heavily loaded machine), it leaves by the signal itself, which a
+   * shell reports as 130 / 143 all the same. `blocked`: that is the expected way.
    */
   function expectClean(
     r: Interrupted,
@@ -112,13 +114,12 @@ describe('signals end the command at every stage', () => {
     what: string,
     blocked = false,
   ) {
-    latencies.push(`${what} ${(r.latency * 1000).toFixed(0)} ms`);
-    if (blocked) {
-      expect(r.signal, r.stderr).toBe(signal);
-    } else {
-      expect(r.signal, r.stderr).toBeNull();
-      expect(r.status, r.stderr).toBe(signal === 'SIGINT' ? 130 : 143);
-    }
+    latencies.push(
+      `${what} ${(r.latency * 1000).toFixed(0)} ms${r.signal ? ' (by the signal)' : ''}`,
+    );
+    const code = signal === 'SIGINT' ? 130 : 143;
+    expect(r.signal === signal || (r.signal === null && r.status === code), r.stderr).toBe(true);
+    if (blocked) expect(r.stderr).not.toMatch(/pathwise: (?!test:)/);
     expect(r.latency, what).toBeLessThan(LATENCY_LIMIT);
     expect(readFileSync(out, 'utf8')).toBe('kept');
     const folder = join(out, '..');
@@ -135,7 +136,10 @@ describe('signals end the command at every stage', () => {
     const fifo = join(dir, 'scene.fifo');
     execFileSync('mkfifo', [fifo]);
     const out = outFile('fifo.pfm');
-    const a = await interrupt(['render', fifo, '--out', out], 'SIGTERM', { afterMs: 400 });
+    const a = await interrupt(['render', fifo, '--out', out], 'SIGTERM', {
+      env: stage('read'),
+      ready: atStage('read'),
+    });
     expectClean(a, 'SIGTERM', out, 'read (FIFO)', true);
     const b = await interrupt(['render', '-', '--out', out], 'SIGINT', {
       stdin: '{"format": ',

@@ -223,6 +223,7 @@ class Builder {
     root.fill(Infinity, 6, 9);
     root.fill(-Infinity, 9, 12);
     for (let i = 0; i < n; i++) {
+      if ((i & 65535) === 65535) checkCancel();
       const b = i * 6;
       for (let a = 0; a < 3; a++) {
         const lo = boxes[b + a];
@@ -241,9 +242,17 @@ class Builder {
     }
     this.push(0, n, -1, 0, root, 0, 0);
     this.nodeCount = 1;
-    for (let k = 1; this.top > 0; k++) {
+    // A cancelled load stops here (cancel.ts): checked every 2^16 primitives of work,
+    // since one step near the root covers a large share of them.
+    let work = 0;
+    while (this.top > 0) {
+      const t = (this.top - 1) * T_WORDS;
+      work += this.tasks[t + 1] - this.tasks[t];
       this.step();
-      if ((k & 4095) === 0) checkCancel();
+      if (work >= 65536) {
+        work = 0;
+        checkCancel();
+      }
     }
   }
 

@@ -15,6 +15,7 @@
 import { QUAD_STRIDE, Q_CORNER, Q_U, Q_V, SPHERE_STRIDE } from '../geometry/shapes.ts';
 import { SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE } from '../geometry/ray.ts';
 import { f32Above, f32Below } from './bvh.ts';
+import { checkCancel } from '../cancel.ts';
 
 export const PRIM_KIND_BITS = 2;
 export const PRIM_KIND_MASK = (1 << PRIM_KIND_BITS) - 1;
@@ -104,6 +105,7 @@ export function triangleBoxes(
   out: PrimitiveBoxes,
 ): void {
   for (let t = 0; t < count; t++) {
+    if ((t & 65535) === 65535) checkCancel();
     const a = indices[3 * t] * 3,
       b = indices[3 * t + 1] * 3,
       c = indices[3 * t + 2] * 3;
