@@ -82,6 +82,31 @@ function modelSizeProblem(size: number, exact: boolean): string {
   return `a glTF model must be at most ${GLTF_FILE_BYTES} bytes (1 GiB), got ${got} bytes`;
 }
 
+/** Scene text or bytes past this are read in the scene worker (~5 ms of parsing on the page). */
+const LARGE_SCENE_BYTES = 256 * 1024;
+/** Shapes, or triangles of loaded meshes, past which a scene object is read in the worker. */
+const LARGE_SCENE_SHAPES = 2000;
+const LARGE_SCENE_TRIANGLES = 50_000;
+
+/** Whether reading and compiling `value` on the page could be a long task. */
+function isLarge(value: unknown): boolean {
+  if (typeof value === 'string' || value instanceof Uint8Array) {
+    return value.length > LARGE_SCENE_BYTES;
+  }
+  const shapes = (value as { shapes?: unknown } | null)?.shapes;
+  if (!Array.isArray(shapes)) return false;
+  if (shapes.length > LARGE_SCENE_SHAPES) return true;
+  let triangles = 0;
+  for (const s of shapes) {
+    const data = (s as { data?: { indices?: ArrayLike<number> } | null }).data;
+    triangles += (data?.indices?.length ?? 0) / 3;
+    if (Array.isArray((s as { indices?: unknown }).indices)) {
+      triangles += (s as { indices: unknown[] }).indices.length / 3;
+    }
+  }
+  return triangles > LARGE_SCENE_TRIANGLES;
+}
+
 export class SceneRequests {
   private readonly host: SceneHost;
   /** The model worker's current load, stopped when a newer scene or destroy() comes. */
@@ -143,11 +168,14 @@ export class SceneRequests {
     if (value instanceof Uint8Array && isGlbBytes(value)) {
       return this.readModel(value, 'model.glb', files);
     }
-    // Parsed, validated, its files read and compiled in the scene worker when the files
-    // can be read there (a URL, dropped files; the reader of a scene without files is
-    // never asked): the page keeps no long task of a large scene.
+    // A large scene is parsed, validated, its files read and compiled in the scene
+    // worker when those files can be read there (a URL, dropped files; the reader of a
+    // scene without files is never asked), so the page keeps no long task of it. A small
+    // one is read here (a millisecond or two, and no worker to start: the first picture
+    // comes sooner, and a bundler that cannot find the worker's script is not asked to).
     const source = (files as Partial<PortableReader>).source;
-    if (source !== undefined && typeof Worker !== 'undefined') {
+    const portable = source !== undefined && typeof Worker !== 'undefined';
+    if (portable && isLarge(value)) {
       const loaded = await this.inWorker({
         kind: 'scene',
         input: value,
@@ -163,6 +191,17 @@ export class SceneRequests {
         ? parseScene(value)
         : validateScene(value);
     if (!sceneNeedsFiles(scene)) return { scene };
+    // Its files (meshes, maps, models: any size) are read and compiled in the worker.
+    if (portable) {
+      const loaded = await this.inWorker({
+        kind: 'scene',
+        input: scene,
+        validated: true,
+        source,
+        shared: this.host.shared(),
+      });
+      if (loaded !== null) return loaded;
+    }
     // A scene file's glTF shapes load on the page (its reader may be any object).
     const hasGltf = scene.shapes.some((s) => s.type === 'gltf' && s.data === null);
     return {
