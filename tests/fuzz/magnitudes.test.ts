@@ -24,6 +24,20 @@ const SEED = 20261203;
 const RUNS = Number(process.env.MAGNITUDE_RUNS ?? 240);
 const SEED_USED = Number(process.env.MAGNITUDE_SEED ?? SEED);
 
+/** One shape of `kind` of size 1 at (1, 1, 1), not emitting: a base to edit. */
+function plainScene(kind: MagnitudeCase['kind']) {
+  return magnitudeScene({
+    kind,
+    count: 1,
+    sizeExp: 0,
+    offsetExp: 0,
+    signs: [1, 1, 1],
+    scaleExp: 0,
+    spreadExp: 0,
+    emissive: false,
+  });
+}
+
 type Outcome =
   { kind: 'refused'; message: string } | { kind: 'rendered'; rejected: number; hit: boolean };
 
@@ -95,16 +109,7 @@ describe('scenes at every magnitude of the double range', () => {
     for (let k = -1000; k < 1000; k++) {
       shapes.push({ type: 'sphere', center: [2 ** k, 0, 0], radius: 2 ** k / 4, material: 'd' });
     }
-    const { json, files } = await magnitudeScene({
-      kind: 'sphere',
-      count: 1,
-      sizeExp: 0,
-      offsetExp: 0,
-      signs: [1, 1, 1],
-      scaleExp: 0,
-      spreadExp: 0,
-      emissive: false,
-    });
+    const { json, files } = await plainScene('sphere');
     json.shapes = shapes;
     const scene = await sceneWithFiles(json, files);
     const compiled = compileScene(scene);
@@ -123,16 +128,7 @@ describe('scenes at every magnitude of the double range', () => {
   }, 60_000);
 
   it('a sphere whose bounds overflow is refused, naming it', async () => {
-    const { json, files } = await magnitudeScene({
-      kind: 'sphere',
-      count: 1,
-      sizeExp: 0,
-      offsetExp: 0,
-      signs: [1, 1, 1],
-      scaleExp: 0,
-      spreadExp: 0,
-      emissive: false,
-    });
+    const { json, files } = await plainScene('sphere');
     (json.shapes as unknown[]).push({
       type: 'sphere',
       center: [1e308, 0, 0],
@@ -145,16 +141,7 @@ describe('scenes at every magnitude of the double range', () => {
   });
 
   it('a scene whose extent overflows is refused, naming the shapes at both ends', async () => {
-    const { json, files } = await magnitudeScene({
-      kind: 'quad',
-      count: 1,
-      sizeExp: 0,
-      offsetExp: 0,
-      signs: [1, 1, 1],
-      scaleExp: 0,
-      spreadExp: 0,
-      emissive: false,
-    });
+    const { json, files } = await plainScene('quad');
     json.shapes = [
       { type: 'sphere', center: [-1e308, 0, 0], radius: 1, material: 'm' },
       { type: 'sphere', center: [1e308, 0, 0], radius: 1, material: 'm' },
@@ -186,16 +173,7 @@ describe('scenes at every magnitude of the double range', () => {
 
 describe('angles at the edge of the double range', () => {
   it('environment.rotationY 1e308 renders the map, no sample dropped', async () => {
-    const { json, files } = await magnitudeScene({
-      kind: 'sphere',
-      count: 1,
-      sizeExp: 0,
-      offsetExp: 0,
-      signs: [1, 1, 1],
-      scaleExp: 0,
-      spreadExp: 0,
-      emissive: false,
-    });
+    const { json, files } = await plainScene('sphere');
     const rgb = new Float32Array(4 * 2 * 3).fill(0.5);
     files.set('sky.pfm', encodePfm(4, 2, rgb));
     for (const rotationY of [1e308, -1.7976931348623157e308, 5e-324]) {
