@@ -77,21 +77,24 @@ export async function renderCommand(
   {
     // The outputs are checked (the output's temporary file created) before the render starts.
     const output = await OutputFile.prepare(args.out);
-    if (b.checkpoint) await (await OutputFile.prepare(b.checkpoint)).discard();
-
-    const pool = new RenderPool({
-      scene,
-      width: settings.width,
-      height: settings.height,
-      maxBounces: settings.maxBounces,
-      seed: args.seed,
-      threads: args.threads,
-      estimator: args.estimator,
-      sampler: args.sampler,
-      stripeRows: args.stripeRows,
-      workerUrl: renderWorkerUrl(),
-      early,
-    });
+    const pool = await startPool(
+      output,
+      () =>
+        new RenderPool({
+          scene,
+          width: settings.width,
+          height: settings.height,
+          maxBounces: settings.maxBounces,
+          seed: args.seed,
+          threads: args.threads,
+          estimator: args.estimator,
+          sampler: args.sampler,
+          stripeRows: args.stripeRows,
+          workerUrl: renderWorkerUrl(),
+          early,
+        }),
+      b.checkpoint,
+    );
     // Test hook (test-faults.ts): worker threads killed during the render.
     const faultSpec = process.env[TEST_FAULTS_ENV];
     const stopFaults = faultSpec ? startTestFaults(pool, faultSpec) : undefined;
@@ -216,6 +219,24 @@ export async function renderCommand(
       await pool.close();
       await output.discard();
     }
+  }
+}
+
+/**
+ * Checks the checkpoint's place and starts the pool (compiling the scene); should either
+ * fail, the output's temporary file is removed before the error goes on.
+ */
+async function startPool(
+  output: OutputFile,
+  start: () => RenderPool,
+  checkpoint: string | undefined,
+): Promise<RenderPool> {
+  try {
+    if (checkpoint) await (await OutputFile.prepare(checkpoint)).discard();
+    return start();
+  } catch (e) {
+    await output.discard();
+    throw e;
   }
 }
 

@@ -22,7 +22,15 @@ import {
 } from 'node:fs';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { BIN, pathwiseOk, readFilm, tempDir, writeCornell } from '../helpers/batch-cli.ts';
+import {
+  BIN,
+  expectRefusal,
+  pathwise,
+  pathwiseOk,
+  readFilm,
+  tempDir,
+  writeCornell,
+} from '../helpers/batch-cli.ts';
 import { ROOT } from '../helpers/render.ts';
 
 /** Most seconds from the signal to the process's exit. */
@@ -223,6 +231,21 @@ describe('signals end the command at every stage', () => {
     pathwiseOk(['render', long, '--resume', checkpoint, '--out', resumed]);
     pathwiseOk(['render', long, '--out', whole]);
     expect(readFileSync(resumed).equals(readFileSync(whole))).toBe(true);
+  });
+
+  it('a checkpoint that cannot be written leaves no temporary output behind', () => {
+    const out = outFile('no-checkpoint.pfm');
+    const r = pathwise([
+      'render',
+      scene,
+      '--checkpoint',
+      join(dir, 'missing', 'c.film'),
+      '--out',
+      out,
+    ]);
+    expectRefusal(r, /^pathwise: cannot write .*c\.film: the directory .* does not exist$/);
+    expect(readFileSync(out, 'utf8')).toBe('kept');
+    expect(readdirSync(dir).filter((f) => f.endsWith('.tmp'))).toEqual([]);
   });
 
   it('merging: reading parts, adding them, writing', async () => {
