@@ -44,9 +44,10 @@ export type LoadRequest = ModelRequest | SceneRequest;
 
 /**
  * Shapes per message of a large scene: a message is read on the page in one task, and
- * 100,000 shape objects in one took ~0.3–0.8 s there; 2,000 take a few milliseconds.
+ * 100,000 shape objects in one took ~0.3–0.8 s there; 500 take about a millisecond (a
+ * few times that on a loaded machine).
  */
-export const SHAPES_PER_MESSAGE = 2000;
+export const SHAPES_PER_MESSAGE = 500;
 
 export type ModelReply =
   | { type: 'progress'; stage: LoadStage; done: number; total: number }
