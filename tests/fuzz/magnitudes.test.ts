@@ -15,6 +15,7 @@ import {
   PathTracer,
   RenderStats,
   SceneError,
+  type Scene,
 } from '../../src/core/index.ts';
 import { buildBvh } from '../../src/core/accel/bvh.ts';
 import { sceneWithFiles } from '../helpers/gltf.ts';
@@ -38,6 +39,22 @@ function plainScene(kind: MagnitudeCase['kind']) {
   });
 }
 
+/** One sample per pixel of `scene` at its own settings, seed 1. */
+function renderOneSample(scene: Scene, compiled = compileScene(scene)) {
+  const { width, height, maxBounces } = scene.settings;
+  const film = new Film(width, height);
+  const stats = new RenderStats();
+  new PathTracer(compiled, { width, height, maxBounces, seed: 1, camera: scene.camera }).renderRows(
+    film,
+    0,
+    height,
+    0,
+    1,
+    stats,
+  );
+  return { mean: film.mean(), stats };
+}
+
 type Outcome =
   { kind: 'refused'; message: string } | { kind: 'rendered'; rejected: number; hit: boolean };
 
@@ -56,18 +73,7 @@ async function run(c: MagnitudeCase): Promise<Outcome> {
     // The builder's bound: SAH down to 32 + 2·⌈log2 n⌉, median splits below.
     expect(compiled.bvh.depth).toBeLessThanOrEqual(32 + 3 * Math.ceil(Math.log2(n)) + 1);
   }
-  const { width, height, maxBounces } = scene.settings;
-  const tracer = new PathTracer(compiled, {
-    width,
-    height,
-    maxBounces,
-    seed: 1,
-    camera: scene.camera,
-  });
-  const film = new Film(width, height);
-  const stats = new RenderStats();
-  tracer.renderRows(film, 0, height, 0, 1, stats);
-  const mean = film.mean();
+  const { mean, stats } = renderOneSample(scene, compiled);
   for (let i = 0; i < mean.length; i++) expect(Number.isFinite(mean[i])).toBe(true);
   // A path that met a surface traces more than its camera ray.
   return { kind: 'rendered', rejected: stats.rejected, hit: stats.segments > stats.paths };
@@ -114,17 +120,9 @@ describe('scenes at every magnitude of the double range', () => {
     const scene = await sceneWithFiles(json, files);
     const compiled = compileScene(scene);
     expect(compiled.bvh).not.toBeNull();
-    const film = new Film(16, 16);
-    const stats = new RenderStats();
-    new PathTracer(compiled, {
-      width: 16,
-      height: 16,
-      maxBounces: 3,
-      seed: 1,
-      camera: scene.camera,
-    }).renderRows(film, 0, 16, 0, 1, stats);
+    const { mean, stats } = renderOneSample(scene, compiled);
     expect(stats.rejected).toBe(0);
-    expect(film.mean().every(Number.isFinite)).toBe(true);
+    expect(mean.every(Number.isFinite)).toBe(true);
   }, 60_000);
 
   it('a sphere whose bounds overflow is refused, naming it', async () => {
@@ -179,17 +177,9 @@ describe('angles at the edge of the double range', () => {
     for (const rotationY of [1e308, -1.7976931348623157e308, 5e-324]) {
       json.environment = { type: 'map', file: 'sky.pfm', rotationY };
       const scene = await sceneWithFiles(json, files);
-      const film = new Film(16, 16);
-      const stats = new RenderStats();
-      new PathTracer(compileScene(scene), {
-        width: 16,
-        height: 16,
-        maxBounces: 3,
-        seed: 1,
-        camera: scene.camera,
-      }).renderRows(film, 0, 16, 0, 1, stats);
+      const { mean, stats } = renderOneSample(scene);
       expect(stats.rejected, `rotationY ${rotationY}`).toBe(0);
-      expect(film.mean().some((v) => v > 0)).toBe(true);
+      expect(mean.some((v) => v > 0)).toBe(true);
     }
   });
 });
