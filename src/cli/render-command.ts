@@ -74,151 +74,149 @@ export async function renderCommand(
   };
   const resumed = b.resume ? await loadCheckpoint(b.resume, identity(), start, end) : undefined;
   // Ctrl-C or SIGTERM from here on removes the temporary files (temp-registry.ts).
-  {
-    // The outputs are checked (the output's temporary file created) before the render starts.
-    const output = await OutputFile.prepare(args.out);
-    const pool = await startPool(
-      output,
-      () =>
-        new RenderPool({
-          scene,
+  // The outputs are checked (the output's temporary file created) before the render starts.
+  const output = await OutputFile.prepare(args.out);
+  const pool = await startPool(
+    output,
+    () =>
+      new RenderPool({
+        scene,
+        width: settings.width,
+        height: settings.height,
+        maxBounces: settings.maxBounces,
+        seed: args.seed,
+        threads: args.threads,
+        estimator: args.estimator,
+        sampler: args.sampler,
+        stripeRows: args.stripeRows,
+        workerUrl: renderWorkerUrl(),
+        early,
+      }),
+    b.checkpoint,
+  );
+  // Test hook (test-faults.ts): worker threads killed during the render.
+  const faultSpec = process.env[TEST_FAULTS_ENV];
+  const stopFaults = faultSpec ? startTestFaults(pool, faultSpec) : undefined;
+  try {
+    if (resumed) pool.film.copyRowsFrom(resumed.film);
+    const from = resumed?.end ?? start;
+    const prior = resumed?.stats ?? { paths: 0, segments: 0, rejected: 0 };
+    const header = (n: number, spp: number): FilmHeader =>
+      makeHeader(identity(), spp, n > start ? [[start, n]] : [], {
+        paths: prior.paths + pool.stats.paths,
+        segments: prior.segments + pool.stats.segments,
+        rejected: prior.rejected + pool.stats.rejected,
+      });
+    const columns = stderrColumns();
+    const bar = columns > 0 ? new ProgressBar(process.stderr, columns) : undefined;
+    const renderStart = processSeconds();
+    const progressState = (p: BatchProgress): ProgressState => ({
+      spp: p.at - start,
+      sppFrom: from - start,
+      sppTarget: end - start,
+      elapsed: p.elapsed,
+      timeLeft: p.timeLeft,
+      noise: p.noise,
+      noiseTarget: b.noise,
+      noiseSpp: Number.isFinite(p.noiseAt) ? p.noiseAt - start : undefined,
+    });
+    const pixels = settings.width * settings.height;
+    testStage('render');
+    const result = await runBatch(
+      pool,
+      {
+        start,
+        from,
+        end,
+        time: b.time,
+        noise: b.noise,
+        checkpointEvery: b.checkpointEvery,
+        // Encoding, writing (with fsync) and exiting, measured on a loaded
+        // 2-core machine: 0.15–0.35 s for a 512×512 .film; about 1 µs a
+        // pixel covers a .film (68 bytes a pixel), PFM and PNG.
+        reserve: 0.1 + pixels * 1e-6,
+      },
+      {
+        checkpoint: b.checkpoint
+          ? async (n) => {
+              const file = await OutputFile.prepare(b.checkpoint!);
+              testStage('checkpoint');
+              await file.commit(encodeOutput(b.checkpoint!, pool.film, () => header(n, end), 1));
+            }
+          : undefined,
+        progress: bar ? (p: BatchProgress) => bar.update(progressState(p)) : undefined,
+      },
+    );
+    // From starting the workers (compilation overlaps their start-up) to the last round's end.
+    const seconds = (performance.now() - pool.startedAt) / 1000;
+    const noise = estimateNoise(pool.film);
+    bar?.finish(
+      progressState({
+        at: result.end,
+        elapsed: processSeconds() - renderStart,
+        noise,
+        noiseAt: result.end,
+      }),
+    );
+    const spp = openEnded ? result.end : total;
+    // The film rejects every sample that is not finite or out of range, so this finds
+    // nothing; it is the guarantee that no Inf or NaN is ever written silently.
+    const bad = countNonFinite(pool.film.mean());
+    if (bad > 0) throw new Error(`${bad} pixel values are not finite; nothing was written`);
+    testStage('write');
+    await output.commit(
+      encodeOutput(args.out, pool.film, () => header(result.end, spp), args.exposure),
+    );
+    if (pool.stats.rejected > 0) {
+      // Not an error (the image is finite and written), but never silent.
+      process.stderr.write(
+        `pathwise: warning: ${pool.stats.rejected} of ${pool.stats.paths} samples were not finite ` +
+          `(or beyond ±2^40) and were left out\n`,
+      );
+    }
+    if (b.noise !== undefined && result.stop !== 'noise') {
+      process.stderr.write(
+        `pathwise: stopped by ${result.stop === 'time' ? '--time' : 'the sample count'} at ${result.end - start} spp with noise ${noise.toPrecision(3)}, above the --noise target ${b.noise}\n`,
+      );
+    }
+    if (args.json) {
+      const stats = pool.stats;
+      const report = pool.report();
+      process.stdout.write(
+        JSON.stringify({
+          seconds,
+          spp: result.end - start,
+          samples: [start, result.end],
+          stopped_by: result.stop,
+          noise: Number.isFinite(noise) ? noise : null,
           width: settings.width,
           height: settings.height,
-          maxBounces: settings.maxBounces,
-          seed: args.seed,
-          threads: args.threads,
-          estimator: args.estimator,
-          sampler: args.sampler,
-          stripeRows: args.stripeRows,
-          workerUrl: renderWorkerUrl(),
-          early,
-        }),
-      b.checkpoint,
-    );
-    // Test hook (test-faults.ts): worker threads killed during the render.
-    const faultSpec = process.env[TEST_FAULTS_ENV];
-    const stopFaults = faultSpec ? startTestFaults(pool, faultSpec) : undefined;
-    try {
-      if (resumed) pool.film.copyRowsFrom(resumed.film);
-      const from = resumed?.end ?? start;
-      const prior = resumed?.stats ?? { paths: 0, segments: 0, rejected: 0 };
-      const header = (n: number, spp: number): FilmHeader =>
-        makeHeader(identity(), spp, n > start ? [[start, n]] : [], {
-          paths: prior.paths + pool.stats.paths,
-          segments: prior.segments + pool.stats.segments,
-          rejected: prior.rejected + pool.stats.rejected,
-        });
-      const columns = stderrColumns();
-      const bar = columns > 0 ? new ProgressBar(process.stderr, columns) : undefined;
-      const renderStart = processSeconds();
-      const progressState = (p: BatchProgress): ProgressState => ({
-        spp: p.at - start,
-        sppFrom: from - start,
-        sppTarget: end - start,
-        elapsed: p.elapsed,
-        timeLeft: p.timeLeft,
-        noise: p.noise,
-        noiseTarget: b.noise,
-        noiseSpp: Number.isFinite(p.noiseAt) ? p.noiseAt - start : undefined,
-      });
-      const pixels = settings.width * settings.height;
-      testStage('render');
-      const result = await runBatch(
-        pool,
-        {
-          start,
-          from,
-          end,
-          time: b.time,
-          noise: b.noise,
-          checkpointEvery: b.checkpointEvery,
-          // Encoding, writing (with fsync) and exiting, measured on a loaded
-          // 2-core machine: 0.15–0.35 s for a 512×512 .film; about 1 µs a
-          // pixel covers a .film (68 bytes a pixel), PFM and PNG.
-          reserve: 0.1 + pixels * 1e-6,
-        },
-        {
-          checkpoint: b.checkpoint
-            ? async (n) => {
-                const file = await OutputFile.prepare(b.checkpoint!);
-                testStage('checkpoint');
-                await file.commit(encodeOutput(b.checkpoint!, pool.film, () => header(n, end), 1));
-              }
-            : undefined,
-          progress: bar ? (p: BatchProgress) => bar.update(progressState(p)) : undefined,
-        },
+          threads: pool.threads,
+          paths: stats.paths,
+          segments: stats.segments,
+          mpaths_per_s: stats.paths / seconds / 1e6,
+          msegments_per_s: stats.segments / seconds / 1e6,
+          rejected_samples: stats.rejected,
+          skipped_triangles: skippedTriangles,
+          compile_seconds: report.compileSeconds,
+          first_ready_seconds: report.firstReadySeconds,
+          last_ready_seconds: report.lastReadySeconds,
+          scene_bytes: report.sceneBytes,
+          worker_heap_mb_median: median(report.workerHeapBytes) / 2 ** 20,
+          resumed_from: resumed ? resumed.end : null,
+          checkpoints: result.checkpoints,
+          // Worker threads that died and were replaced; their stripes were
+          // rendered again, or finished from their journals.
+          workers_replaced: pool.faults.replaced,
+          stripes_rendered_again: pool.faults.freed,
+          stripes_finished_from_journal: pool.faults.finished,
+        }) + '\n',
       );
-      // From starting the workers (compilation overlaps their start-up) to the last round's end.
-      const seconds = (performance.now() - pool.startedAt) / 1000;
-      const noise = estimateNoise(pool.film);
-      bar?.finish(
-        progressState({
-          at: result.end,
-          elapsed: processSeconds() - renderStart,
-          noise,
-          noiseAt: result.end,
-        }),
-      );
-      const spp = openEnded ? result.end : total;
-      // The film rejects every sample that is not finite or out of range, so this finds
-      // nothing; it is the guarantee that no Inf or NaN is ever written silently.
-      const bad = countNonFinite(pool.film.mean());
-      if (bad > 0) throw new Error(`${bad} pixel values are not finite; nothing was written`);
-      testStage('write');
-      await output.commit(
-        encodeOutput(args.out, pool.film, () => header(result.end, spp), args.exposure),
-      );
-      if (pool.stats.rejected > 0) {
-        // Not an error (the image is finite and written), but never silent.
-        process.stderr.write(
-          `pathwise: warning: ${pool.stats.rejected} of ${pool.stats.paths} samples were not finite ` +
-            `(or beyond ±2^40) and were left out\n`,
-        );
-      }
-      if (b.noise !== undefined && result.stop !== 'noise') {
-        process.stderr.write(
-          `pathwise: stopped by ${result.stop === 'time' ? '--time' : 'the sample count'} at ${result.end - start} spp with noise ${noise.toPrecision(3)}, above the --noise target ${b.noise}\n`,
-        );
-      }
-      if (args.json) {
-        const stats = pool.stats;
-        const report = pool.report();
-        process.stdout.write(
-          JSON.stringify({
-            seconds,
-            spp: result.end - start,
-            samples: [start, result.end],
-            stopped_by: result.stop,
-            noise: Number.isFinite(noise) ? noise : null,
-            width: settings.width,
-            height: settings.height,
-            threads: pool.threads,
-            paths: stats.paths,
-            segments: stats.segments,
-            mpaths_per_s: stats.paths / seconds / 1e6,
-            msegments_per_s: stats.segments / seconds / 1e6,
-            rejected_samples: stats.rejected,
-            skipped_triangles: skippedTriangles,
-            compile_seconds: report.compileSeconds,
-            first_ready_seconds: report.firstReadySeconds,
-            last_ready_seconds: report.lastReadySeconds,
-            scene_bytes: report.sceneBytes,
-            worker_heap_mb_median: median(report.workerHeapBytes) / 2 ** 20,
-            resumed_from: resumed ? resumed.end : null,
-            checkpoints: result.checkpoints,
-            // Worker threads that died and were replaced; their stripes were
-            // rendered again, or finished from their journals.
-            workers_replaced: pool.faults.replaced,
-            stripes_rendered_again: pool.faults.freed,
-            stripes_finished_from_journal: pool.faults.finished,
-          }) + '\n',
-        );
-      }
-    } finally {
-      stopFaults?.();
-      await pool.close();
-      await output.discard();
     }
+  } finally {
+    stopFaults?.();
+    await pool.close();
+    await output.discard();
   }
 }
 
