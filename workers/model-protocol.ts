@@ -9,8 +9,6 @@ import type { LoadStage, PackedScene, Scene } from '../src/core/index.ts';
 import type { FileSource } from './scene-files.ts';
 
 interface Common {
-  /** Where the files the scene names are read from. */
-  source: FileSource;
   /** Texels and the packed scene in SharedArrayBuffers (a cross-origin isolated page). */
   shared: boolean;
   /**
@@ -23,6 +21,8 @@ interface Common {
 /** A bare glTF model. */
 export interface ModelRequest extends Common {
   kind: 'model';
+  /** Where the files the model names are read from. */
+  source: FileSource;
   /** The model file. */
   bytes: Uint8Array;
   /** Its name, for the scene, the shape and messages. */
@@ -35,12 +35,30 @@ export interface ModelRequest extends Common {
 /** A pathwise-scene/1 scene: its bytes or text, or a scene object (validated there). */
 export interface SceneRequest extends Common {
   kind: 'scene';
+  /** Where the files the scene names are read from. */
+  source: FileSource;
   input: Uint8Array | string | unknown;
   /** `input` is a Scene this page's loader made already (its arrays are trusted). */
   validated: boolean;
 }
 
-export type LoadRequest = ModelRequest | SceneRequest;
+/**
+ * A scene or a bare model at a URL, fetched in the worker (url-load.ts): a model when
+ * its path names one or its bytes are a GLB, else a pathwise-scene/1 file; the files
+ * either names are read beside it.
+ */
+export interface UrlRequest extends Common {
+  kind: 'url';
+  /** Absolute (the worker's own base is its script's, not the page's). */
+  url: string;
+  /** The URL as the caller wrote it, for messages. */
+  label: string;
+  /** Image size whose aspect ratio a model's framing camera takes. */
+  width: number;
+  height: number;
+}
+
+export type LoadRequest = ModelRequest | SceneRequest | UrlRequest;
 
 /**
  * Shapes per message of a large scene: a message is read on the page in one task, and
@@ -50,6 +68,8 @@ export type LoadRequest = ModelRequest | SceneRequest;
 export const SHAPES_PER_MESSAGE = 500;
 
 export type ModelReply =
+  /** The worker's script runs: the page sends its request now. */
+  | { type: 'ready' }
   | { type: 'progress'; stage: LoadStage; done: number; total: number }
   /** The scene's shapes, in order, ahead of `done` (whose scene then has none). */
   | { type: 'shapes'; shapes: Scene['shapes'] }

@@ -12,6 +12,7 @@ import {
   CancelledError,
   compileScene,
   countSkippedTriangles,
+  isGlbBytes,
   loadBareModel,
   markValidated,
   packScene,
@@ -24,10 +25,18 @@ import {
   type LoadStage,
   type ResolveOptions,
   type Scene,
+  type SceneFileReader,
 } from '../src/core/index.ts';
 import { browserTangentGenerator, decodeImageBrowser } from './gltf-browser.ts';
-import { SHAPES_PER_MESSAGE, type LoadRequest, type ModelReply } from './model-protocol.ts';
-import { readerOf } from './scene-files.ts';
+import {
+  SHAPES_PER_MESSAGE,
+  type LoadRequest,
+  type ModelReply,
+  type ModelRequest,
+  type UrlRequest,
+} from './model-protocol.ts';
+import { readerOf, urlSceneFiles } from './scene-files.ts';
+import { fetchBounded, fileNameOf } from './url-load.ts';
 
 const post = (reply: ModelReply, transfer: Transferable[] = []) =>
   (self as unknown as Worker).postMessage(reply, transfer);
@@ -71,23 +80,60 @@ async function platform(req: LoadRequest, onProgress: ResolveOptions['onProgress
 }
 
 async function read(req: LoadRequest, onProgress: ResolveOptions['onProgress']): Promise<Scene> {
+  if (req.kind === 'url') return readUrl(req, onProgress!);
   const files = readerOf(req.source);
-  if (req.kind === 'model') {
-    return loadBareModel(req.bytes, req.name, files, {
-      ...(await platform(req, onProgress)),
-      width: req.width,
-      height: req.height,
-    });
-  }
+  if (req.kind === 'model') return readModel(req, req.bytes, req.name, files, onProgress);
   const input = req.input;
   const scene = req.validated
     ? markValidated(input as Scene)
     : typeof input === 'string' || input instanceof Uint8Array
       ? parseScene(input)
       : validateScene(input);
+  return withFiles(req, scene, files, onProgress);
+}
+
+/** A scene's mesh, map and glTF files, read beside it. */
+async function withFiles(
+  req: LoadRequest,
+  scene: Scene,
+  files: SceneFileReader,
+  onProgress: ResolveOptions['onProgress'],
+): Promise<Scene> {
   if (!sceneNeedsFiles(scene)) return scene;
   const gltf = scene.shapes.some((s) => s.type === 'gltf' && s.data === null);
   return resolveSceneFiles(scene, files, gltf ? await platform(req, onProgress) : { onProgress });
+}
+
+async function readModel(
+  req: ModelRequest | UrlRequest,
+  bytes: Uint8Array,
+  name: string,
+  files: SceneFileReader,
+  onProgress: ResolveOptions['onProgress'],
+): Promise<Scene> {
+  return loadBareModel(bytes, name, files, {
+    ...(await platform(req, onProgress)),
+    width: req.width,
+    height: req.height,
+  });
+}
+
+/** A URL's scene or model (as the page's load() reads it when this worker cannot start). */
+async function readUrl(
+  req: UrlRequest,
+  onProgress: NonNullable<ResolveOptions['onProgress']>,
+): Promise<Scene> {
+  const { bytes, base, model } = await fetchBounded(req.url, req.label, onProgress);
+  const files = urlSceneFiles(base);
+  if (model || isGlbBytes(bytes)) {
+    const name = fileNameOf(base);
+    try {
+      return await readModel(req, bytes, name, files, onProgress);
+    } catch (e) {
+      throw new Error(`${name}: ${e instanceof Error ? e.message : String(e)}`);
+    }
+  }
+  return withFiles(req, parseScene(bytes), files, onProgress);
 }
 
 self.onmessage = async (e: MessageEvent<LoadRequest>) => {
@@ -121,3 +167,8 @@ self.onmessage = async (e: MessageEvent<LoadRequest>) => {
     post({ type: 'error', message: err instanceof Error ? err.message : String(err) });
   }
 };
+
+// The page sends its request only once this arrives: it then hands over (transfers)
+// bytes it owns, which it keeps while a worker that never starts could still make it
+// load on the page instead.
+post({ type: 'ready' });

@@ -45,6 +45,13 @@ export const C_JOURNAL_PASS = 11;
  * others finish the render.
  */
 export const C_CRASH = 12;
+/**
+ * Test hook (shared mode), for the same reason: when > 0, the next worker
+ * to take a claim freezes for good at that step of its next row commit,
+ * holding the lock, and writes −(its token) here so that the test knows
+ * whom to terminate.
+ */
+export const C_HANG = 13;
 
 /**
  * Workers a control block keeps records for: one slot per live worker of

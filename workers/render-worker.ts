@@ -29,6 +29,7 @@ import type { CompiledScene } from '../src/core/index.ts';
 import {
   C_CONFIG,
   C_CRASH,
+  C_HANG,
   C_DONE,
   C_GEN,
   C_PAUSED,
@@ -79,6 +80,15 @@ let crashAfterRows = 0;
 let broken = false;
 /** Test hook (hang): commitRow's `die`, which spins for ever at the chosen step. */
 let hangAt: Die | undefined;
+
+function armHang(step: number): void {
+  hangAt = (at) => {
+    if (at !== step) return;
+    for (;;) {
+      // Frozen inside the commit, holding the lock, until terminated.
+    }
+  };
+}
 /** init has answered: shared-mode claims wait for it, so that a death is always noticed. */
 let initialised = false;
 
@@ -222,6 +232,10 @@ function renderOneStripe(job: Job): boolean {
   // Test hook: a crash armed in shared memory falls to whoever claims next.
   const armed = Atomics.exchange(ctrl, C_CRASH, 0);
   if (armed > 0) crashAfterRows = armed;
+  const hangStep = Atomics.load(ctrl, C_HANG);
+  if (hangStep > 0 && Atomics.compareExchange(ctrl, C_HANG, hangStep, -token) === hangStep) {
+    armHang(hangStep);
+  }
 
   // Pass `pass` of this stripe may start only once pass − 1 is committed.
   // Claims are taken in order, so the worker holding that pass is already
@@ -342,12 +356,7 @@ const api: RenderWorkerApi = {
     crashAfterRows = Math.max(1, Math.floor(rows));
   },
   hang(step: number) {
-    hangAt = (at) => {
-      if (at !== step) return;
-      for (;;) {
-        // Frozen inside the commit, holding the lock, until terminated.
-      }
-    };
+    armHang(step);
   },
 };
 

@@ -39,12 +39,26 @@ export function liveSceneWorkers(): number {
   return live;
 }
 
+/**
+ * A scene worker failed to start on this page (a Content-Security-Policy without
+ * worker-src, a bundler that broke its URL): it would fail again, so later loads go
+ * straight to the page's own loader instead of trying (and logging a violation) each time.
+ */
+let cannotStart = false;
+
 /** A request as the caller gives it: the stop word is the job's own. */
 type WithoutStop<T> = T extends unknown ? Omit<T, 'stop'> : never;
 
+/**
+ * Starts the scene worker and, once its script runs, sends it `request`, transferring
+ * `transfer` (buffers the caller owns and gives up: a 6 MB scene copied into the message
+ * took ~60 ms of the page's thread). Until the worker says it runs, nothing is sent, so
+ * a worker that cannot start leaves the caller its bytes for loading on the page.
+ */
 export function loadModelInWorker(
   request: WithoutStop<LoadRequest>,
   onProgress: (stage: LoadStage, done: number, total: number) => void,
+  transfer: ArrayBuffer[] = [],
 ): ModelJob {
   let worker: Worker | null = null;
   const stop = typeof SharedArrayBuffer === 'function' ? new SharedArrayBuffer(4) : null;
@@ -57,12 +71,17 @@ export function loadModelInWorker(
     worker.terminate();
   };
   const promise = new Promise<LoadedModel | null>((resolve, reject) => {
+    if (cannotStart) {
+      resolve(null);
+      return;
+    }
     try {
       const Worker = ModuleWorker;
       worker = new Worker(new URL('../../workers/model-worker.ts', import.meta.url), {
         type: 'module',
       });
     } catch {
+      cannotStart = true;
       resolve(null);
       return;
     }
@@ -73,6 +92,10 @@ export function loadModelInWorker(
     w.onmessage = (e: MessageEvent<ModelReply>) => {
       heard = true;
       const reply = e.data;
+      if (reply.type === 'ready') {
+        w.postMessage({ ...request, stop } as LoadRequest, transfer);
+        return;
+      }
       if (reply.type === 'progress') {
         onProgress(reply.stage, reply.done, reply.total);
         return;
@@ -92,11 +115,12 @@ export function loadModelInWorker(
       e.preventDefault();
       end();
       // Nothing heard: the script did not load or start; the caller loads on the page.
-      if (!heard) resolve(null);
+      if (!heard) {
+        cannotStart = true;
+        resolve(null);
+      }
       else reject(new Error(`the model worker failed: ${e.message || 'unknown error'}`));
     };
-    // Copied, not transferred: the bytes must survive for the fallback.
-    w.postMessage({ ...request, stop } as LoadRequest);
   });
   return { promise, cancel: end };
 }

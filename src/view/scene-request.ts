@@ -32,7 +32,8 @@ import {
 } from '../core/index.ts';
 import { GLTF_FILE_BYTES } from '../core/gltf/load.ts';
 import { sceneSizeProblem } from '../core/scene/load.ts';
-import { ByteLimitError, readBlobBounded, readResponseBounded } from './read-bounded.ts';
+import { ByteLimitError, readBlobBounded } from '../../workers/read-bounded.ts';
+import { fetchBounded, fileNameOf, modelSizeProblem } from '../../workers/url-load.ts';
 import { loadModelInWorker, type LoadedModel, type ModelJob } from './model-load.ts';
 import { urlSceneFiles, type PortableReader } from './scene-files.ts';
 import type { PathTracerOptions } from './types.ts';
@@ -67,21 +68,6 @@ async function readModelBlob(blob: Blob, name: string): Promise<Uint8Array> {
   return new Uint8Array(await blob.arrayBuffer());
 }
 
-/** The last component of a URL's path, as its file's name. */
-function fileNameOf(url: string): string {
-  const last = new URL(url).pathname.replace(/^.*\//, '');
-  try {
-    return decodeURIComponent(last) || 'model.glb';
-  } catch {
-    return last || 'model.glb';
-  }
-}
-
-function modelSizeProblem(size: number, exact: boolean): string {
-  const got = exact ? `${size}` : `at least ${size}`;
-  return `a glTF model must be at most ${GLTF_FILE_BYTES} bytes (1 GiB), got ${got} bytes`;
-}
-
 /** Scene text or bytes past this are read in the scene worker (~5 ms of parsing on the page). */
 const LARGE_SCENE_BYTES = 256 * 1024;
 /** Shapes, or triangles of loaded meshes, past which a scene object is read in the worker. */
@@ -105,6 +91,17 @@ function isLarge(value: unknown): boolean {
     }
   }
   return triangles > LARGE_SCENE_TRIANGLES;
+}
+
+/**
+ * The buffer of bytes this page read itself, to transfer to the scene worker rather
+ * than copy (none when the view covers only part of its buffer, or the value is text).
+ */
+function handOver(value: unknown): ArrayBuffer[] {
+  if (!(value instanceof Uint8Array)) return [];
+  const buffer = value.buffer;
+  const whole = value.byteOffset === 0 && value.byteLength === buffer.byteLength;
+  return whole && buffer instanceof ArrayBuffer ? [buffer] : [];
 }
 
 export class SceneRequests {
@@ -131,11 +128,16 @@ export class SceneRequests {
    * before it was read resolves without loading anything.
    */
   async setScene(value: unknown, files?: SceneFileReader): Promise<void> {
+    return this.setSceneOf(value, files, false);
+  }
+
+  /** setScene; `owned`: `value` is bytes this object read (load), which it may hand over. */
+  private async setSceneOf(value: unknown, files: SceneFileReader | undefined, owned: boolean) {
     const request = this.newSceneRequest();
     // Mesh, glTF and environment-map files: fetched relative to the page unless the
     // caller says how (a scene's URL, dropped files, a preset's assets).
     const reader = files ?? this.host.options.files ?? urlSceneFiles(document.baseURI);
-    return this.install(request, () => this.readScene(value, reader));
+    return this.install(request, () => this.readScene(value, reader, owned));
   }
 
   /** A new scene request: the older ones lose (a fetch in flight is aborted, a model load stopped). */
@@ -156,17 +158,18 @@ export class SceneRequests {
    * Reads a scene: a File named `.glb` / `.gltf`, or bytes that are a GLB, is a bare
    * model (core/gltf/bare-scene.ts), anything else a pathwise-scene/1 scene.
    */
-  private async readScene(value: unknown, files: SceneFileReader): Promise<Loaded> {
+  private async readScene(value: unknown, files: SceneFileReader, owned: boolean): Promise<Loaded> {
     if (value instanceof Blob) {
       const name = value instanceof File ? value.name : '';
       if (isModelFileName(name)) {
-        return this.readModel(await readModelBlob(value, name), name, files);
+        return this.readModel(await readModelBlob(value, name), name, files, true);
       }
       // Bytes and files get the loader's byte bound and strict UTF-8, as on the command line.
       value = await readBlobBounded(value, LIMITS.fileBytes);
+      owned = true;
     }
     if (value instanceof Uint8Array && isGlbBytes(value)) {
-      return this.readModel(value, 'model.glb', files);
+      return this.readModel(value, 'model.glb', files, owned);
     }
     // A large scene is parsed, validated, its files read and compiled in the scene
     // worker when those files can be read there (a URL, dropped files; the reader of a
@@ -176,13 +179,16 @@ export class SceneRequests {
     const source = (files as Partial<PortableReader>).source;
     const portable = source !== undefined && typeof Worker !== 'undefined';
     if (portable && isLarge(value)) {
-      const loaded = await this.inWorker({
-        kind: 'scene',
-        input: value,
-        validated: isValidatedScene(value),
-        source,
-        shared: this.host.shared(),
-      });
+      const loaded = await this.inWorker(
+        {
+          kind: 'scene',
+          input: value,
+          validated: isValidatedScene(value),
+          source,
+          shared: this.host.shared(),
+        },
+        owned ? handOver(value) : [],
+      );
       if (loaded !== null) return loaded;
     }
     const scene = isValidatedScene(value)
@@ -193,13 +199,10 @@ export class SceneRequests {
     if (!sceneNeedsFiles(scene)) return { scene };
     // Its files (meshes, maps, models: any size) are read and compiled in the worker.
     if (portable) {
-      const loaded = await this.inWorker({
-        kind: 'scene',
-        input: scene,
-        validated: true,
-        source,
-        shared: this.host.shared(),
-      });
+      const loaded = await this.inWorker(
+        { kind: 'scene', input: scene, validated: true, source, shared: this.host.shared() },
+        [],
+      );
       if (loaded !== null) return loaded;
     }
     // A scene file's glTF shapes load on the page (its reader may be any object).
@@ -218,40 +221,54 @@ export class SceneRequests {
     bytes: Uint8Array,
     name: string,
     files: SceneFileReader,
+    owned: boolean,
   ): Promise<Loaded> {
-    const { canvas, options } = this.host;
-    const width = options.width ?? Math.round(canvas.clientWidth || 512);
-    const height = options.height ?? Math.round(canvas.clientHeight || 512);
-    // Only the aspect ratio matters here (the film follows the canvas).
-    const clamp = (n: number) => Math.min(4096, Math.max(1, n));
+    const { width, height } = this.framing();
     const source = (files as Partial<PortableReader>).source;
     if (source !== undefined && typeof Worker !== 'undefined') {
-      const loaded = await this.inWorker({
-        kind: 'model',
-        bytes,
-        name,
-        source,
-        width: clamp(width),
-        height: clamp(height),
-        shared: this.host.shared(),
-      });
+      const loaded = await this.inWorker(
+        {
+          kind: 'model',
+          bytes,
+          name,
+          source,
+          width,
+          height,
+          shared: this.host.shared(),
+        },
+        owned ? handOver(bytes) : [],
+      );
       if (loaded !== null) return loaded;
     }
     const scene = await loadBareModel(bytes, name, files, {
       ...(await this.gltfPlatform()),
-      width: clamp(width),
-      height: clamp(height),
+      width,
+      height,
     });
     return { scene };
+  }
+
+  /** The image size a bare model's framing camera takes the aspect ratio of. */
+  private framing(): { width: number; height: number } {
+    const { canvas, options } = this.host;
+    // Only the aspect ratio matters here (the film follows the canvas).
+    const clamp = (n: number) => Math.min(4096, Math.max(1, n));
+    return {
+      width: clamp(options.width ?? Math.round(canvas.clientWidth || 512)),
+      height: clamp(options.height ?? Math.round(canvas.clientHeight || 512)),
+    };
   }
 
   /** Loads in the scene worker (model-load.ts); null when it could not start. */
   private async inWorker(
     request: Parameters<typeof loadModelInWorker>[0],
+    transfer: ArrayBuffer[],
   ): Promise<LoadedModel | null> {
     this.modelJob?.cancel();
-    const job = loadModelInWorker(request, (stage, done, total) =>
-      this.progressLoad(stage, done, total),
+    const job = loadModelInWorker(
+      request,
+      (stage, done, total) => this.progressLoad(stage, done, total),
+      transfer,
     );
     this.modelJob = job;
     const loaded = await job.promise;
@@ -342,49 +359,43 @@ export class SceneRequests {
     if (warnings.length > 0) host.emit('warning', { messages: warnings });
   }
 
-  /** Fetches and loads a scene; superseded like setScene (its fetch is aborted then). */
+  /**
+   * Fetches and loads a scene or a bare model; superseded like setScene (its fetch is
+   * aborted, or its worker stopped, then). The scene worker fetches and reads it, so
+   * the page never holds the bytes; where that worker cannot start, the page does.
+   */
   async load(url: string): Promise<void> {
     const request = this.newSceneRequest();
+    return this.install(request, () => this.readUrl(url));
+  }
+
+  private async readUrl(url: string): Promise<Loaded> {
+    let href = url;
+    try {
+      href = new URL(url, document.baseURI).href;
+    } catch {
+      // Not a URL: fetch says so.
+    }
+    const progress = (stage: LoadStage, done: number, total: number) =>
+      this.progressLoad(stage, done, total);
+    if (typeof Worker !== 'undefined') {
+      const { width, height } = this.framing();
+      const request = { kind: 'url', url: href, label: url, width, height } as const;
+      const loaded = await this.inWorker({ ...request, shared: this.host.shared() }, []);
+      if (loaded !== null) return loaded;
+    }
     const abort = typeof AbortController !== 'undefined' ? new AbortController() : null;
     this.loadAbort = abort;
-    let bytes: Uint8Array;
-    let base: string;
-    let model = false;
-    try {
-      model = isModelFileName(new URL(url, document.baseURI).pathname);
-    } catch {
-      // Not a URL: fetch says so below.
-    }
-    try {
-      if (model) this.progressLoad('read', 0, 1);
-      const response = await fetch(url, abort ? { signal: abort.signal } : undefined);
-      if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
-      base = response.url || new URL(url, document.baseURI).href;
-      bytes = await readResponseBounded(response, model ? GLTF_FILE_BYTES : LIMITS.fileBytes);
-    } catch (e) {
-      if (request !== this.sceneRequest) return;
-      const message =
-        e instanceof ByteLimitError
-          ? `${url}: ${model ? modelSizeProblem(e.size, e.exact) : sceneSizeProblem(e.size, e.exact)}`
-          : e instanceof Error
-            ? e.message
-            : String(e);
-      this.host.emit('error', { message });
-      throw new Error(message);
-    }
-    if (request !== this.sceneRequest) return;
+    const { bytes, base, model } = await fetchBounded(href, url, progress, abort?.signal);
     if (this.loadAbort === abort) this.loadAbort = null;
-    if (model) this.progressLoad('read', 1, 1);
     // The files the scene (or the model) names live beside it.
     const files = urlSceneFiles(base);
     if (model || isGlbBytes(bytes)) {
       const name = fileNameOf(base);
-      return this.install(request, () =>
-        this.readModel(bytes, name, files).catch((e: unknown): never => {
-          throw new Error(`${name}: ${e instanceof Error ? e.message : String(e)}`);
-        }),
-      );
+      return this.readModel(bytes, name, files, true).catch((e: unknown): never => {
+        throw new Error(`${name}: ${e instanceof Error ? e.message : String(e)}`);
+      });
     }
-    await this.setScene(bytes, files);
+    return this.readScene(bytes, files, true);
   }
 }

@@ -1,6 +1,6 @@
 /**
  * Reading and writing files on the command line (src/cli/read-bounded.ts, output.ts) and
- * reading in the browser (src/view/read-bounded.ts, exercised with Node's web streams):
+ * reading in the browser (workers/read-bounded.ts, exercised with Node's web streams):
  * bounded reads from any source, checked and atomic output.
  */
 import { execFileSync, spawn } from 'node:child_process';
@@ -24,7 +24,7 @@ import {
   ByteLimitError,
   readBlobBounded,
   readResponseBounded,
-} from '../../src/view/read-bounded.ts';
+} from '../../workers/read-bounded.ts';
 
 const dir = mkdtempSync(join(tmpdir(), 'pathwise-io-'));
 
@@ -138,7 +138,7 @@ describe('OutputFile', () => {
   });
 });
 
-describe('browser reads (src/view/read-bounded.ts)', () => {
+describe('browser reads (workers/read-bounded.ts)', () => {
   it('reads a fetched body as a stream and stops at the limit', async () => {
     let pulls = 0;
     const endless = new ReadableStream<Uint8Array>({
@@ -154,6 +154,34 @@ describe('browser reads (src/view/read-bounded.ts)', () => {
     expect(pulls).toBeLessThan(40);
     const ok = await readResponseBounded(new Response('{"a": 1}'), 8);
     expect(new TextDecoder().decode(ok)).toBe('{"a": 1}');
+  });
+
+  it('gives the bytes the body holds, whatever Content-Length says', async () => {
+    // 300 chunks of 1,000 bytes, each byte its own position mod 251.
+    const body = () =>
+      new ReadableStream<Uint8Array>({
+        start(controller) {
+          for (let c = 0; c < 300; c++) {
+            controller.enqueue(Uint8Array.from({ length: 1000 }, (_, i) => (c * 1000 + i) % 251));
+          }
+          controller.close();
+        },
+      });
+    const expected = Uint8Array.from({ length: 300_000 }, (_, i) => i % 251);
+    for (const length of [null, '300000', '10', '5000000', 'lots']) {
+      const headers = length === null ? undefined : { 'content-length': length };
+      const got = await readResponseBounded(new Response(body(), { headers }), 1_000_000);
+      expect(got.length, `Content-Length ${length}`).toBe(300_000);
+      expect(Buffer.from(got).equals(Buffer.from(expected)), `Content-Length ${length}`).toBe(true);
+    }
+    // A header that claims more than the limit allocates nothing for it.
+    const e = await rejection(
+      readResponseBounded(
+        new Response(body(), { headers: { 'content-length': String(2 ** 40) } }),
+        100_000,
+      ),
+    );
+    expect((e as ByteLimitError).size).toBe(101_000);
   });
 
   it('checks a File by its size before reading it', async () => {

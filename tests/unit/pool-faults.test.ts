@@ -27,7 +27,7 @@ import { WorkerPool, type PoolClient } from '../../src/view/pool.ts';
 import { SharedFilmJob } from '../../src/view/shared-job.ts';
 import { TransferFilmJob } from '../../src/view/transfer-job.ts';
 import { faults } from '../../src/view/worker-deaths.ts';
-import { C_CRASH, C_LOCK, type JobConfig } from '../../workers/render-protocol.ts';
+import { C_CRASH, C_HANG, C_LOCK, type JobConfig } from '../../workers/render-protocol.ts';
 import { differingWords, mulberry32 } from '../helpers/faults.ts';
 import { NodeWebWorker } from '../../bench/node-web-worker.ts';
 
@@ -167,16 +167,23 @@ async function renderWithFaults(
           await sleep(2);
         }
       } else {
-        let token = 0;
-        while (!(token = pool.hangWorker(index, 1 + Math.floor(random() * 5)))) await sleep(2);
-        // Frozen once it holds the lock for good (a live holder keeps it for microseconds).
+        // Armed in shared memory too: whichever worker claims next freezes
+        // at that step of its next row commit and leaves −(its token) in
+        // C_HANG, then holds the lock for good (a live holder keeps it for
+        // microseconds).
         const ctrl = new Int32Array(shared!.ctrlBuffer);
+        Atomics.store(ctrl, C_HANG, 1 + Math.floor(random() * 5));
         const until = Date.now() + 30_000;
-        while (Atomics.load(ctrl, C_LOCK) !== token && Date.now() < until) {
+        let token = 0;
+        while (Date.now() < until) {
+          token = -Atomics.load(ctrl, C_HANG);
+          if (token > 0 && Atomics.load(ctrl, C_LOCK) === token) break;
           extend();
           await sleep(2);
         }
+        expect(token).toBeGreaterThan(0);
         expect(Atomics.load(ctrl, C_LOCK)).toBe(token);
+        Atomics.store(ctrl, C_HANG, 0);
         pool.killWorker(0, token);
       }
     }
