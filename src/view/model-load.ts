@@ -118,8 +118,7 @@ export function loadModelInWorker(
       if (!heard) {
         cannotStart = true;
         resolve(null);
-      }
-      else reject(new Error(`the model worker failed: ${e.message || 'unknown error'}`));
+      } else reject(new Error(`the model worker failed: ${e.message || 'unknown error'}`));
     };
   });
   return { promise, cancel: end };
