@@ -3,7 +3,7 @@
  * random-sphere scenes of growing size both ways (single thread, same
  * seed) and reports M segments/s, each configuration in its own process so
  * one cannot warm (or pollute the type feedback of) another. The crossover
- * sets BVH_THRESHOLD in src/core/scene/compile.ts.
+ * sets BVH_THRESHOLD in src/core/scene/compile/compile.ts.
  * Run: node scripts/run-ts.mjs bench/bvh-crossover.ts
  */
 import { execFileSync } from 'node:child_process';
@@ -17,7 +17,7 @@ import {
   parseScene,
   type Scene,
 } from '../src/core/index.ts';
-import { randomSpheresScene } from '../src/core/scene/random-spheres.ts';
+import { randomSpheresScene } from '../src/core/scene/load/random-spheres.ts';
 
 const counts = [1, 2, 4, 8, 12, 16, 24, 32, 48, 64, 128];
 const size = 80;

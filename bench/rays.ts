@@ -10,7 +10,7 @@
  */
 import { Camera, compileScene } from '../src/core/index.ts';
 import { Hit, Ray, SHAPE_QUAD, SHAPE_SPHERE } from '../src/core/geometry/ray.ts';
-import { intersectScene, occluded } from '../src/core/geometry/trace.ts';
+import { intersectScene, occluded } from '../src/core/accel/trace.ts';
 import { Q_NORMAL, QUAD_STRIDE, SPHERE_STRIDE } from '../src/core/geometry/shapes.ts';
 import { loadBenchScene } from './mesh-scenes.ts';
 

@@ -20,7 +20,7 @@ import { parentPort, workerData } from 'node:worker_threads';
 import { Film } from '../src/core/film/film.ts';
 import type { PathTracer } from '../src/core/integrator/path-tracer.ts';
 import { RenderStats } from '../src/core/integrator/render-stats.ts';
-import { unpackScene, type PackedScene } from '../src/core/scene/pack.ts';
+import { unpackScene, type PackedScene } from '../src/core/scene/compile/pack.ts';
 import {
   claimStripe,
   renderStripeRound,

@@ -6,7 +6,7 @@
  */
 import { LIMITS, isModelFileName, type LoadStage } from '../src/core/index.ts';
 import { GLTF_FILE_BYTES } from '../src/core/gltf/load.ts';
-import { sceneSizeProblem } from '../src/core/scene/load.ts';
+import { sceneSizeProblem } from '../src/core/scene/validate/validate.ts';
 import { ByteLimitError, readResponseBounded } from './read-bounded.ts';
 
 export interface Fetched {

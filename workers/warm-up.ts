@@ -8,8 +8,8 @@
  */
 import { Film } from '../src/core/film/film.ts';
 import { RenderStats } from '../src/core/integrator/render-stats.ts';
-import { compileScene } from '../src/core/scene/compile.ts';
-import type { MaterialDesc, Scene, ShapeDesc } from '../src/core/scene/types.ts';
+import { compileScene } from '../src/core/scene/compile/compile.ts';
+import type { MaterialDesc, Scene, ShapeDesc } from '../src/core/scene/format/types.ts';
 import { createTracer, type StripeJob } from './stripes.ts';
 
 /** Side of the throw-away film. */

@@ -4,7 +4,7 @@
  */
 import { DEFAULT_SAMPLER, SAMPLER_KINDS, type SamplerKind } from '../core/sampling/sampler.ts';
 import type { Estimator } from '../core/integrator/path-tracer.ts';
-import { quote, sanitize } from '../core/scene/message.ts';
+import { quote, sanitize } from '../core/util/message.ts';
 import {
   BATCH_OPTION_NAMES,
   BATCH_USAGE,

@@ -5,11 +5,11 @@
  */
 import { availableParallelism } from 'node:os';
 import { FilmFileError } from '../core/film/film-file.ts';
-import { SceneError, validateSettingsOverride } from '../core/scene/load.ts';
-import { countSkippedTriangles } from '../core/scene/mesh-desc.ts';
-import { sceneWarnings } from '../core/scene/warnings.ts';
-import { printableLine, quote } from '../core/scene/message.ts';
-import { DEFAULT_SETTINGS } from '../core/scene/types.ts';
+import { SceneError, validateSettingsOverride } from '../core/scene/validate/validate.ts';
+import { countSkippedTriangles } from '../core/scene/validate/mesh-desc.ts';
+import { sceneWarnings } from '../core/scene/validate/warnings.ts';
+import { printableLine, quote } from '../core/util/message.ts';
+import { DEFAULT_SETTINGS } from '../core/scene/format/types.ts';
 import { SYNOPSIS, USAGE, UsageError, parseRenderArgs, type RenderArgs } from './args.ts';
 import { CliError } from './errors.ts';
 import { commandArgv } from './host.ts';

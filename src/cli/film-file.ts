@@ -16,7 +16,7 @@ import {
   type FilmSettings,
 } from '../core/film/film-file.ts';
 import { SCALE_BITS } from '../core/film/exact-sum.ts';
-import type { Scene } from '../core/scene/types.ts';
+import type { Scene } from '../core/scene/format/types.ts';
 import packageJson from '../../package.json' with { type: 'json' };
 import { CliError } from './errors.ts';
 import { reason, showPath } from './read-bounded.ts';

@@ -4,7 +4,7 @@
  * the output and the JSON line.
  */
 import { existsSync } from 'node:fs';
-import { LIMITS, type Scene, type SettingsDesc } from '../core/scene/types.ts';
+import { LIMITS, type Scene, type SettingsDesc } from '../core/scene/format/types.ts';
 import { estimateNoise } from '../core/film/noise.ts';
 import { formatRanges } from '../core/film/sample-ranges.ts';
 import type { Film } from '../core/film/film.ts';

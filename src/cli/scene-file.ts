@@ -4,9 +4,9 @@ import { basename, dirname } from 'node:path';
 // image decoders, MikkTSpace; most of the command line's code) is imported when a scene
 // names a model, so a scene of spheres and quads starts without compiling it.
 import { GLTF_FILE_BYTES, isModelFileName } from '../core/gltf/file-names.ts';
-import { SceneError, parseScene, sceneSizeProblem } from '../core/scene/load.ts';
-import { sceneNeedsFiles } from '../core/scene/needs-files.ts';
-import { LIMITS, type Scene } from '../core/scene/types.ts';
+import { SceneError, parseScene, sceneSizeProblem } from '../core/scene/validate/validate.ts';
+import { sceneNeedsFiles } from '../core/scene/validate/needs-files.ts';
+import { LIMITS, type Scene } from '../core/scene/format/types.ts';
 import { CliError } from './errors.ts';
 import { ReadLimitError, readBounded, showPath } from './read-bounded.ts';
 import { nodeSceneFiles } from './scene-files.ts';
@@ -47,7 +47,7 @@ export async function loadSceneFile(path: string, options: SceneFileOptions = {}
     };
     if (model) {
       testStage('load');
-      const { loadBareModel } = await import('../core/gltf/bare-scene.ts');
+      const { loadBareModel } = await import('../core/scene/load/bare-scene.ts');
       return await loadBareModel(bytes, basename(path), files, {
         ...(await tangents()),
         ...options,
@@ -57,7 +57,7 @@ export async function loadSceneFile(path: string, options: SceneFileOptions = {}
     const scene = parseScene(bytes);
     if (!sceneNeedsFiles(scene)) return scene;
     testStage('load');
-    const { resolveSceneFiles } = await import('../core/scene/files.ts');
+    const { resolveSceneFiles } = await import('../core/scene/load/load.ts');
     const gltf = scene.shapes.some((s) => s.type === 'gltf');
     return await resolveSceneFiles(scene, files, gltf ? await tangents() : {});
   } catch (e) {

@@ -2,7 +2,7 @@
  * pathwise core: the DOM-free tracer. Runs in Node, in Web Workers and on
  * the main thread alike.
  */
-export * from './scene/types.ts';
+export * from './scene/format/types.ts';
 export {
   parseScene,
   validateScene,
@@ -10,8 +10,8 @@ export {
   isValidatedScene,
   markValidated,
   SceneError,
-} from './scene/load.ts';
-export { setCancelCheck, CancelledError } from './cancel.ts';
+} from './scene/validate/validate.ts';
+export { setCancelCheck, CancelledError } from './util/cancel.ts';
 export {
   loadScene,
   resolveSceneFiles,
@@ -19,25 +19,25 @@ export {
   type LoadStage,
   type ResolveOptions,
   type SceneFileReader,
-} from './scene/files.ts';
+} from './scene/load/load.ts';
 export {
   bareModelScene,
   isGlbBytes,
   isModelFileName,
   loadBareModel,
   type BareSceneOptions,
-} from './gltf/bare-scene.ts';
+} from './scene/load/bare-scene.ts';
 export { studioEnvironment, STUDIO_FILE } from './lights/studio.ts';
-export { sceneWarnings } from './scene/warnings.ts';
-export { countSkippedTriangles } from './scene/mesh-desc.ts';
+export { sceneWarnings } from './scene/validate/warnings.ts';
+export { countSkippedTriangles } from './scene/validate/mesh-desc.ts';
 export {
   compileScene,
   CompiledScene,
   BVH_THRESHOLD,
   type CompileOptions,
   type SceneData,
-} from './scene/compile.ts';
-export { packScene, unpackScene, canShareMemory, type PackedScene } from './scene/pack.ts';
+} from './scene/compile/compile.ts';
+export { packScene, unpackScene, canShareMemory, type PackedScene } from './scene/compile/pack.ts';
 export {
   PathTracer,
   RenderStats,

@@ -31,7 +31,7 @@ import {
   type SceneFileReader,
 } from '../core/index.ts';
 import { GLTF_FILE_BYTES } from '../core/gltf/load.ts';
-import { sceneSizeProblem } from '../core/scene/load.ts';
+import { sceneSizeProblem } from '../core/scene/validate/validate.ts';
 import { ByteLimitError, readBlobBounded } from '../../workers/read-bounded.ts';
 import { fetchBounded, fileNameOf, modelSizeProblem } from '../../workers/url-load.ts';
 import { loadModelInWorker, type LoadedModel, type ModelJob } from './model-load.ts';

@@ -25,7 +25,7 @@ import {
   type FilmHeader,
   type PfmImage,
 } from '../../src/core/index.ts';
-import { GM_STRIDE } from '../../src/core/gltf/material-table.ts';
+import { GM_STRIDE } from '../../src/core/gltf-material/material-table.ts';
 import { type GltfModel, loadGltf } from '../../src/core/gltf/load.ts';
 import { decodeImageJs } from '../../src/core/texture/decode-js.ts';
 import { POSITION_Y2_OFFSET, quadGlb, quadGltfDataUri } from './gltf-samples.ts';

@@ -27,9 +27,9 @@ import {
 } from '../../src/core/index.ts';
 import { UsageError, parseRenderArgs } from '../../src/cli/args.ts';
 import { decodeUtf8, Utf8Error } from '../../src/core/io/utf8.ts';
-import { JsonError, parseJson, parseJsonStrict } from '../../src/core/scene/json.ts';
-import { quote, sanitize } from '../../src/core/scene/message.ts';
-import { MAX_RADIANCE } from '../../src/core/scene/radiance.ts';
+import { JsonError, parseJson, parseJsonStrict } from '../../src/core/io/json.ts';
+import { quote, sanitize } from '../../src/core/util/message.ts';
+import { MAX_RADIANCE } from '../../src/core/scene/validate/radiance.ts';
 import { PRINTABLE_LINE, expectContract, runCli } from '../helpers/cli.ts';
 import { CORPUS_DIR } from './corpus.ts';
 import { mutatedArgs, mutatedScene } from './mutate.ts';

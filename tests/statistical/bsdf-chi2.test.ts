@@ -25,7 +25,7 @@ import { fresnelDielectric, schlickWeight } from '../../src/core/bsdf/fresnel.ts
 import { compileMaterials } from '../../src/core/bsdf/materials.ts';
 import { BsdfSample, BsdfValue } from '../../src/core/bsdf/records.ts';
 import { hashToUnit, sampleKey } from '../../src/core/rng/pcg.ts';
-import type { MaterialDesc, Vec3 } from '../../src/core/scene/types.ts';
+import type { MaterialDesc, Vec3 } from '../../src/core/scene/format/types.ts';
 import { chi2Survival, chi2Test, type Chi2Result } from '../helpers/chi2.ts';
 import { gaussLegendre, HemisphereGrid } from '../helpers/hemisphere-grid.ts';
 

@@ -12,7 +12,7 @@
 import { describe, expect, it } from 'vitest';
 import { EnvironmentMap, EnvironmentSample } from '../../src/core/lights/environment-map.ts';
 import { hashToUnit, sampleKey } from '../../src/core/rng/pcg.ts';
-import type { Vec3 } from '../../src/core/scene/types.ts';
+import type { Vec3 } from '../../src/core/scene/format/types.ts';
 import { chi2Test } from '../helpers/chi2.ts';
 
 const TWO_PI = 2 * Math.PI;

@@ -4,7 +4,7 @@
  */
 import { describe, expect, it } from 'vitest';
 import { BVH_THRESHOLD, compileScene } from '../../src/core/index.ts';
-import { randomSpheresScene } from '../../src/core/scene/random-spheres.ts';
+import { randomSpheresScene } from '../../src/core/scene/load/random-spheres.ts';
 import { loadScene, renderSampled } from '../helpers/render.ts';
 import { Hit, Ray, SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE } from '../../src/core/geometry/ray.ts';
 import {
@@ -17,7 +17,7 @@ import {
   SPHERE_STRIDE,
 } from '../../src/core/geometry/shapes.ts';
 import { AXIS_STRIDE, GENERAL_STRIDE, VERTICAL_STRIDE } from '../../src/core/geometry/quad-list.ts';
-import { intersectScene, occluded } from '../../src/core/geometry/trace.ts';
+import { intersectScene, occluded } from '../../src/core/accel/trace.ts';
 import { pcgHash } from '../../src/core/rng/pcg.ts';
 import {
   BVH_LEAF_BITS,

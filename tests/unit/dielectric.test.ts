@@ -12,7 +12,7 @@ import { fresnelDielectric } from '../../src/core/bsdf/fresnel.ts';
 import { compileMaterials, M_DELTA, MATERIAL_STRIDE } from '../../src/core/bsdf/materials.ts';
 import { BsdfSample, BsdfValue } from '../../src/core/bsdf/records.ts';
 import { hashToUnit, sampleKey } from '../../src/core/rng/pcg.ts';
-import type { MaterialDesc, Vec3 } from '../../src/core/scene/types.ts';
+import type { MaterialDesc, Vec3 } from '../../src/core/scene/format/types.ts';
 
 const BLACK: Vec3 = [0, 0, 0];
 const TINT: Vec3 = [0.9, 0.75, 0.5];

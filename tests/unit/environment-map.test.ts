@@ -11,7 +11,7 @@ import {
   luminance,
 } from '../../src/core/lights/environment-map.ts';
 import { hashToUnit, sampleKey } from '../../src/core/rng/pcg.ts';
-import type { EnvironmentMapDesc, Vec3 } from '../../src/core/scene/types.ts';
+import type { EnvironmentMapDesc, Vec3 } from '../../src/core/scene/format/types.ts';
 
 export function makeMap(
   width: number,

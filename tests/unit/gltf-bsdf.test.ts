@@ -18,7 +18,7 @@ import { usesGeometricSide } from '../../src/core/bsdf/bsdf.ts';
 import { BsdfSample, BsdfValue } from '../../src/core/bsdf/records.ts';
 import type { ShadingParams } from '../../src/core/bsdf/shading.ts';
 import { hashToUnit, sampleKey } from '../../src/core/rng/pcg.ts';
-import type { Vec3 } from '../../src/core/scene/types.ts';
+import type { Vec3 } from '../../src/core/scene/format/types.ts';
 import { bsdfEval, bsdfPdf, bsdfSample, shading } from '../helpers/bsdf-calls.ts';
 
 const BLACK: Vec3 = [0, 0, 0];

@@ -1,6 +1,6 @@
-/** The camera of a bare glTF model (src/core/gltf/framing.ts). */
+/** The camera of a bare glTF model (src/core/scene/load/framing.ts). */
 import { describe, expect, it } from 'vitest';
-import { frameModel, FRAMING_FOV_Y } from '../../src/core/gltf/framing.ts';
+import { frameModel, FRAMING_FOV_Y } from '../../src/core/scene/load/framing.ts';
 
 describe('framing a bare model', () => {
   const bounds = Float64Array.of(-1, 0, -1, 1, 2, 1);

@@ -16,7 +16,7 @@ import {
 } from '@gltf-transform/extensions';
 import { describe, expect, it } from 'vitest';
 import { ShadingParams } from '../../src/core/bsdf/shading.ts';
-import { groupByMaterial } from '../../src/core/gltf/groups.ts';
+import { groupByMaterial } from '../../src/core/scene/compile/groups.ts';
 import { loadGltf } from '../../src/core/gltf/load.ts';
 import {
   GM_EMISSIVE,
@@ -26,8 +26,8 @@ import {
   GM_SPECULAR,
   GM_STRIDE,
   GM_TRANSMISSION,
-} from '../../src/core/gltf/material-table.ts';
-import { fillGltfShading, HitAttributes } from '../../src/core/gltf/shading-fill.ts';
+} from '../../src/core/gltf-material/material-table.ts';
+import { fillGltfShading, HitAttributes } from '../../src/core/gltf-material/shading-fill.ts';
 import { srgbToLinear } from '../../src/core/texture/srgb.ts';
 import { loadGlb, memoryOptions, png, quadPrimitive, toGltfFiles } from '../helpers/gltf.ts';
 

@@ -1,11 +1,14 @@
 /**
- * Normal mapping (src/core/gltf/normal-map.ts) and the barycentric
+ * Normal mapping (src/core/gltf-material/normal-map.ts) and the barycentric
  * interpolation of glTF vertex attributes (hit-attributes.ts).
  */
 import { describe, expect, it } from 'vitest';
-import { interpolateAttributes, interpolateTangent } from '../../src/core/gltf/hit-attributes.ts';
-import { applyNormalMap } from '../../src/core/gltf/normal-map.ts';
-import { HitAttributes } from '../../src/core/gltf/shading-fill.ts';
+import {
+  interpolateAttributes,
+  interpolateTangent,
+} from '../../src/core/gltf-material/hit-attributes.ts';
+import { applyNormalMap } from '../../src/core/gltf-material/normal-map.ts';
+import { HitAttributes } from '../../src/core/gltf-material/shading-fill.ts';
 
 const out = { x: 0, y: 0, z: 0 };
 const map = (

@@ -19,10 +19,10 @@ import {
 } from '../../src/core/index.ts';
 import { QUAD_STRIDE, writeQuadRecord } from '../../src/core/geometry/shapes.ts';
 import { Utf8Error, decodeUtf8, findInvalidUtf8 } from '../../src/core/io/utf8.ts';
-import { JsonError, MAX_JSON_DEPTH, lineColumn, parseJson } from '../../src/core/scene/json.ts';
-import { printableLine, quote, sanitize } from '../../src/core/scene/message.ts';
-import { MAX_RADIANCE, checkTexelRadiance } from '../../src/core/scene/radiance.ts';
-import { LIMITS } from '../../src/core/scene/types.ts';
+import { JsonError, MAX_JSON_DEPTH, lineColumn, parseJson } from '../../src/core/io/json.ts';
+import { printableLine, quote, sanitize } from '../../src/core/util/message.ts';
+import { MAX_RADIANCE, checkTexelRadiance } from '../../src/core/scene/validate/radiance.ts';
+import { LIMITS } from '../../src/core/scene/format/types.ts';
 import { ROOT } from '../helpers/render.ts';
 
 const base = () =>

@@ -13,11 +13,11 @@ import {
   type ShapeDesc,
 } from '../../src/core/index.ts';
 import { Hit, Ray } from '../../src/core/geometry/ray.ts';
-import { intersectScene, occluded } from '../../src/core/geometry/trace.ts';
+import { intersectScene, occluded } from '../../src/core/accel/trace.ts';
 import { hashToUnit, sampleKey } from '../../src/core/rng/pcg.ts';
 import { imageMean, loadScene, loadSceneWithFiles, renderSampled } from '../helpers/render.ts';
 import { Film, PathTracer, RenderStats } from '../../src/core/index.ts';
-import { packScene, unpackScene } from '../../src/core/scene/pack.ts';
+import { packScene, unpackScene } from '../../src/core/scene/compile/pack.ts';
 import { icosphere } from '../helpers/mesh-gen.ts';
 
 /** The quad as an inline mesh of two triangles with the same front side. */

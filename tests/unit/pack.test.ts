@@ -14,8 +14,8 @@ import {
   type CompiledScene,
   type Scene,
 } from '../../src/core/index.ts';
-import { SCENE_ARRAYS } from '../../src/core/scene/compile.ts';
-import { randomSpheresScene } from '../../src/core/scene/random-spheres.ts';
+import { SCENE_ARRAYS } from '../../src/core/scene/compile/compile.ts';
+import { randomSpheresScene } from '../../src/core/scene/load/random-spheres.ts';
 import { loadScene } from '../helpers/render.ts';
 
 function render(scene: Scene, compiled: CompiledScene): Float32Array {

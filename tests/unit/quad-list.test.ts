@@ -8,8 +8,8 @@ import { describe, expect, it } from 'vitest';
 import { intersectQuad } from '../../src/core/geometry/intersect.ts';
 import { QuadList, nearestQuad } from '../../src/core/geometry/quad-list.ts';
 import { Ray } from '../../src/core/geometry/ray.ts';
-import { occluded } from '../../src/core/geometry/trace.ts';
-import type { CompiledScene } from '../../src/core/scene/compile.ts';
+import { occluded } from '../../src/core/accel/trace.ts';
+import type { CompiledScene } from '../../src/core/scene/compile/compile.ts';
 import { QUAD_STRIDE, writeQuadRecord } from '../../src/core/geometry/shapes.ts';
 import { pcgHash } from '../../src/core/rng/pcg.ts';
 

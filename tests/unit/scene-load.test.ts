@@ -5,9 +5,9 @@ import {
   parseScene,
   validateScene,
   validateSettingsOverride,
-} from '../../src/core/scene/load.ts';
-import { DEFAULT_SETTINGS, LIMITS } from '../../src/core/scene/types.ts';
-import { utf8Length } from '../../src/core/scene/validate-helpers.ts';
+} from '../../src/core/scene/validate/validate.ts';
+import { DEFAULT_SETTINGS, LIMITS } from '../../src/core/scene/format/types.ts';
+import { utf8Length } from '../../src/core/scene/validate/validate-helpers.ts';
 
 const scenesDir = new URL('../../scenes/', import.meta.url);
 const sceneFiles = readdirSync(scenesDir).filter((f) => f.endsWith('.json'));

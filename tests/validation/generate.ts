@@ -22,7 +22,7 @@ import { BVH_THRESHOLD, parseScene, type MeshDesc, type Scene } from '../../src/
 import { buildMeshData } from '../../src/core/geometry/mesh-data.ts';
 import { parseObj } from '../../src/core/io/obj.ts';
 import { parsePly } from '../../src/core/io/ply.ts';
-import { decodeEnvironmentImage } from '../../src/core/scene/files.ts';
+import { decodeEnvironmentImage } from '../../src/core/scene/load/load.ts';
 import { compose, similarityMatrix, transformPositions } from './affine.ts';
 import { ARCHETYPES } from './archetypes.ts';
 import { MESH_ARCHETYPES } from './archetypes-mesh.ts';
@@ -157,7 +157,7 @@ export function generateScene(seed: number, options: GenerateOptions = {}): Gene
 
 /**
  * The scene with the files it names read from `files` and decoded, as
- * resolveSceneFiles (src/core/scene/files.ts) does through a reader, but at once.
+ * resolveSceneFiles (src/core/scene/load/load.ts) does through a reader, but at once.
  */
 function readFiles(scene: Scene, files: Record<string, Uint8Array>): Scene {
   const limits = { maxTriangles: 10_000_000, sceneTriangles: 10_000_000 };

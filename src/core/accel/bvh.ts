@@ -28,7 +28,7 @@
  * empty box that no ray enters).
  */
 
-import { checkCancel } from '../cancel.ts';
+import { checkCancel } from '../util/cancel.ts';
 
 export const BVH_NODE_WORDS = 16;
 /** Word offsets inside a node. */

@@ -15,7 +15,7 @@
 import { QUAD_STRIDE, Q_CORNER, Q_U, Q_V, SPHERE_STRIDE } from '../geometry/shapes.ts';
 import { SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE } from '../geometry/ray.ts';
 import { f32Above, f32Below } from './bvh.ts';
-import { checkCancel } from '../cancel.ts';
+import { checkCancel } from '../util/cancel.ts';
 
 export const PRIM_KIND_BITS = 2;
 export const PRIM_KIND_MASK = (1 << PRIM_KIND_BITS) - 1;

@@ -12,7 +12,7 @@
  * multiply for a stride. tests/unit/bvh.test.ts checks that the literals
  * match the named layout.
  */
-import type { CompiledScene } from '../scene/compile.ts';
+import type { SceneGeometry } from './scene-geometry.ts';
 import { hitQuad, hitSphere } from '../geometry/intersect.ts';
 import {
   loadRay,
@@ -55,7 +55,7 @@ import { hitTriangle, setTriangleRay } from '../geometry/triangle.ts';
  * the plane of a face) is false and skips the box, which is right because
  * boxes are padded: such a ray cannot reach what is inside.
  */
-export function intersectBvh(scene: CompiledScene, r: Float64Array, hit: Hit): boolean {
+export function intersectBvh(scene: SceneGeometry, r: Float64Array, hit: Hit): boolean {
   const bvh = scene.bvh!;
   const ox = r[0],
     oy = r[1],
@@ -251,7 +251,7 @@ export function intersectBvh(scene: CompiledScene, r: Float64Array, hit: Hit): b
  * the search. It loads the ray record itself (rather than trace.ts's
  * `occluded`, which stays small enough to be inlined; see there).
  */
-export function occludedBvh(scene: CompiledScene, ray: Ray): boolean {
+export function occludedBvh(scene: SceneGeometry, ray: Ray): boolean {
   const bvh = scene.bvh!;
   const r = scene.ray;
   loadRay(r, ray);

@@ -3,7 +3,7 @@
  * the tracer reads them without touching objects. The type tag selects the
  * BSDF in one switch (see bsdf.ts).
  */
-import type { MaterialDesc } from '../scene/types.ts';
+import type { MaterialDesc } from '../scene/format/types.ts';
 
 export const MATERIAL_DIFFUSE = 0;
 export const MATERIAL_CONDUCTOR = 1;

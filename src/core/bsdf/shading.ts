@@ -2,7 +2,7 @@
  * The per-hit parameters of the glTF metallic–roughness material, in one
  * caller-owned record. The integrator fills it at each hit — from the
  * material's constant factors, or from its textures at the hit's texture
- * coordinates (see src/core/gltf/shading-fill.ts) — and the glTF BSDF
+ * coordinates (see src/core/gltf-material/shading-fill.ts) — and the glTF BSDF
  * (gltf-pbr.ts) reads only this record, so per-triangle and per-texel
  * parameters cost no allocation and no change of the BSDF interface.
  *

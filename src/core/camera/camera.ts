@@ -1,4 +1,4 @@
-import type { CameraDesc } from '../scene/types.ts';
+import type { CameraDesc } from '../scene/format/types.ts';
 import { squareToUniformDiskConcentric, type Vec2Out } from '../sampling/warps.ts';
 import type { Ray } from '../geometry/ray.ts';
 

@@ -24,7 +24,7 @@
  * fractions, nothing out of range). Each problem is one FilmFileError
  * sentence.
  */
-import { LIMITS } from '../scene/types.ts';
+import { LIMITS } from '../scene/format/types.ts';
 import { SAMPLER_KINDS, type SamplerKind } from '../sampling/sampler.ts';
 import { crc32 } from '../io/crc32.ts';
 import { FormatError } from '../io/format-error.ts';

@@ -5,7 +5,7 @@
  * of zero area, judged in double precision after the transform, are dropped and counted.
  */
 import { normalMatrix, transformPoints } from '../math/affine.ts';
-import type { MeshData } from '../scene/types.ts';
+import type { MeshData } from '../scene/format/types.ts';
 
 /** A mesh as read, indices already checked to be in range. Owned by buildMeshData. */
 export interface RawMesh {

@@ -2,7 +2,7 @@
  * Shapes compiled into flat Float64Arrays (flatbush-style), one record per
  * shape, so intersection loops read numbers, not objects.
  */
-import type { QuadDesc, SphereDesc } from '../scene/types.ts';
+import type { QuadDesc, SphereDesc } from '../scene/format/types.ts';
 
 /** Sphere record: center x, y, z and radius. */
 export const SPHERE_STRIDE = 4;

@@ -3,17 +3,10 @@
  * the file's own view (glTF 2.0 §3.10: a camera looks down its node's −z
  * with +y up; `yfov` is the full vertical field of view in radians).
  */
+import type { GltfCamera } from '../scene/format/gltf-model.ts';
 import type { Mat4 } from './transforms.ts';
 
 type Json = Record<string, unknown>;
-
-export interface GltfCamera {
-  position: [number, number, number];
-  target: [number, number, number];
-  up: [number, number, number];
-  /** Full vertical field of view in degrees. */
-  fovY: number;
-}
 
 /** A perspective camera at world matrix m, or null for an unusable one. */
 export function readCamera(cam: Json, m: Mat4): GltfCamera | null {

@@ -19,7 +19,8 @@
  */
 import type { Document, Mesh, Primitive } from '@gltf-transform/core';
 import { readFloats } from './accessors.ts';
-import { type GltfCamera, readCamera } from './cameras.ts';
+import { readCamera } from './cameras.ts';
+import type { GltfCamera } from '../scene/format/gltf-model.ts';
 import { triangleList } from './triangles.ts';
 import { GltfError } from './errors.ts';
 import {
@@ -29,8 +30,8 @@ import {
   B_TEXCOORD,
   TEX_NORMAL,
   hasTexture,
-} from './material-table.ts';
-import type { GltfGeometry, TangentGenerator } from './model-types.ts';
+} from '../gltf-material/material-table.ts';
+import type { GltfGeometry, TangentGenerator } from '../scene/format/gltf-model.ts';
 import { generatePrimitiveTangents, weldCorners } from './tangents.ts';
 import { det3, identity, type Mat4, multiply, nodeMatrix, normalMatrix } from './transforms.ts';
 import { MODE_TRIANGLE_FAN, MODE_TRIANGLE_STRIP, MODE_TRIANGLES } from './validate.ts';

@@ -5,10 +5,10 @@
  * and a glTF-Transform I/O that reads only what was handed to it.
  */
 import { PlatformIO } from '@gltf-transform/core';
-import { quote } from '../scene/message.ts';
+import { quote } from '../util/message.ts';
 import { GltfError } from './errors.ts';
 
-import type { GltfFileReader } from './model-types.ts';
+import type { GltfFileReader } from '../scene/format/gltf-model.ts';
 
 export type { GltfFileReader };
 

@@ -23,18 +23,22 @@ import {
   KHRTextureTransform,
 } from '@gltf-transform/extensions';
 import { decodeUtf8 } from '../io/utf8.ts';
-import { parseJson } from '../scene/json.ts';
-import { quote } from '../scene/message.ts';
+import { parseJson } from '../io/json.ts';
+import { quote } from '../util/message.ts';
 import type { ImageDecoder } from '../texture/decoded-image.ts';
 import { DEFAULT_TEXTURE_LIMIT_BYTES, type TextureStore } from '../texture/texture-store.ts';
 import { GltfError, messageOf } from './errors.ts';
 import { GLTF_FILE_BYTES } from './file-names.ts';
-import type { GltfCamera } from './cameras.ts';
 import { flattenGltf } from './flatten.ts';
 import { decodeDataUri, PreloadedIO, resolveUri } from './io.ts';
 import { isGlb, parseGlb } from './glb.ts';
 import { compileGltfMaterials } from './materials.ts';
-import type { GltfFileReader, GltfGeometry, TangentGenerator } from './model-types.ts';
+import type {
+  GltfCamera,
+  GltfFileReader,
+  GltfModel,
+  TangentGenerator,
+} from '../scene/format/gltf-model.ts';
 import { decodeGltfTextures } from './textures.ts';
 import { fromRowMajor } from './transforms.ts';
 import { validateGltfBuffers } from './validate-buffers.ts';
@@ -75,15 +79,7 @@ export interface GltfLoadOptions {
   onProgress?: (stage: GltfStage, done: number, total: number) => void;
 }
 
-export interface GltfModel extends GltfGeometry {
-  /** GM_STRIDE numbers per material (material-table.ts); the last is glTF's default material. */
-  materials: Float64Array;
-  textures: TextureStore;
-  /** One line each, in the order met. */
-  warnings: string[];
-}
-
-export type { GltfCamera };
+export type { GltfCamera, GltfModel };
 
 const EXTENSIONS = [
   KHRMaterialsEmissiveStrength,

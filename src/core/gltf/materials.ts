@@ -45,7 +45,7 @@ import {
   TEX_SPECULAR_COLOR,
   TEX_TRANSMISSION,
   writeDefaultMaterial,
-} from './material-table.ts';
+} from '../gltf-material/material-table.ts';
 
 /** A texture to decode: which glTF texture, in which colour space, and where its bindings are. */
 export interface TextureRequest {

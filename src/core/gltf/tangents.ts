@@ -11,7 +11,7 @@ import type { Primitive } from '@gltf-transform/core';
 import { readFloats } from './accessors.ts';
 import { GltfError, messageOf } from './errors.ts';
 
-import type { TangentGenerator } from './model-types.ts';
+import type { TangentGenerator } from '../scene/format/gltf-model.ts';
 
 export type { TangentGenerator };
 

@@ -7,7 +7,7 @@
  * the decoder lacks, such as WebP or KTX2 in Node) is dropped with a
  * warning: its materials fall back to their factors.
  */
-import { B_IMAGE } from './material-table.ts';
+import { B_IMAGE } from '../gltf-material/material-table.ts';
 import type { TextureRequest } from './materials.ts';
 import type { ImageDecoder } from '../texture/decoded-image.ts';
 import { writeDecodedImage } from '../texture/decoded-image.ts';

@@ -8,7 +8,7 @@
  * naming its place in the file (glTF 2.0 §3.6 "Binary data storage", §5
  * "Properties reference").
  */
-import { quote } from '../scene/message.ts';
+import { quote } from '../util/message.ts';
 import { GltfError } from './errors.ts';
 
 type Json = Record<string, unknown>;

@@ -23,13 +23,18 @@ import { MATERIAL_GLTF, MATERIAL_STRIDE, M_GLTF_INDEX, M_TYPE } from '../bsdf/ma
 import type { ShadingParams } from '../bsdf/shading.ts';
 import { Hit, type Ray, SHAPE_TRIANGLE } from '../geometry/ray.ts';
 import { OFFSET_SCALE } from '../geometry/shapes.ts';
-import { intersectScene } from '../geometry/trace.ts';
-import { interpolateAttributes, interpolateTangent } from '../gltf/hit-attributes.ts';
-import { applyNormalMap } from '../gltf/normal-map.ts';
-import { fillGltfShading, gltfEmission, gltfOpacity, HitAttributes } from '../gltf/shading-fill.ts';
+import { intersectScene } from '../accel/trace.ts';
+import { interpolateAttributes, interpolateTangent } from '../gltf-material/hit-attributes.ts';
+import { applyNormalMap } from '../gltf-material/normal-map.ts';
+import {
+  fillGltfShading,
+  gltfEmission,
+  gltfOpacity,
+  HitAttributes,
+} from '../gltf-material/shading-fill.ts';
 import { triangleNormal } from '../lights/mesh-light.ts';
-import type { CompiledScene } from '../scene/compile.ts';
-import type { GltfScene } from '../scene/gltf-scene.ts';
+import type { CompiledScene } from '../scene/compile/compile.ts';
+import type { GltfScene } from '../scene/compile/gltf-scene.ts';
 import type { TriangleSurface } from './triangle-surface.ts';
 
 /**

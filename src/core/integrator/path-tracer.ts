@@ -7,14 +7,14 @@ import { BsdfQuery, BsdfSample, BsdfValue } from '../bsdf/records.ts';
 import { Camera } from '../camera/camera.ts';
 import type { Film } from '../film/film.ts';
 import { Hit, Ray } from '../geometry/ray.ts';
-import { intersectScene } from '../geometry/trace.ts';
+import { intersectScene } from '../accel/trace.ts';
 import { EnvironmentSample } from '../lights/environment-map.ts';
 import { LightSample } from '../lights/lights.ts';
 import { TriangleSurface } from './triangle-surface.ts';
 import { GltfWork } from './gltf-surface.ts';
 import { DIM_PER_BOUNCE, DEFAULT_SAMPLER, Sampler, type SamplerKind } from '../sampling/sampler.ts';
-import type { CompiledScene } from '../scene/compile.ts';
-import type { CameraDesc } from '../scene/types.ts';
+import type { CompiledScene } from '../scene/compile/compile.ts';
+import type { CameraDesc } from '../scene/format/types.ts';
 import { RenderStats } from './render-stats.ts';
 import { trace } from './trace-path.ts';
 

@@ -48,7 +48,7 @@ import {
   Q_V,
   SPHERE_STRIDE,
 } from '../geometry/shapes.ts';
-import { intersectScene, occluded } from '../geometry/trace.ts';
+import { intersectScene, occluded } from '../accel/trace.ts';
 import { environmentLightPdf, lightPdf, sampleLight } from '../lights/lights.ts';
 import { completeTriangleHit } from './triangle-surface.ts';
 import {

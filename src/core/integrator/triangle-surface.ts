@@ -7,7 +7,7 @@
  */
 import type { Hit } from '../geometry/ray.ts';
 import { triangleNormal } from '../lights/mesh-light.ts';
-import type { CompiledScene } from '../scene/compile.ts';
+import type { CompiledScene } from '../scene/compile/compile.ts';
 
 /** What `completeTriangleHit` writes. */
 export class TriangleSurface {

@@ -6,7 +6,7 @@
  * sized by an unchecked header): tests/fuzz/formats.test.ts checks that contract for each
  * format in its table.
  */
-import { printableLine } from '../scene/message.ts';
+import { printableLine } from '../util/message.ts';
 
 export class FormatError extends Error {
   override name = 'FormatError';

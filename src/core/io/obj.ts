@@ -14,7 +14,7 @@
  * Two passes over the bytes: the first counts vertices and triangles, so the limits are
  * checked and every array is allocated once at its final size; the second fills them.
  */
-import { checkCancel } from '../cancel.ts';
+import { checkCancel } from '../util/cancel.ts';
 import type { RawMesh } from '../geometry/mesh-data.ts';
 import { FormatError } from './format-error.ts';
 import {

@@ -1,4 +1,4 @@
-import { quote } from '../scene/message.ts';
+import { quote } from '../util/message.ts';
 import { FormatError } from './format-error.ts';
 
 /**

@@ -11,7 +11,7 @@
  * size; the second fills them. Problems name the header line, or the element and its
  * index (and, in an ASCII body, the line).
  */
-import { checkCancel } from '../cancel.ts';
+import { checkCancel } from '../util/cancel.ts';
 import type { RawMesh } from '../geometry/mesh-data.ts';
 import type { MeshLimits } from './obj.ts';
 import { FormatError } from './format-error.ts';

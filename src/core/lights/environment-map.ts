@@ -14,7 +14,7 @@
  * `sample`, `pdf` and `invert` are the three faces of the warp (sample → direction,
  * its density, and back to the random numbers).
  */
-import type { EnvironmentMapDesc } from '../scene/types.ts';
+import type { EnvironmentMapDesc } from '../scene/format/types.ts';
 import { Distribution2D } from '../sampling/distribution.ts';
 import type { Vec2Out } from '../sampling/warps.ts';
 

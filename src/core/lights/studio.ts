@@ -14,7 +14,7 @@
  * Light sampling takes the map by luminance like any environment map, so the
  * softboxes are found by next-event estimation.
  */
-import type { EnvironmentMapDesc } from '../scene/types.ts';
+import type { EnvironmentMapDesc } from '../scene/format/types.ts';
 
 export const STUDIO_WIDTH = 256;
 export const STUDIO_HEIGHT = 128;

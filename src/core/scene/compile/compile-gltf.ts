@@ -17,8 +17,8 @@ import {
   M_GEOMETRIC_SIDE,
   M_GLTF_INDEX,
   M_TYPE,
-} from '../bsdf/materials.ts';
-import { groupByMaterial } from '../gltf/groups.ts';
+} from '../../bsdf/materials.ts';
+import { groupByMaterial } from './groups.ts';
 import {
   ALPHA_OPAQUE,
   B_IMAGE,
@@ -30,15 +30,15 @@ import {
   GM_TEXTURES,
   GM_TRANSMISSION,
   TEX_COUNT,
-} from '../gltf/material-table.ts';
+} from '../../gltf-material/material-table.ts';
 import {
   EMPTY_TEXTURES,
   INFO_STRIDE,
   I_OFFSET,
   type TextureStore,
-} from '../texture/texture-store.ts';
+} from '../../texture/texture-store.ts';
 import type { MeshInput } from './compile-meshes.ts';
-import type { GltfDesc } from './types.ts';
+import type { GltfDesc } from '../format/types.ts';
 
 export interface CompiledGltf {
   /** One mesh per (model, material) with triangles. */

@@ -12,7 +12,7 @@
  * A leading byte-order mark is not JSON: callers drop it (decodeUtf8 does).
  */
 
-import { childPath, indexPath, quote } from './message.ts';
+import { childPath, indexPath, quote } from '../util/message.ts';
 
 /** Arrays and objects nested deeper than this are rejected; scenes need about 5 levels. */
 export const MAX_JSON_DEPTH = 512;

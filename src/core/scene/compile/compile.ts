@@ -4,13 +4,14 @@
  * light list without emitters, no BVH below the measured crossover (see
  * BVH_THRESHOLD), so the hot loops never pay for kinds that are absent.
  */
-import { BVH_NODE_WORDS, Bvh, buildBvh } from '../accel/bvh.ts';
-import { QuadList } from '../geometry/quad-list.ts';
-import { PrimitiveBoxes, quadBoxes, sphereBoxes, triangleBoxes } from '../accel/primitives.ts';
-import { compileMaterials, MATERIAL_STRIDE, M_EMISSION, M_EMISSIVE } from '../bsdf/materials.ts';
-import { LIGHT_ENVIRONMENT, SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE } from '../geometry/ray.ts';
-import { RAY_RECORD_WORDS } from '../geometry/ray.ts';
-import { TriangleHit, TriangleRay } from '../geometry/triangle.ts';
+import type { SceneGeometry } from '../../accel/scene-geometry.ts';
+import { BVH_NODE_WORDS, Bvh, buildBvh } from '../../accel/bvh.ts';
+import { QuadList } from '../../geometry/quad-list.ts';
+import { PrimitiveBoxes, quadBoxes, sphereBoxes, triangleBoxes } from '../../accel/primitives.ts';
+import { compileMaterials, MATERIAL_STRIDE, M_EMISSION, M_EMISSIVE } from '../../bsdf/materials.ts';
+import { LIGHT_ENVIRONMENT, SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE } from '../../geometry/ray.ts';
+import { RAY_RECORD_WORDS } from '../../geometry/ray.ts';
+import { TriangleHit, TriangleRay } from '../../geometry/triangle.ts';
 import {
   compileQuads,
   compileSpheres,
@@ -19,16 +20,16 @@ import {
   quadScale as quadScaleOf,
   SPHERE_STRIDE,
   sphereScale as sphereScaleOf,
-} from '../geometry/shapes.ts';
-import { EnvironmentMap } from '../lights/environment-map.ts';
-import { LightList } from '../lights/lights.ts';
-import { MeshLight } from '../lights/mesh-light.ts';
+} from '../../geometry/shapes.ts';
+import { EnvironmentMap } from '../../lights/environment-map.ts';
+import { LightList } from '../../lights/lights.ts';
+import { MeshLight } from '../../lights/mesh-light.ts';
 import { sceneRadius } from './bounds.ts';
 import { CompiledMeshes, compileMeshArrays, type MeshArrays } from './compile-meshes.ts';
 import { compileGltfShapes } from './compile-gltf.ts';
 import { GltfScene } from './gltf-scene.ts';
-import { gltfMeshPower } from '../gltf/light-power.ts';
-import type { GltfDesc, MeshDesc, QuadDesc, Scene, SphereDesc } from './types.ts';
+import { gltfMeshPower } from './light-power.ts';
+import type { GltfDesc, MeshDesc, QuadDesc, Scene, SphereDesc } from '../format/types.ts';
 
 /**
  * Shape count from which a BVH beats the plain loop over all shapes,
@@ -87,7 +88,7 @@ export interface SceneData extends MeshArrays {
   envTexels: Float32Array;
   envParams: Float64Array;
   /**
-   * glTF materials (GM_STRIDE numbers per row, src/core/gltf/material-table.ts) and
+   * glTF materials (GM_STRIDE numbers per row, src/core/gltf-material/material-table.ts) and
    * their textures (texels and per-image offset, width, height, texture-store.ts); all
    * empty without glTF shapes.
    */
@@ -138,7 +139,7 @@ export const SCENE_ARRAYS = [
   'bvhRefs',
 ] as const satisfies readonly (keyof SceneData)[];
 
-export class CompiledScene {
+export class CompiledScene implements SceneGeometry {
   /** The arrays this scene was made from (what pack.ts ships). */
   readonly data: SceneData;
   readonly materials: Float64Array;

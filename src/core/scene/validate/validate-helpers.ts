@@ -5,11 +5,11 @@
  * problem in one pass and throws once, so a user can fix a file in one round trip.
  */
 
-import { childPath, indexPath, quote } from './message.ts';
-import type { Vec3 } from './types.ts';
+import { childPath, indexPath, quote } from '../../util/message.ts';
+import type { Vec3 } from '../format/types.ts';
 
 export { childPath, indexPath };
-export { utf8Length } from '../io/utf8.ts';
+export { utf8Length } from '../../io/utf8.ts';
 
 /** The problems found so far, each a complete sentence that starts with a JSON path. */
 export type Problems = string[];

@@ -8,7 +8,7 @@
  * overflow; the film still rejects (and counts) a sample that would overflow a sum.
  */
 
-import type { Vec3 } from './types.ts';
+import type { Vec3 } from '../format/types.ts';
 import type { NumberRule, Problems } from './validate-helpers.ts';
 
 export const MAX_RADIANCE = 1e12;

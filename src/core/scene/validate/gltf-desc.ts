@@ -4,7 +4,7 @@
  * needs a way to reach the file and the platform's image decoder.
  */
 import { checkTransform } from './mesh-desc.ts';
-import type { GltfDesc } from './types.ts';
+import type { GltfDesc } from '../format/types.ts';
 import { describe, expectString, type Problems } from './validate-helpers.ts';
 
 export const GLTF_KEYS = ['type', 'file', 'transform'];

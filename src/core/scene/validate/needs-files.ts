@@ -3,7 +3,7 @@
  * apart from the readers in files.ts, so that a caller can skip loading them (and the
  * glTF code they bring) for a scene that names none.
  */
-import type { Scene } from './types.ts';
+import type { Scene } from '../format/types.ts';
 
 /** Whether the scene names files that `resolveSceneFiles` must read. */
 export function sceneNeedsFiles(scene: Scene): boolean {

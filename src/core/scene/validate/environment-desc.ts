@@ -4,7 +4,7 @@
  * maps). The map's file is only checked by name here; `resolveSceneFiles` reads it.
  */
 import { RADIANCE } from './radiance.ts';
-import type { EnvironmentMapDesc, Vec3 } from './types.ts';
+import type { EnvironmentMapDesc, Vec3 } from '../format/types.ts';
 import {
   NON_NEGATIVE,
   describe,

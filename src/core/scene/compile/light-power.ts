@@ -10,11 +10,14 @@
  * drawn uniformly by area (mesh-light.ts) and every sample is weighted by the
  * exact emission at its point, so a rough estimate costs noise, never bias.
  */
-import { triangleArea } from '../lights/mesh-light.ts';
-import type { MeshArrays } from '../scene/compile-meshes.ts';
-import type { TextureStore } from '../texture/texture-store.ts';
-import { interpolateAttributes, type VertexAttributes } from './hit-attributes.ts';
-import { gltfEmission, HitAttributes } from './shading-fill.ts';
+import { triangleArea } from '../../lights/mesh-light.ts';
+import type { MeshArrays } from './compile-meshes.ts';
+import type { TextureStore } from '../../texture/texture-store.ts';
+import {
+  interpolateAttributes,
+  type VertexAttributes,
+} from '../../gltf-material/hit-attributes.ts';
+import { gltfEmission, HitAttributes } from '../../gltf-material/shading-fill.ts';
 
 export function gltfMeshPower(
   mesh: MeshArrays,

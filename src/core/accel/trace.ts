@@ -15,16 +15,23 @@
  * that is rare in the scene), a double argument or result would be boxed on
  * the heap at every call.
  */
-import { intersectBvh, occludedBvh } from '../accel/traverse.ts';
-import type { CompiledScene } from '../scene/compile.ts';
-import { intersectSphere } from './intersect.ts';
-import { loadRay, SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE, type Hit, type Ray } from './ray.ts';
-import { nearestQuad } from './quad-list.ts';
-import { hitTriangle, intersectTriangleBary, setTriangleRay } from './triangle.ts';
+import { intersectBvh, occludedBvh } from './traverse.ts';
+import type { SceneGeometry } from './scene-geometry.ts';
+import { intersectSphere } from '../geometry/intersect.ts';
+import {
+  loadRay,
+  SHAPE_QUAD,
+  SHAPE_SPHERE,
+  SHAPE_TRIANGLE,
+  type Hit,
+  type Ray,
+} from '../geometry/ray.ts';
+import { nearestQuad } from '../geometry/quad-list.ts';
+import { hitTriangle, intersectTriangleBary, setTriangleRay } from '../geometry/triangle.ts';
 
-export { RAY_RECORD_WORDS, R_DX, R_OX, R_T } from './ray.ts';
+export { RAY_RECORD_WORDS, R_DX, R_OX, R_T } from '../geometry/ray.ts';
 
-export function intersectScene(scene: CompiledScene, ray: Ray, hit: Hit): boolean {
+export function intersectScene(scene: SceneGeometry, ray: Ray, hit: Hit): boolean {
   const r = scene.ray;
   loadRay(r, ray);
   // Two small functions rather than one big one: V8 optimises (and inlines
@@ -39,7 +46,7 @@ export function intersectScene(scene: CompiledScene, ray: Ray, hit: Hit): boolea
 }
 
 /** Barycentrics of the kept triangle hit, recomputed once with the same ray constants. */
-function triangleBarycentrics(scene: CompiledScene, hit: Hit): void {
+function triangleBarycentrics(scene: SceneGeometry, hit: Hit): void {
   const th = scene.triHit;
   intersectTriangleBary(
     scene.triPositions,
@@ -62,13 +69,13 @@ function triangleBarycentrics(scene: CompiledScene, hit: Hit): void {
  * record and the plain loops in it, was 300), and a shadow ray costs one
  * call, to the loop that does the work.
  */
-export function occluded(scene: CompiledScene, ray: Ray): boolean {
+export function occluded(scene: SceneGeometry, ray: Ray): boolean {
   return scene.bvh === null ? occludedList(scene, ray) : occludedBvh(scene, ray);
 }
 
 // The plain loops call the primitive tests with the ray in locals: each
 // call runs once per shape and query, so V8 always inlines it.
-function intersectList(scene: CompiledScene, r: Float64Array, hit: Hit): boolean {
+function intersectList(scene: SceneGeometry, r: Float64Array, hit: Hit): boolean {
   const ox = r[0],
     oy = r[1],
     oz = r[2],
@@ -119,7 +126,7 @@ function intersectList(scene: CompiledScene, r: Float64Array, hit: Hit): boolean
  * exceed V8's inlining size limit, so a call would be a second one per
  * shadow ray in quad scenes.
  */
-function occludedList(scene: CompiledScene, ray: Ray): boolean {
+function occludedList(scene: SceneGeometry, ray: Ray): boolean {
   const ox = ray.ox,
     oy = ray.oy,
     oz = ray.oz,

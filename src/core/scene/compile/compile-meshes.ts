@@ -12,7 +12,7 @@
  * search over the meshes' first triangles, once per hit, which costs nothing next to
  * the 4 bytes per triangle a table would take.
  */
-import type { MeshData } from './types.ts';
+import type { MeshData } from '../format/types.ts';
 
 /** The mesh arrays of SceneData. */
 export interface MeshArrays {

@@ -5,9 +5,9 @@
  * any material lets light through by its alpha (then shadow rays must look
  * at what they cross; see integrator/gltf-surface.ts).
  */
-import type { HitAttributes } from '../gltf/shading-fill.ts';
-import type { VertexAttributes } from '../gltf/hit-attributes.ts';
-import type { TextureStore } from '../texture/texture-store.ts';
+import type { HitAttributes } from '../../gltf-material/shading-fill.ts';
+import type { VertexAttributes } from '../../gltf-material/hit-attributes.ts';
+import type { TextureStore } from '../../texture/texture-store.ts';
 import { hasAlphaMaterials } from './compile-gltf.ts';
 import type { SceneData } from './compile.ts';
 

@@ -3,7 +3,7 @@
  * ignored, primitives skipped, images that could not be used (gltf/load.ts collects
  * them). Each is one line naming the shape; renderers print or emit them.
  */
-import type { Scene } from './types.ts';
+import type { Scene } from '../format/types.ts';
 
 export function sceneWarnings(scene: Scene): string[] {
   const out: string[] = [];

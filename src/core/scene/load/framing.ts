@@ -5,8 +5,8 @@
  * the front (+z, glTF's forward-facing convention), a little above, with the
  * whole sphere inside the field of view at the image's aspect ratio.
  */
-import type { CameraDesc } from '../scene/types.ts';
-import type { GltfCamera } from './cameras.ts';
+import type { CameraDesc } from '../format/types.ts';
+import type { GltfCamera } from '../format/gltf-model.ts';
 
 /** Default vertical field of view of a framed model, in degrees. */
 export const FRAMING_FOV_Y = 40;

@@ -4,7 +4,7 @@
  * been filled with its documented default, so consumers never re-derive them.
  */
 
-import type { GltfModel } from '../gltf/load.ts';
+import type { GltfModel } from './gltf-model.ts';
 
 export type Vec3 = [number, number, number];
 

@@ -6,9 +6,9 @@
  * Inline arrays can be long (hundreds of thousands of numbers), so each array reports
  * its first bad element only, not one problem per element.
  */
-import { buildMeshData, MeshError } from '../geometry/mesh-data.ts';
-import { transformProblem } from '../math/affine.ts';
-import type { MeshDesc, Scene } from './types.ts';
+import { buildMeshData, MeshError } from '../../geometry/mesh-data.ts';
+import { transformProblem } from '../../math/affine.ts';
+import type { MeshDesc, Scene } from '../format/types.ts';
 import { describe, expectString, indexPath, type Problems } from './validate-helpers.ts';
 
 export const MESH_KEYS = [

@@ -17,7 +17,7 @@ import {
   type ShapeDesc,
   type SphereDesc,
   type Vec3,
-} from './types.ts';
+} from '../format/types.ts';
 import {
   NON_NEGATIVE,
   POSITIVE,
@@ -41,10 +41,10 @@ import {
   sub,
   type Problems,
 } from './validate-helpers.ts';
-import { decodeUtf8, Utf8Error, utf8Length } from '../io/utf8.ts';
-import { JsonError, parseJson } from './json.ts';
+import { decodeUtf8, Utf8Error, utf8Length } from '../../io/utf8.ts';
+import { JsonError, parseJson } from '../../io/json.ts';
 import { RADIANCE } from './radiance.ts';
-import { Q_NORMAL, QUAD_STRIDE, writeQuadRecord } from '../geometry/shapes.ts';
+import { Q_NORMAL, QUAD_STRIDE, writeQuadRecord } from '../../geometry/shapes.ts';
 import { checkEnvironment } from './environment-desc.ts';
 import { GLTF_KEYS, checkGltfShape } from './gltf-desc.ts';
 import { MESH_KEYS, checkMesh } from './mesh-desc.ts';

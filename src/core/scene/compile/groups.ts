@@ -5,7 +5,7 @@
  * shared by two materials are duplicated at their boundary only; nothing
  * else is copied twice.
  */
-import type { GltfGeometry } from './flatten.ts';
+import type { GltfGeometry } from '../../gltf/flatten.ts';
 
 export interface GltfGroup {
   /** Row of the model's material table. */

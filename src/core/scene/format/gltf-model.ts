@@ -5,7 +5,15 @@
  * declarations need a newer lib than ES2022). The modules that use glTF-Transform
  * (flatten.ts, io.ts, tangents.ts) re-export them.
  */
-import type { GltfCamera } from './cameras.ts';
+import type { TextureStore } from '../../texture/texture-store.ts';
+
+export interface GltfCamera {
+  position: [number, number, number];
+  target: [number, number, number];
+  up: [number, number, number];
+  /** Full vertical field of view in degrees. */
+  fovY: number;
+}
 
 /**
  * MikkTSpace over unindexed triangles: positions and normals (3 per corner),
@@ -48,4 +56,12 @@ export interface GltfGeometry {
   bounds: Float64Array;
   /** Perspective cameras of the scene, in traversal order. */
   cameras: GltfCamera[];
+}
+
+export interface GltfModel extends GltfGeometry {
+  /** GM_STRIDE numbers per material (material-table.ts); the last is glTF's default material. */
+  materials: Float64Array;
+  textures: TextureStore;
+  /** One line each, in the order met. */
+  warnings: string[];
 }

@@ -5,18 +5,18 @@
  * bounds (framing.ts) at the image's aspect ratio, the studio environment
  * (lights/studio.ts), and the format's default settings.
  */
-import { studioEnvironment } from '../lights/studio.ts';
-import { type LoadStage, type ResolveOptions, type SceneFileReader } from '../scene/files.ts';
-import { markValidated, SceneError } from '../scene/load.ts';
-import { DEFAULT_SETTINGS, LIMITS, type Scene } from '../scene/types.ts';
-import { sanitize } from '../scene/message.ts';
-import { sceneRangeProblem } from '../scene/extent.ts';
+import { studioEnvironment } from '../../lights/studio.ts';
+import { type LoadStage, type ResolveOptions, type SceneFileReader } from './load.ts';
+import { markValidated, SceneError } from '../validate/validate.ts';
+import { DEFAULT_SETTINGS, LIMITS, type Scene } from '../format/types.ts';
+import { sanitize } from '../../util/message.ts';
+import { sceneRangeProblem } from '../validate/extent.ts';
 import { frameModel } from './framing.ts';
-import { isGlb } from './glb.ts';
-import { GLTF_FILE_BYTES, type GltfModel, loadGltf } from './load.ts';
-import { decodeImageJs } from '../texture/decode-js.ts';
+import { isGlb } from '../../gltf/glb.ts';
+import { GLTF_FILE_BYTES, type GltfModel, loadGltf } from '../../gltf/load.ts';
+import { decodeImageJs } from '../../texture/decode-js.ts';
 
-export { isModelFileName } from './file-names.ts';
+export { isModelFileName } from '../../gltf/file-names.ts';
 
 /** Whether bytes are a GLB file (its magic), whatever the name they came with. */
 export function isGlbBytes(bytes: Uint8Array): boolean {

@@ -4,7 +4,7 @@
  * times π r² of this sphere (pbr-book 4e §12.5.2, ImageInfiniteLight::Phi), so that it
  * competes fairly with the scene's area lights for light samples.
  */
-import { QUAD_STRIDE, Q_CORNER, Q_U, Q_V, SPHERE_STRIDE } from '../geometry/shapes.ts';
+import { QUAD_STRIDE, Q_CORNER, Q_U, Q_V, SPHERE_STRIDE } from '../../geometry/shapes.ts';
 
 export function sceneRadius(
   spheres: Float64Array,

@@ -9,9 +9,9 @@
  * The check reads only what is loaded: a mesh or glTF shape whose file is not read yet is
  * skipped, and checked again by the loader once it is (files.ts, bare-scene.ts).
  */
-import { triangleArea } from '../lights/mesh-light.ts';
-import { indexPath } from './message.ts';
-import type { Scene, ShapeDesc } from './types.ts';
+import { triangleArea } from '../../lights/mesh-light.ts';
+import { indexPath } from '../../util/message.ts';
+import type { Scene, ShapeDesc } from '../format/types.ts';
 
 const AXES = ['x', 'y', 'z'];
 

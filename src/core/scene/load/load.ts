@@ -9,24 +9,29 @@
  * for them: the reader refuses a file over its byte limit, the parsers count triangles
  * and check image sizes before they allocate.
  */
-import { buildMeshData } from '../geometry/mesh-data.ts';
-import { GLTF_FILE_BYTES, type GltfStage, loadGltf } from '../gltf/load.ts';
-import type { TangentGenerator } from '../gltf/model-types.ts';
-import { decodeImageJs } from '../texture/decode-js.ts';
-import type { ImageDecoder } from '../texture/decoded-image.ts';
-import { decodeHdr } from '../io/hdr.ts';
-import { parseObj } from '../io/obj.ts';
-import { decodePfm } from '../io/pfm.ts';
-import { parsePly } from '../io/ply.ts';
-import { envMapFileKind } from './environment-desc.ts';
-import { sceneRangeProblem } from './extent.ts';
-import { sanitize } from './message.ts';
-import { checkTexelRadiance } from './radiance.ts';
-import { SceneError, markValidated, parseScene } from './load.ts';
-import { meshFileKind } from './mesh-desc.ts';
-import { sceneNeedsFiles } from './needs-files.ts';
-import { LIMITS, type EnvironmentImage, type EnvironmentMapDesc, type Scene } from './types.ts';
-import { describe } from './validate-helpers.ts';
+import { buildMeshData } from '../../geometry/mesh-data.ts';
+import { GLTF_FILE_BYTES, type GltfStage, loadGltf } from '../../gltf/load.ts';
+import type { TangentGenerator } from '../format/gltf-model.ts';
+import { decodeImageJs } from '../../texture/decode-js.ts';
+import type { ImageDecoder } from '../../texture/decoded-image.ts';
+import { decodeHdr } from '../../io/hdr.ts';
+import { parseObj } from '../../io/obj.ts';
+import { decodePfm } from '../../io/pfm.ts';
+import { parsePly } from '../../io/ply.ts';
+import { envMapFileKind } from '../validate/environment-desc.ts';
+import { sceneRangeProblem } from '../validate/extent.ts';
+import { sanitize } from '../../util/message.ts';
+import { checkTexelRadiance } from '../validate/radiance.ts';
+import { SceneError, markValidated, parseScene } from '../validate/validate.ts';
+import { meshFileKind } from '../validate/mesh-desc.ts';
+import { sceneNeedsFiles } from '../validate/needs-files.ts';
+import {
+  LIMITS,
+  type EnvironmentImage,
+  type EnvironmentMapDesc,
+  type Scene,
+} from '../format/types.ts';
+import { describe } from '../validate/validate-helpers.ts';
 
 export interface SceneFileReader {
   /**

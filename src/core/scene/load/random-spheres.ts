@@ -4,8 +4,8 @@
  * benchmark and by the test that a 10,000-sphere scene traces at a speed
  * per segment comparable to the Cornell box.
  */
-import { pcgHash, INV_2_32 } from '../rng/pcg.ts';
-import type { Scene, ShapeDesc } from './types.ts';
+import { pcgHash, INV_2_32 } from '../../rng/pcg.ts';
+import type { Scene, ShapeDesc } from '../format/types.ts';
 
 export function randomSpheresScene(count: number, seed = 1): Scene {
   let state = seed >>> 0;
