@@ -1,7 +1,7 @@
 /**
  * Gives a worker_threads worker the Web Worker globals the browser's render
  * worker uses (self-addressed postMessage and message events), so that
- * workers/render-worker.ts runs unchanged in Node (bench/pool-node.ts).
+ * workers/browser/render-worker.ts runs unchanged in Node (bench/pool-node.ts).
  * Imported before the render worker, whose module body calls
  * Comlink.expose on these globals.
  */

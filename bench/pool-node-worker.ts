@@ -1,3 +1,3 @@
 /** The browser's render worker, run in a worker_threads worker (see pool-node-shim.ts). */
 import './pool-node-shim.ts';
-import '../workers/render-worker.ts';
+import '../workers/browser/render-worker.ts';

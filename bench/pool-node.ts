@@ -1,6 +1,6 @@
 /**
  * Thread scaling of the browser's worker pool, run in Node: the page's own
- * WorkerPool (src/view/pool.ts) and render worker (workers/render-worker.ts)
+ * WorkerPool (src/view/pool.ts) and render worker (workers/browser/render-worker.ts)
  * with a film job of either mode, shared (SharedFilmJob: workers claim
  * stripe passes from the control block) or transfer (TransferFilmJob: the
  * main thread hands out passes and merges rows). Only the Worker object is
@@ -26,7 +26,7 @@ import { WorkerPool, type PoolClient } from '../src/view/pool.ts';
 import type { FilmJob } from '../src/view/film-job.ts';
 import { SharedFilmJob } from '../src/view/shared-job.ts';
 import { TransferFilmJob } from '../src/view/transfer-job.ts';
-import { chooseStripeRows, type JobConfig } from '../workers/render-protocol.ts';
+import { chooseStripeRows, type JobConfig } from '../workers/browser/render-protocol.ts';
 import { NodeWebWorker } from './node-web-worker.ts';
 
 const opt: Record<string, string> = {};

@@ -31,5 +31,5 @@ await Promise.all([
     splitting: true,
     chunkNames: 'chunks/[name]-[hash]',
   }),
-  build({ ...common, entryPoints: { 'render-worker': 'workers/node-render-worker.ts' } }),
+  build({ ...common, entryPoints: { 'render-worker': 'workers/node/render-worker.ts' } }),
 ]);

@@ -7,7 +7,7 @@
  * after validation.
  */
 import type { Controller } from '../view/index.ts';
-import { droppedSceneFiles } from '../view/scene-files.ts';
+import { droppedSceneFiles } from '../../workers/browser/scene-files.ts';
 
 export function attachSceneFiles(
   getController: () => Controller,

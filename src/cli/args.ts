@@ -11,17 +11,13 @@ import {
   parseBatchOptions,
   type BatchOptions,
 } from './batch-args.ts';
-import { CliError } from './errors.ts';
+import { UsageError } from './errors.ts';
 import {
   POSITIVE_DECIMAL,
   parseDecimalValue,
   parseIntegerValue,
   switchWithoutValue,
 } from './values.ts';
-
-export class UsageError extends CliError {
-  override name = 'UsageError';
-}
 
 export interface RenderArgs {
   scenePath: string;

@@ -5,7 +5,7 @@
  */
 import { LIMITS } from '../core/scene/format/types.ts';
 import { quote, sanitize } from '../core/util/message.ts';
-import { UsageError } from './args.ts';
+import { UsageError } from './errors.ts';
 import {
   POSITIVE_DECIMAL,
   parseDecimalValue,

@@ -6,3 +6,8 @@
 export class CliError extends Error {
   override name = 'CliError';
 }
+
+/** A bad command line: the message says which argument and why. */
+export class UsageError extends CliError {
+  override name = 'UsageError';
+}

@@ -8,7 +8,7 @@
  *
  * A worker thread that dies (an uncaught error, out of memory, killed) is
  * replaced in its slot and the round goes on: its stripes are finished from
- * its journal or rendered again (workers/round-claims.ts), so the film is
+ * its journal or rendered again (workers/node/round-claims.ts), so the film is
  * bit-identical to an undisturbed render's. Workers that keep dying
  * (DEATH_LIMIT) stop the render with the error, as before.
  */
@@ -19,7 +19,7 @@ import { RenderStats } from '../core/integrator/render-stats.ts';
 import { compileScene } from '../core/scene/compile/compile.ts';
 import { packScene } from '../core/scene/compile/pack.ts';
 import type { Scene } from '../core/scene/format/types.ts';
-import type { StripeJob } from '../../workers/stripes.ts';
+import type { StripeJob } from '../../workers/node/stripes.ts';
 import type {
   InitMessage,
   ReadyReport,
@@ -27,7 +27,7 @@ import type {
   RoundReport,
   WarmMessage,
   WorkerInput,
-} from '../../workers/node-render-worker.ts';
+} from '../../workers/node/render-worker.ts';
 import {
   addRoundStats,
   recoverSlot,
@@ -37,7 +37,7 @@ import {
   stripesDone,
   type RoundMemory,
   type RoundRecovery,
-} from '../../workers/round-claims.ts';
+} from '../../workers/node/round-claims.ts';
 import { testStage } from './test-stages.ts';
 
 export interface PoolRequest {

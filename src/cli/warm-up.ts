@@ -4,7 +4,7 @@
  * one, because each worker interprets the tracer until V8 has optimised it
  * (docs/performance.md, third round). So the workers start before the scene is read
  * and, while the main thread reads, parses and compiles it, trace small built-in
- * scenes to nothing (workers/warm-up.ts) until the real scene is ready (RenderPool
+ * scenes to nothing (workers/node/warm-up.ts) until the real scene is ready (RenderPool
  * raises the stop word) or WARM_BUDGET_MS is spent.
  *
  * A warm-up only pays where a core would otherwise be idle: on the shared 2-core
@@ -15,7 +15,7 @@
  * start early.
  */
 import { availableParallelism, loadavg } from 'node:os';
-import type { WarmJob } from '../../workers/warm-up.ts';
+import type { WarmJob } from '../../workers/node/warm-up.ts';
 import { EarlyWorkers } from './render.ts';
 
 /** Longest warm-up (ms): past it a worker waits idle for a scene that takes long to load. */

@@ -38,7 +38,7 @@ import {
   type Scene,
   type SceneFileReader,
 } from '../core/index.ts';
-import type { JobConfig } from '../../workers/render-protocol.ts';
+import type { JobConfig } from '../../workers/browser/render-protocol.ts';
 import type { DisplayPixels } from './display.ts';
 import { StandInDisplay } from './display-standin.ts';
 import type { FilmJob, FilmSnapshot } from './film-job.ts';

@@ -6,7 +6,7 @@
  * passes and merges the rows that come back).
  */
 import type { CameraDesc, Film } from '../core/index.ts';
-import type { StripeResult, StripeTask } from '../../workers/render-protocol.ts';
+import type { StripeResult, StripeTask } from '../../workers/browser/render-protocol.ts';
 
 export interface FilmJob {
   readonly film: Film;

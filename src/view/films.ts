@@ -6,7 +6,7 @@
  * active; the other is parked (configuration version -1), so no worker
  * spends time on it.
  */
-import { chooseStripeRows } from '../../workers/render-protocol.ts';
+import { chooseStripeRows } from '../../workers/browser/render-protocol.ts';
 import { DEFAULT_MAX_PIXEL_RATIO } from './auto-scale.ts';
 import { Film } from '../core/index.ts';
 import {

@@ -8,7 +8,8 @@ import type { PathTracerController, PathTracerOptions } from './types.ts';
 export type * from './types.ts';
 export type { DisplayPixels } from './display.ts';
 export { Controller } from './controller.ts';
-export { droppedSceneFiles, mappedSceneFiles, urlSceneFiles } from './scene-files.ts';
+export { droppedSceneFiles, urlSceneFiles } from '../../workers/browser/scene-files.ts';
+export { mappedSceneFiles } from './scene-files.ts';
 
 /** Starts rendering `options.scene` (or `options.src`) into `canvas`. */
 export function createPathTracer(

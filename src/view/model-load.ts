@@ -1,5 +1,5 @@
 /**
- * Loading a scene off the page's thread: one module worker (workers/model-worker.ts)
+ * Loading a scene off the page's thread: one module worker (workers/browser/model-worker.ts)
  * reads a pathwise-scene/1 file and the files it names, or a bare glTF model (parse,
  * images, flattening), builds its BVH and packs the compiled scene; the page only
  * installs views of the result, so it stays responsive however large the scene. Where
@@ -7,7 +7,7 @@
  * result is null and the caller loads the scene on the page instead.
  */
 import type { LoadStage, PackedScene, Scene } from '../core/index.ts';
-import type { LoadRequest, ModelReply } from '../../workers/model-protocol.ts';
+import type { LoadRequest, ModelReply } from '../../workers/browser/model-protocol.ts';
 import { startModuleWorker } from './worker-source.ts';
 
 /** `new Worker` through the same-origin shim (see pool.ts: Vite bundles the worker by this pattern). */
@@ -77,7 +77,7 @@ export function loadModelInWorker(
     }
     try {
       const Worker = ModuleWorker;
-      worker = new Worker(new URL('../../workers/model-worker.ts', import.meta.url), {
+      worker = new Worker(new URL('../../workers/browser/model-worker.ts', import.meta.url), {
         type: 'module',
       });
     } catch {

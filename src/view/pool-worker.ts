@@ -8,7 +8,7 @@
  * Nothing here touches the DOM or creates a worker at import time.
  */
 import * as Comlink from 'comlink';
-import type { RenderWorkerApi, StripeTask } from '../../workers/render-protocol.ts';
+import type { RenderWorkerApi, StripeTask } from '../../workers/browser/render-protocol.ts';
 import { startModuleWorker } from './worker-source.ts';
 
 export interface PoolWorker {
@@ -97,7 +97,7 @@ export function createWorker(source: WorkerSource): Worker {
   // written out in full (Vite recognises and bundles the worker by that
   // pattern) while the URL goes through the same-origin shim.
   const Worker = ModuleWorker;
-  return new Worker(new URL('../../workers/render-worker.ts', import.meta.url), {
+  return new Worker(new URL('../../workers/browser/render-worker.ts', import.meta.url), {
     type: 'module',
   });
 }

@@ -15,7 +15,7 @@
  * pool; an `exit` event where a stand-in for Worker has one), starts a
  * replacement at once, and, once the death is certain,
  * lets each client hand the dead worker's claims to the living
- * (workers/shared-claims.ts) — or, in transfer mode, sends the stripe it
+ * (workers/browser/shared-claims.ts) — or, in transfer mode, sends the stripe it
  * held out again. A worker that fails to start (a bad URL, a CSP) is not
  * replaced: that is reported as an `error` event, as before. Workers that
  * keep crashing are not replaced for ever either (CRASH_LIMIT).
@@ -28,7 +28,7 @@ import {
   type JobConfig,
   type StripeResult,
   type StripeTask,
-} from '../../workers/render-protocol.ts';
+} from '../../workers/browser/render-protocol.ts';
 import {
   CRASH_WINDOW_MS,
   CrashWindow,

@@ -9,7 +9,7 @@
  * has been reset.
  */
 import { DEFAULT_SAMPLER, type CameraDesc, type PackedScene } from '../core/index.ts';
-import type { JobConfig } from '../../workers/render-protocol.ts';
+import type { JobConfig } from '../../workers/browser/render-protocol.ts';
 import type { FilmJob } from './film-job.ts';
 import type { Films } from './films.ts';
 import { releasePool, type PoolClient, type WorkerPool } from './pool.ts';

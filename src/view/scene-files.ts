@@ -1,16 +1,9 @@
 /**
- * The page's SceneFileReaders: those that also work in a worker
- * (workers/scene-files.ts), and files from a table of bundled asset URLs.
+ * The page's own SceneFileReader (those that also work in a worker are in
+ * workers/browser/scene-files.ts): files from a table of bundled asset URLs.
  */
 import type { SceneFileReader } from '../core/index.ts';
-import { urlSceneFiles } from '../../workers/scene-files.ts';
-
-export {
-  droppedSceneFiles,
-  urlSceneFiles,
-  type FileSource,
-  type PortableReader,
-} from '../../workers/scene-files.ts';
+import { urlSceneFiles } from '../../workers/browser/scene-files.ts';
 
 /**
  * Files from a table of URLs, by the path the scene names them with: for scenes whose

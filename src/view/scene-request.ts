@@ -32,10 +32,10 @@ import {
 } from '../core/index.ts';
 import { GLTF_FILE_BYTES } from '../core/gltf/load.ts';
 import { sceneSizeProblem } from '../core/scene/validate/validate.ts';
-import { ByteLimitError, readBlobBounded } from '../../workers/read-bounded.ts';
-import { fetchBounded, fileNameOf, modelSizeProblem } from '../../workers/url-load.ts';
+import { ByteLimitError, readBlobBounded } from '../../workers/browser/read-bounded.ts';
+import { fetchBounded, fileNameOf, modelSizeProblem } from '../../workers/browser/url-load.ts';
 import { loadModelInWorker, type LoadedModel, type ModelJob } from './model-load.ts';
-import { urlSceneFiles, type PortableReader } from './scene-files.ts';
+import { urlSceneFiles, type PortableReader } from '../../workers/browser/scene-files.ts';
 import type { PathTracerOptions } from './types.ts';
 
 /**
@@ -285,7 +285,7 @@ export class SceneRequests {
    */
   private async gltfPlatform(): Promise<ResolveOptions> {
     const { browserTangentGenerator, decodeImageBrowser } =
-      await import('../../workers/gltf-browser.ts');
+      await import('../../workers/browser/gltf-browser.ts');
     return {
       decodeImage: decodeImageBrowser,
       // Without it, normal maps of primitives that have no tangents are ignored with

@@ -1,9 +1,9 @@
 /**
  * A film on a SharedArrayBuffer that the workers write in place. The main
  * thread only changes the control block under its lock (see
- * workers/render-protocol.ts) and reads the sums for display.
+ * workers/browser/render-protocol.ts) and reads the sums for display.
  *
- * Workers may die holding a claim or even the lock (workers/shared-claims.ts
+ * Workers may die holding a claim or even the lock (workers/browser/shared-claims.ts
  * says how that is survived): `recover` hands a dead worker's claims to the
  * living and finishes its cut-short commit. The main thread never waits
  * long for the lock: if its holder does not let go within
@@ -29,8 +29,13 @@ import {
   controlWords,
   lock,
   unlock,
-} from '../../workers/render-protocol.ts';
-import { ControlLayout, initControl, lockMain, recoverDead } from '../../workers/shared-claims.ts';
+} from '../../workers/browser/render-protocol.ts';
+import {
+  ControlLayout,
+  initControl,
+  lockMain,
+  recoverDead,
+} from '../../workers/browser/shared-claims.ts';
 import type { FilmJob } from './film-job.ts';
 import { faults, isDead } from './worker-deaths.ts';
 

@@ -7,7 +7,11 @@
  * as the shared path's.
  */
 import { Film } from '../core/index.ts';
-import { stripeOrder, type StripeResult, type StripeTask } from '../../workers/render-protocol.ts';
+import {
+  stripeOrder,
+  type StripeResult,
+  type StripeTask,
+} from '../../workers/browser/render-protocol.ts';
 import type { FilmJob } from './film-job.ts';
 
 export class TransferFilmJob implements FilmJob {

@@ -1,12 +1,12 @@
 /**
  * The page's record of render-worker deaths: the lock tokens of workers
- * known to be dead (see workers/render-protocol.ts), added by the pool once
+ * known to be dead (see workers/browser/render-protocol.ts), added by the pool once
  * a worker's life lock is released and read by the shared films when they
  * find a lock held; and counts of every fault survived, for tests and the
  * curious. A token is never reused, so a dead one stays dead; the set grows
  * by one small number per death.
  */
-import { emptyReport, type RecoveryReport } from '../../workers/shared-claims.ts';
+import { emptyReport, type RecoveryReport } from '../../workers/browser/shared-claims.ts';
 
 export interface FaultCounts extends RecoveryReport {
   /** Workers terminated by the test hook (WorkerPool.killWorker). */

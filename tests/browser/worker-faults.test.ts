@@ -15,7 +15,7 @@ import { SEED } from './context.ts';
 import { bitDifferences, openDemo, readLinear, waitForSpp } from './harness.ts';
 import { useDemo } from './context.ts';
 import { nodeRender } from './node-reference.ts';
-import { C_LOCK } from '../../workers/render-protocol.ts';
+import { C_LOCK } from '../../workers/browser/render-protocol.ts';
 
 const ctx = useDemo();
 

@@ -1,6 +1,6 @@
 /**
  * Render workers started before the scene is read and warmed up meanwhile
- * (src/cli/warm-up.ts, workers/warm-up.ts): how many warm up, and that a
+ * (src/cli/warm-up.ts, workers/node/warm-up.ts): how many warm up, and that a
  * warmed-up pool renders the film bit for bit as one thread does — the
  * warm-up's scenes and film touch nothing of the render, and the stop word
  * ends a warm-up as soon as the real scene is ready (a warm-up left to run

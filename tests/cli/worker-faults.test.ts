@@ -1,6 +1,6 @@
 /**
  * The command line's worker threads dying mid-render (src/cli/render.ts,
- * workers/round-claims.ts): a thread that throws at each step of a stripe,
+ * workers/node/round-claims.ts): a thread that throws at each step of a stripe,
  * threads killed at random moments over several rounds, a thread that dies
  * every time. Each dead thread is replaced, its stripes finished from its
  * journal or rendered again, and the film (every plane of its exact sums)

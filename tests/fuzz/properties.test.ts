@@ -25,7 +25,8 @@ import {
   compileScene,
   parseScene,
 } from '../../src/core/index.ts';
-import { UsageError, parseRenderArgs } from '../../src/cli/args.ts';
+import { parseRenderArgs } from '../../src/cli/args.ts';
+import { UsageError } from '../../src/cli/errors.ts';
 import { decodeUtf8, Utf8Error } from '../../src/core/io/utf8.ts';
 import { JsonError, parseJson, parseJsonStrict } from '../../src/core/io/json.ts';
 import { quote, sanitize } from '../../src/core/util/message.ts';

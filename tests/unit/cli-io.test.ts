@@ -1,6 +1,6 @@
 /**
  * Reading and writing files on the command line (src/cli/read-bounded.ts, output.ts) and
- * reading in the browser (workers/read-bounded.ts, exercised with Node's web streams):
+ * reading in the browser (workers/browser/read-bounded.ts, exercised with Node's web streams):
  * bounded reads from any source, checked and atomic output.
  */
 import { execFileSync, spawn } from 'node:child_process';
@@ -24,7 +24,7 @@ import {
   ByteLimitError,
   readBlobBounded,
   readResponseBounded,
-} from '../../workers/read-bounded.ts';
+} from '../../workers/browser/read-bounded.ts';
 
 const dir = mkdtempSync(join(tmpdir(), 'pathwise-io-'));
 
@@ -138,7 +138,7 @@ describe('OutputFile', () => {
   });
 });
 
-describe('browser reads (workers/read-bounded.ts)', () => {
+describe('browser reads (workers/browser/read-bounded.ts)', () => {
   it('reads a fetched body as a stream and stops at the limit', async () => {
     let pulls = 0;
     const endless = new ReadableStream<Uint8Array>({

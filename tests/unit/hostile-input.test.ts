@@ -5,7 +5,8 @@
  */
 import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
-import { UsageError, parseRenderArgs } from '../../src/cli/args.ts';
+import { parseRenderArgs } from '../../src/cli/args.ts';
+import { UsageError } from '../../src/cli/errors.ts';
 import { CliError } from '../../src/cli/errors.ts';
 import { parseDecimalValue, parseIntegerValue, POSITIVE_DECIMAL } from '../../src/cli/values.ts';
 import {

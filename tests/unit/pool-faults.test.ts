@@ -27,7 +27,7 @@ import { WorkerPool, type PoolClient } from '../../src/view/pool.ts';
 import { SharedFilmJob } from '../../src/view/shared-job.ts';
 import { TransferFilmJob } from '../../src/view/transfer-job.ts';
 import { faults } from '../../src/view/worker-deaths.ts';
-import { C_CRASH, C_HANG, C_LOCK, type JobConfig } from '../../workers/render-protocol.ts';
+import { C_CRASH, C_HANG, C_LOCK, type JobConfig } from '../../workers/browser/render-protocol.ts';
 import { differingWords, mulberry32 } from '../helpers/faults.ts';
 import { NodeWebWorker } from '../../bench/node-web-worker.ts';
 

@@ -16,7 +16,7 @@ import {
 } from '../../src/core/index.ts';
 import { chooseRenderScale, MIN_AUTO_PIXELS, SpeedProbe } from '../../src/view/auto-scale.ts';
 import { compositeBackdrop, tonemapOverBackdrop } from '../../src/view/backdrop.ts';
-import { stripeOrder } from '../../workers/render-protocol.ts';
+import { stripeOrder } from '../../workers/browser/render-protocol.ts';
 
 describe('stripeOrder', () => {
   it('is a permutation of the stripes for every count', () => {

@@ -1,5 +1,5 @@
 /**
- * The shared-memory claim protocol (workers/shared-claims.ts) under worker
+ * The shared-memory claim protocol (workers/browser/shared-claims.ts) under worker
  * deaths at every point, simulated in one thread: simulated workers take
  * turns doing one step each (claim, swap, render and commit a row, finish),
  * some die in the middle of a step (inside the lock, between any two of the
@@ -22,7 +22,13 @@ import {
 } from '../../src/core/index.ts';
 import { SharedFilmJob } from '../../src/view/shared-job.ts';
 import { faults, isDead, markDead, newWorkerToken } from '../../src/view/worker-deaths.ts';
-import { C_CONFIG, C_DONE, C_GEN, C_LOCK, MAX_SLOTS } from '../../workers/render-protocol.ts';
+import {
+  C_CONFIG,
+  C_DONE,
+  C_GEN,
+  C_LOCK,
+  MAX_SLOTS,
+} from '../../workers/browser/render-protocol.ts';
 import {
   ControlLayout,
   commitRow,
@@ -31,7 +37,7 @@ import {
   hasReclaims,
   swapClaim,
   takeClaim,
-} from '../../workers/shared-claims.ts';
+} from '../../workers/browser/shared-claims.ts';
 import { differingWords, mulberry32 } from '../helpers/faults.ts';
 
 const WIDTH = 10;

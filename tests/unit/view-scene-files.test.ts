@@ -4,7 +4,7 @@
  * refuse a file over the limit without holding more than the limit.
  */
 import { afterEach, describe, expect, it, vi } from 'vitest';
-import { droppedSceneFiles, urlSceneFiles } from '../../src/view/scene-files.ts';
+import { droppedSceneFiles, urlSceneFiles } from '../../workers/browser/scene-files.ts';
 import { loadScene } from '../../src/core/index.ts';
 
 afterEach(() => vi.unstubAllGlobals());

@@ -5,7 +5,7 @@
  * by its declared size (Content-Length, File.size), and while streaming by the bytes
  * actually received.
  */
-import type { SceneFileReader } from '../src/core/index.ts';
+import type { SceneFileReader } from '../../src/core/index.ts';
 
 /**
  * Where a reader's files come from, as plain data that crosses to a worker (the model

@@ -22,10 +22,10 @@
  */
 import * as Comlink from 'comlink';
 // Direct module imports, not the core's index (see round-claims.ts).
-import { Film } from '../src/core/film/film.ts';
-import { PathTracer, RenderStats } from '../src/core/integrator/path-tracer.ts';
-import { unpackScene } from '../src/core/scene/compile/pack.ts';
-import type { CompiledScene } from '../src/core/index.ts';
+import { Film } from '../../src/core/film/film.ts';
+import { PathTracer, RenderStats } from '../../src/core/integrator/path-tracer.ts';
+import { unpackScene } from '../../src/core/scene/compile/pack.ts';
+import type { CompiledScene } from '../../src/core/index.ts';
 import {
   C_CONFIG,
   C_CRASH,

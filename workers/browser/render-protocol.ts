@@ -9,7 +9,7 @@
  * so a reset (clear the film, bump the generation) can never interleave
  * with a commit, and no sample of an old generation lands in a new image.
  */
-import type { CameraDesc, Estimator, PackedScene, SamplerKind } from '../src/core/index.ts';
+import type { CameraDesc, Estimator, PackedScene, SamplerKind } from '../../src/core/index.ts';
 
 /** Word indices of the control block. */
 export const C_LOCK = 0;

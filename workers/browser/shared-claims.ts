@@ -35,7 +35,7 @@
  * writes: the unit tests throw from it to kill a simulated worker at every
  * point of the protocol. Production passes nothing.
  */
-import type { Film } from '../src/core/index.ts';
+import type { Film } from '../../src/core/index.ts';
 import {
   C_CLAIM,
   C_COMMITS,

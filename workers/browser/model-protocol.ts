@@ -5,7 +5,7 @@
  * tangents), then compiles and packs it (the BVH build), so that none of that blocks the
  * page however large or degenerate the scene.
  */
-import type { LoadStage, PackedScene, Scene } from '../src/core/index.ts';
+import type { LoadStage, PackedScene, Scene } from '../../src/core/index.ts';
 import type { FileSource } from './scene-files.ts';
 
 interface Common {

@@ -26,7 +26,7 @@ import {
   type ResolveOptions,
   type Scene,
   type SceneFileReader,
-} from '../src/core/index.ts';
+} from '../../src/core/index.ts';
 import { browserTangentGenerator, decodeImageBrowser } from './gltf-browser.ts';
 import {
   SHAPES_PER_MESSAGE,
