@@ -4,11 +4,15 @@
  * the output and the JSON line.
  */
 import { existsSync } from 'node:fs';
-import { LIMITS, type Scene, type SettingsDesc } from '../core/scene/format/types.ts';
-import { estimateNoise } from '../core/film/noise.ts';
-import { formatRanges } from '../core/film/sample-ranges.ts';
-import type { Film } from '../core/film/film.ts';
-import type { FilmHeader } from '../core/film/film-file.ts';
+import {
+  estimateNoise,
+  type Film,
+  type FilmHeader,
+  formatRanges,
+  LIMITS,
+  type Scene,
+  type SettingsDesc,
+} from '../core/index.ts';
 import type { RenderArgs } from './args.ts';
 import { processSeconds, runBatch, type BatchProgress } from './batch.ts';
 import { encodeOutput, isFilmPath } from './encode-output.ts';

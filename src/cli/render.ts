@@ -14,11 +14,7 @@
  */
 import { availableParallelism } from 'node:os';
 import { Worker } from 'node:worker_threads';
-import { Film } from '../core/film/film.ts';
-import { RenderStats } from '../core/integrator/render-stats.ts';
-import { compileScene } from '../core/scene/compile/compile.ts';
-import { packScene } from '../core/scene/compile/pack.ts';
-import type { Scene } from '../core/scene/format/types.ts';
+import { compileScene, Film, packScene, RenderStats, type Scene } from '../core/index.ts';
 import type { StripeJob } from '../../workers/node/stripes.ts';
 import type {
   InitMessage,

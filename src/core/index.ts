@@ -76,3 +76,10 @@ export {
   type SampleRange,
 } from './film/sample-ranges.ts';
 export { crc32 } from './io/crc32.ts';
+export { quote, sanitize, printableLine } from './util/message.ts';
+export { sceneSizeProblem } from './scene/validate/validate.ts';
+export { GLTF_FILE_BYTES, type GltfLoadOptions } from './gltf/load.ts';
+export type { TangentGenerator } from './scene/format/gltf-model.ts';
+export { createMikkTSpace } from './gltf/mikktspace-wasm.ts';
+export { decodeImageJs } from './texture/decode-js.ts';
+export type { DecodedImage } from './texture/decoded-image.ts';

@@ -8,30 +8,30 @@
  * (its fetch aborted, its model load stopped).
  */
 import {
-  LIMITS,
-  SceneError,
+  type CompiledScene,
   compileScene,
   countSkippedTriangles,
+  GLTF_FILE_BYTES,
   isGlbBytes,
   isModelFileName,
   isValidatedScene,
+  LIMITS,
   loadBareModel,
-  parseScene,
-  sceneWarnings,
-  resolveSceneFiles,
-  sceneNeedsFiles,
-  validateScene,
-  packScene,
-  markValidated,
-  type CompiledScene,
-  type PackedScene,
-  type Scene,
   type LoadStage,
+  markValidated,
+  type PackedScene,
+  packScene,
+  parseScene,
   type ResolveOptions,
+  resolveSceneFiles,
+  type Scene,
+  SceneError,
   type SceneFileReader,
+  sceneNeedsFiles,
+  sceneSizeProblem,
+  sceneWarnings,
+  validateScene,
 } from '../core/index.ts';
-import { GLTF_FILE_BYTES } from '../core/gltf/load.ts';
-import { sceneSizeProblem } from '../core/scene/validate/validate.ts';
 import { ByteLimitError, readBlobBounded } from '../../workers/browser/read-bounded.ts';
 import { fetchBounded, fileNameOf, modelSizeProblem } from '../../workers/browser/url-load.ts';
 import { loadModelInWorker, type LoadedModel, type ModelJob } from './model-load.ts';

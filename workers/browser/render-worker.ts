@@ -21,11 +21,13 @@
  * controller and serves them in turn.
  */
 import * as Comlink from 'comlink';
-// Direct module imports, not the core's index (see round-claims.ts).
-import { Film } from '../../src/core/film/film.ts';
-import { PathTracer, RenderStats } from '../../src/core/integrator/path-tracer.ts';
-import { unpackScene } from '../../src/core/scene/compile/pack.ts';
-import type { CompiledScene } from '../../src/core/index.ts';
+import {
+  type CompiledScene,
+  Film,
+  PathTracer,
+  RenderStats,
+  unpackScene,
+} from '../../src/core/index.ts';
 import {
   C_CONFIG,
   C_CRASH,

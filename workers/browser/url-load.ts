@@ -4,9 +4,13 @@
  * both places. In the worker the page never holds the bytes: a 6 MB scene received on
  * the page cost it ~80 ms of native work in one task before any script saw a byte.
  */
-import { LIMITS, isModelFileName, type LoadStage } from '../../src/core/index.ts';
-import { GLTF_FILE_BYTES } from '../../src/core/gltf/load.ts';
-import { sceneSizeProblem } from '../../src/core/scene/validate/validate.ts';
+import {
+  GLTF_FILE_BYTES,
+  isModelFileName,
+  LIMITS,
+  type LoadStage,
+  sceneSizeProblem,
+} from '../../src/core/index.ts';
 import { ByteLimitError, readResponseBounded } from './read-bounded.ts';
 
 export interface Fetched {

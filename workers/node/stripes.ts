@@ -7,9 +7,13 @@
  * for any stripe height, any number of workers and any split of the
  * samples.
  */
-import type { CameraDesc, CompiledScene, SamplerKind } from '../../src/core/index.ts';
-// Direct module import, not the core's index (see round-claims.ts).
-import { PathTracer, type Estimator } from '../../src/core/integrator/path-tracer.ts';
+import {
+  type CameraDesc,
+  type CompiledScene,
+  type Estimator,
+  PathTracer,
+  type SamplerKind,
+} from '../../src/core/index.ts';
 
 /** A render's settings; the scene itself travels packed (core/scene/pack.ts). */
 export interface StripeJob {
