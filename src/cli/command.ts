@@ -21,6 +21,7 @@ import { merge } from './merge.ts';
 import { renderCommand, renderWorkerUrl } from './render-command.ts';
 import type { EarlyWorkers } from './render.ts';
 import { loadSceneFile } from './scene-file.ts';
+import { flagOf } from './setting-flags.ts';
 import { startWarmWorkers } from './warm-up.ts';
 
 async function render(argv: string[]): Promise<void> {
@@ -52,16 +53,10 @@ async function renderScene(args: RenderArgs, early: EarlyWorkers): Promise<void>
   if (skipped > 0) {
     process.stderr.write(`pathwise: note: skipped ${skipped} triangles of zero area\n`);
   }
-  const names: Record<string, string> = {
-    width: '--width',
-    height: '--height',
-    maxBounces: '--bounces',
-    spp: '--spp',
-  };
   const settings = validateSettingsOverride(
     scene.settings,
     { width: args.width, height: args.height, maxBounces: args.bounces, spp: args.spp },
-    (key) => names[key],
+    flagOf,
   );
   await renderCommand(args, scene, settings, skipped, early);
 }

@@ -5,13 +5,15 @@
  */
 import { type FilmSettings } from '../core/index.ts';
 import type { FilmIdentity } from './film-file.ts';
+import { SETTING_FLAGS } from './setting-flags.ts';
 
-const SETTING_FLAGS: [keyof FilmSettings, string][] = [
-  ['maxBounces', '--bounces'],
-  ['seed', '--seed'],
-  ['sampler', '--sampler'],
-  ['estimator', '--estimator'],
-];
+/** The settings compared after the image size, in the order a mismatch is reported. */
+const COMPARED = [
+  'maxBounces',
+  'seed',
+  'sampler',
+  'estimator',
+] as const satisfies readonly (keyof FilmSettings)[];
 
 /**
  * null if `a` and `b` (named `nameA`, `nameB`) can be merged, else why not.
@@ -34,8 +36,10 @@ export function explainMismatch(
   if (sa.width !== sb.width || sa.height !== sb.height) {
     return `${both} differ in image size (${sa.width}×${sa.height} and ${sb.width}×${sb.height})`;
   }
-  for (const [key, flag] of SETTING_FLAGS) {
-    if (sa[key] !== sb[key]) return `${both} differ in ${flag} (${sa[key]} and ${sb[key]})`;
+  for (const key of COMPARED) {
+    if (sa[key] !== sb[key]) {
+      return `${both} differ in ${SETTING_FLAGS[key]} (${sa[key]} and ${sb[key]})`;
+    }
   }
   if (a.key !== b.key) return `${both} have different keys though their settings agree`;
   return null;

@@ -14,6 +14,7 @@ import {
   type FilmHeader,
   type FilmSettings,
   MAX_HEADER_BYTES,
+  renderSettingsOf,
   SCALE_BITS,
   type Scene,
 } from '../core/index.ts';
@@ -64,14 +65,7 @@ function sceneHash(value: unknown): string {
 export function filmIdentity(scene: Scene, settings: FilmSettings): FilmIdentity {
   const { name: _name, settings: _settings, ...pixels } = scene;
   const scene_sha256 = sceneHash(pixels);
-  const canonical: FilmSettings = {
-    width: settings.width,
-    height: settings.height,
-    maxBounces: settings.maxBounces,
-    seed: settings.seed,
-    sampler: settings.sampler,
-    estimator: settings.estimator,
-  };
+  const canonical = renderSettingsOf(settings);
   const key = sha256(JSON.stringify({ renderer: RENDERER, scene_sha256, settings: canonical }));
   return { renderer: RENDERER, scene_sha256, settings: canonical, key };
 }

@@ -10,6 +10,7 @@ import {
   type FilmHeader,
   formatRanges,
   LIMITS,
+  type RenderSettings,
   type Scene,
   type SettingsDesc,
 } from '../core/index.ts';
@@ -53,6 +54,16 @@ export async function renderCommand(
   // go up to the limit, and the total written is what it reached.
   const openEnded = criteria && args.spp === undefined && b.samples === undefined;
   const total = settings.spp;
+  // The render's settings, gathered once from the scene's (with the size and bounce
+  // overrides) and the flags, and passed whole from here on.
+  const render: RenderSettings = {
+    width: settings.width,
+    height: settings.height,
+    maxBounces: settings.maxBounces,
+    seed: args.seed,
+    estimator: args.estimator,
+    sampler: args.sampler,
+  };
   const [start, end] = b.samples ?? [0, openEnded ? LIMITS.spp : total];
   if (b.samples && end > total) {
     throw new UsageError(
@@ -63,14 +74,7 @@ export async function renderCommand(
   // large one): made, before the render, only when a `.film` is read or written.
   const identity_ =
     isFilmPath(args.out) || b.checkpoint !== undefined || b.resume !== undefined
-      ? filmIdentity(scene, {
-          width: settings.width,
-          height: settings.height,
-          maxBounces: settings.maxBounces,
-          seed: args.seed,
-          sampler: args.sampler,
-          estimator: args.estimator,
-        })
+      ? filmIdentity(scene, render)
       : undefined;
   const identity = (): FilmIdentity => {
     if (identity_ === undefined) throw new Error('a film header without the render identity');
@@ -84,14 +88,9 @@ export async function renderCommand(
     output,
     () =>
       new RenderPool({
+        ...render,
         scene,
-        width: settings.width,
-        height: settings.height,
-        maxBounces: settings.maxBounces,
-        seed: args.seed,
         threads: args.threads,
-        estimator: args.estimator,
-        sampler: args.sampler,
         stripeRows: args.stripeRows,
         workerUrl: renderWorkerUrl(),
         early,

@@ -14,7 +14,15 @@
  */
 import { availableParallelism } from 'node:os';
 import { Worker } from 'node:worker_threads';
-import { compileScene, Film, packScene, RenderStats, type Scene } from '../core/index.ts';
+import {
+  compileScene,
+  Film,
+  packScene,
+  type RenderSettings,
+  renderSettingsOf,
+  RenderStats,
+  type Scene,
+} from '../core/index.ts';
 import type { StripeJob } from '../../workers/node/stripes.ts';
 import type {
   InitMessage,
@@ -36,15 +44,9 @@ import {
 } from '../../workers/node/round-claims.ts';
 import { testStage } from './test-stages.ts';
 
-export interface PoolRequest {
+export interface PoolRequest extends RenderSettings {
   scene: Scene;
-  width: number;
-  height: number;
-  maxBounces: number;
-  seed: number;
   threads?: number;
-  estimator: StripeJob['estimator'];
-  sampler: StripeJob['sampler'];
   stripeRows?: number;
   /** Path of the bundled worker script. */
   workerUrl: URL;
@@ -218,16 +220,7 @@ export class RenderPool {
     }
     this.compileSeconds = (performance.now() - this.startedAt) / 1000;
     this.sceneBytes = this.scene.buffer.byteLength;
-    this.job = {
-      camera: req.scene.camera,
-      width: req.width,
-      height: req.height,
-      maxBounces: req.maxBounces,
-      seed: req.seed,
-      estimator: req.estimator,
-      sampler: req.sampler,
-      stripeRows,
-    };
+    this.job = { ...renderSettingsOf(req), camera: req.scene.camera, stripeRows };
     // A warm-up in progress ends at its next row.
     Atomics.store(new Int32Array(this.stopWord), 0, 1);
     for (let k = 0; k < threads; k++) this.slots[k].worker.postMessage(this.initFor(k));

@@ -4,6 +4,11 @@
  */
 export * from './scene/format/types.ts';
 export {
+  RENDER_SETTING_KEYS,
+  renderSettingsOf,
+  type RenderSettings,
+} from './scene/format/render-settings.ts';
+export {
   parseScene,
   validateScene,
   validateSettingsOverride,

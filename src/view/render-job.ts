@@ -8,7 +8,12 @@
  * lost tasks of an older version are dropped, as the film they were for
  * has been reset.
  */
-import { DEFAULT_SAMPLER, type CameraDesc, type PackedScene } from '../core/index.ts';
+import {
+  DEFAULT_SAMPLER,
+  type CameraDesc,
+  type PackedScene,
+  type RenderSettings,
+} from '../core/index.ts';
 import type { JobConfig } from '../../workers/browser/render-protocol.ts';
 import type { FilmJob } from './film-job.ts';
 import type { Films } from './films.ts';
@@ -18,12 +23,10 @@ import { TraceClock } from './trace-clock.ts';
 import type { ComputeMode } from './types.ts';
 
 /** The image a restart configures (the film's size comes from the film). */
-export interface ImageSettings {
+export interface ImageSettings extends Pick<RenderSettings, 'maxBounces' | 'seed'> {
   mode: ComputeMode;
   sceneId: number;
   scene: PackedScene;
-  maxBounces: number;
-  seed: number;
   camera: CameraDesc;
 }
 

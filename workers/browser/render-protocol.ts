@@ -9,7 +9,7 @@
  * so a reset (clear the film, bump the generation) can never interleave
  * with a commit, and no sample of an old generation lands in a new image.
  */
-import type { CameraDesc, Estimator, PackedScene, SamplerKind } from '../../src/core/index.ts';
+import type { CameraDesc, PackedScene, RenderSettings } from '../../src/core/index.ts';
 
 /** Word indices of the control block. */
 export const C_LOCK = 0;
@@ -145,7 +145,7 @@ export function stripeOrder(stripes: number): Int32Array {
 export type JobMode = 'shared' | 'transfer';
 
 /** Everything a worker needs to render one controller's image. */
-export interface JobConfig {
+export interface JobConfig extends RenderSettings {
   mode: JobMode;
   /** Equals the control block's C_CONFIG word (shared) or tags tasks (transfer). */
   version: number;
@@ -157,12 +157,6 @@ export interface JobConfig {
    */
   sceneId: number;
   scene?: PackedScene;
-  width: number;
-  height: number;
-  maxBounces: number;
-  seed: number;
-  estimator: Estimator;
-  sampler: SamplerKind;
   camera: CameraDesc;
   stripeRows: number;
   /** Shared mode: the film's buffer and its control block. */

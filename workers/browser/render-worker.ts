@@ -132,15 +132,7 @@ function configure(id: number, config: JobConfig): void {
     tracer.maxBounces = config.maxBounces;
     tracer.setCamera(config.camera);
   } else {
-    tracer = new PathTracer(compiled, {
-      width: config.width,
-      height: config.height,
-      maxBounces: config.maxBounces,
-      seed: config.seed,
-      estimator: config.estimator,
-      sampler: config.sampler,
-      camera: config.camera,
-    });
+    tracer = new PathTracer(compiled, config);
   }
   const job: Job = { config: { ...config, scene: undefined }, compiled, tracer };
   if (config.mode === 'shared') {

@@ -10,32 +10,17 @@
 import {
   type CameraDesc,
   type CompiledScene,
-  type Estimator,
   PathTracer,
-  type SamplerKind,
+  type RenderSettings,
 } from '../../src/core/index.ts';
 
-/** A render's settings; the scene itself travels packed (core/scene/pack.ts). */
-export interface StripeJob {
+/** A render's settings, camera and stripes; the scene itself travels packed (core/scene/compile/pack.ts). */
+export interface StripeJob extends RenderSettings {
   camera: CameraDesc;
-  width: number;
-  height: number;
-  maxBounces: number;
-  seed: number;
-  estimator: Estimator;
-  sampler: SamplerKind;
   stripeRows: number;
 }
 
 /** Builds the tracer for a job over an already compiled scene (each worker does this once). */
 export function createTracer(job: StripeJob, scene: CompiledScene): PathTracer {
-  return new PathTracer(scene, {
-    width: job.width,
-    height: job.height,
-    maxBounces: job.maxBounces,
-    seed: job.seed,
-    estimator: job.estimator,
-    sampler: job.sampler,
-    camera: job.camera,
-  });
+  return new PathTracer(scene, job);
 }

@@ -25,6 +25,7 @@
  * sentence.
  */
 import { LIMITS } from '../scene/format/types.ts';
+import type { RenderSettings } from '../scene/format/render-settings.ts';
 import { SAMPLER_KINDS, type SamplerKind } from '../sampling/sampler.ts';
 import { crc32 } from '../io/crc32.ts';
 import { FormatError } from '../io/format-error.ts';
@@ -48,15 +49,8 @@ export class FilmFileError extends FormatError {
   }
 }
 
-/** Everything that changes a sample's value, besides the scene. */
-export interface FilmSettings {
-  width: number;
-  height: number;
-  maxBounces: number;
-  seed: number;
-  sampler: SamplerKind;
-  estimator: 'nee-mis' | 'bsdf';
-}
+/** Everything that changes a sample's value, besides the scene: the render settings. */
+export type FilmSettings = RenderSettings;
 
 export interface FilmHeader {
   format: typeof FILM_FORMAT;

@@ -15,22 +15,21 @@ import { GltfWork } from './gltf-surface.ts';
 import { DIM_PER_BOUNCE, DEFAULT_SAMPLER, Sampler, type SamplerKind } from '../sampling/sampler.ts';
 import type { CompiledScene } from '../scene/compile/compile.ts';
 import type { CameraDesc } from '../scene/format/types.ts';
+import type { Estimator, RenderSettings } from '../scene/format/render-settings.ts';
 import { RenderStats } from './render-stats.ts';
 import { trace } from './trace-path.ts';
 
 export { RenderStats };
 
-export type Estimator = 'nee-mis' | 'bsdf';
+export type { Estimator, RenderSettings };
 
-export interface TracerOptions {
-  width: number;
-  height: number;
-  maxBounces: number;
-  seed?: number;
-  estimator?: Estimator;
-  sampler?: SamplerKind;
-  camera: CameraDesc;
-}
+/**
+ * What a tracer is built from: the render settings (seed 0, NEE with MIS and the
+ * default sampler where left out) and the camera. A job that extends RenderSettings is
+ * passed as it is.
+ */
+export type TracerOptions = Pick<RenderSettings, 'width' | 'height' | 'maxBounces'> &
+  Partial<RenderSettings> & { camera: CameraDesc };
 
 export class PathTracer {
   readonly scene: CompiledScene;
