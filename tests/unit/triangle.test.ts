@@ -5,6 +5,8 @@
  * it exactly twice, a ray through a plane of triangles exactly once.
  */
 import { describe, expect, it } from 'vitest';
+import { TriangleEdges, triangleEdges } from '../../src/core/geometry/triangle-edges.ts';
+import { triangleNormal } from '../../src/core/lights/mesh-light.ts';
 import {
   TriangleHit,
   TriangleRay,
@@ -295,5 +297,37 @@ describe('hard rays', () => {
     const { ts } = shoot(far, [1e6 + 2.5e-4, 1e6 + 2.5e-4, 0], [0, 0, 1]);
     expect(ts).toHaveLength(1);
     expect(Math.abs(ts[0] - 1e6)).toBeLessThan(1e-9);
+  });
+});
+
+describe('triangleNormal', () => {
+  // triangleNormal (lights/mesh-light.ts) writes out triangleEdges' arithmetic for V8's
+  // inlining; it must give what the shared routine's scaled edges give, bit for bit, at
+  // every magnitude.
+  it('equals normalize(cross) of triangleEdges scaled by 1/m, at magnitudes 2^-1000 … 2^1000', () => {
+    const edges = new TriangleEdges();
+    const out = { nx: 0, ny: 0, nz: 0 };
+    let state = 12345;
+    const rand = () => ((state = (Math.imul(state, 1664525) + 1013904223) >>> 0) / 2 ** 32) * 2 - 1;
+    let checked = 0;
+    for (let k = -1000; k <= 1000; k += 25) {
+      for (let n = 0; n < 20; n++) {
+        const s = 2 ** k;
+        const p = Float64Array.from({ length: 9 }, () => rand() * s);
+        triangleNormal(p, 0, 3, 6, out);
+        triangleEdges(p, 0, 3, 6, edges);
+        const inv = edges.m > 0 ? 1 / edges.m : 1;
+        const [ax, ay, az] = [edges.e1x * inv, edges.e1y * inv, edges.e1z * inv];
+        const [bx, by, bz] = [edges.e2x * inv, edges.e2y * inv, edges.e2z * inv];
+        const cx = ay * bz - az * by;
+        const cy = az * bx - ax * bz;
+        const cz = ax * by - ay * bx;
+        const len = Math.sqrt(cx * cx + cy * cy + cz * cz);
+        expect([out.nx, out.ny, out.nz]).toEqual([cx / len, cy / len, cz / len]);
+        expect(Math.hypot(out.nx, out.ny, out.nz)).toBeCloseTo(1, 12);
+        checked++;
+      }
+    }
+    expect(checked).toBe(81 * 20);
   });
 });

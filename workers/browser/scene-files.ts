@@ -6,6 +6,7 @@
  * actually received.
  */
 import type { SceneFileReader } from '../../src/core/index.ts';
+import { ByteLimitError, readResponseBounded } from './read-bounded.ts';
 
 /**
  * Where a reader's files come from, as plain data that crosses to a worker (the model
@@ -51,36 +52,14 @@ export function urlSceneFiles(base: string | URL): PortableReader {
   };
 }
 
+/** The body, at most `maxBytes` (read-bounded.ts, as the scene's own fetch is). */
 async function readLimited(response: Response, maxBytes: number): Promise<Uint8Array> {
-  const body = response.body;
-  if (body === null) {
-    const bytes = new Uint8Array(await response.arrayBuffer());
-    if (bytes.length > maxBytes) {
-      throw new Error(`the file has ${bytes.length} bytes, more than the limit of ${maxBytes}`);
-    }
-    return bytes;
+  try {
+    return await readResponseBounded(response, maxBytes);
+  } catch (e) {
+    if (!(e instanceof ByteLimitError)) throw e;
+    throw new Error(`the file has more than the limit of ${maxBytes} bytes`);
   }
-  const reader = body.getReader();
-  const chunks: Uint8Array[] = [];
-  let total = 0;
-  for (;;) {
-    const { done, value } = await reader.read();
-    if (done) break;
-    total += value.length;
-    if (total > maxBytes) {
-      void reader.cancel();
-      throw new Error(`the file has more than the limit of ${maxBytes} bytes`);
-    }
-    chunks.push(value);
-  }
-  if (chunks.length === 1) return chunks[0];
-  const out = new Uint8Array(total);
-  let at = 0;
-  for (const c of chunks) {
-    out.set(c, at);
-    at += c.length;
-  }
-  return out;
 }
 
 /**

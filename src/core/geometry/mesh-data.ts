@@ -5,6 +5,7 @@
  * of zero area, judged in double precision after the transform, are dropped and counted.
  */
 import { normalMatrix, transformPoints } from '../math/affine.ts';
+import { TriangleEdges, triangleEdges } from './triangle-edges.ts';
 import type { MeshData } from '../scene/format/types.ts';
 
 /** A mesh as read, indices already checked to be in range. Owned by buildMeshData. */
@@ -82,24 +83,16 @@ function dropZeroArea(
   const count = indices.length / 3;
   let kept = 0;
   const keep = new Uint8Array(count);
+  const E = new TriangleEdges();
   for (let t = 0; t < count; t++) {
-    const a = indices[3 * t] * 3,
-      b = indices[3 * t + 1] * 3,
-      c = indices[3 * t + 2] * 3;
-    let e1x = p[b] - p[a],
-      e1y = p[b + 1] - p[a + 1],
-      e1z = p[b + 2] - p[a + 2];
-    let e2x = p[c] - p[a],
-      e2y = p[c + 1] - p[a + 1],
-      e2z = p[c + 2] - p[a + 2];
-    const m = Math.max(
-      Math.abs(e1x),
-      Math.abs(e1y),
-      Math.abs(e1z),
-      Math.abs(e2x),
-      Math.abs(e2y),
-      Math.abs(e2z),
-    );
+    triangleEdges(p, indices[3 * t] * 3, indices[3 * t + 1] * 3, indices[3 * t + 2] * 3, E);
+    let e1x = E.e1x,
+      e1y = E.e1y,
+      e1z = E.e1z;
+    let e2x = E.e2x,
+      e2y = E.e2y,
+      e2z = E.e2z;
+    const m = E.m;
     if (m === 0) continue;
     if (m === Infinity) {
       throw new MeshError(`triangle ${t} is too large: its edges overflow double precision`);

@@ -6,6 +6,7 @@
  * root down. Read from the JSON itself so that a matrix is used exactly as
  * written.
  */
+import { cofactors3 } from '../math/affine.ts';
 
 export type Mat4 = Float64Array;
 
@@ -93,17 +94,7 @@ export function normalMatrix(m: Mat4): Float64Array {
     i = m[10];
   const s = det3(m) < 0 ? -1 : 1;
   // Cofactor matrix of the 3×3 (= det · inverse transpose), column-major.
-  const out = Float64Array.of(
-    e * i - f * h,
-    -(d * i - f * g),
-    d * h - e * g,
-    -(b * i - c * h),
-    a * i - c * g,
-    -(a * h - b * g),
-    b * f - c * e,
-    -(a * f - c * d),
-    a * e - b * d,
-  );
+  const out = cofactors3(a, b, c, d, e, f, g, h, i);
   for (let k = 0; k < 9; k++) out[k] *= s;
   return out;
 }

@@ -9,6 +9,7 @@
  * u0 picks the triangle and is then reused, rescaled to [0, 1), with u1 for the point
  * inside it: one 2D sample, stratified over the whole mesh.
  */
+import { TriangleEdges, triangleEdges } from '../geometry/triangle-edges.ts';
 import { Distribution1D } from '../sampling/distribution.ts';
 import {
   squareToUniformTriangle,
@@ -94,6 +95,8 @@ export class MeshLight {
 }
 
 const BARY: Vec2Out = { x: 0, y: 0 };
+/** triangleArea's scratch (compile time only; one thread each). */
+const EDGES = new TriangleEdges();
 
 /**
  * Area of triangle t. The edges are scaled to a largest component of 1 before the cross
@@ -104,36 +107,26 @@ export function triangleArea(
   indices: Uint32Array | Int32Array,
   t: number,
 ): number {
-  const a = indices[3 * t] * 3,
-    b = indices[3 * t + 1] * 3,
-    c = indices[3 * t + 2] * 3;
-  const e1x = p[b] - p[a],
-    e1y = p[b + 1] - p[a + 1],
-    e1z = p[b + 2] - p[a + 2];
-  const e2x = p[c] - p[a],
-    e2y = p[c + 1] - p[a + 1],
-    e2z = p[c + 2] - p[a + 2];
-  const m = Math.max(
-    Math.abs(e1x),
-    Math.abs(e1y),
-    Math.abs(e1z),
-    Math.abs(e2x),
-    Math.abs(e2y),
-    Math.abs(e2z),
-  );
+  const E = EDGES;
+  triangleEdges(p, indices[3 * t] * 3, indices[3 * t + 1] * 3, indices[3 * t + 2] * 3, E);
+  const m = E.m;
   if (m === 0) return 0;
   const s = 1 / m;
-  const ax = e1x * s,
-    ay = e1y * s,
-    az = e1z * s;
-  const bx = e2x * s,
-    by = e2y * s,
-    bz = e2z * s;
+  const ax = E.e1x * s,
+    ay = E.e1y * s,
+    az = E.e1z * s;
+  const bx = E.e2x * s,
+    by = E.e2y * s,
+    bz = E.e2z * s;
   // |edge| up to ~1e154 keeps m² finite: far beyond any scene's scale.
   return 0.5 * Math.hypot(ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx) * m * m;
 }
 
-/** Unit geometric normal normalize(cross(p1 − p0, p2 − p0)) into out.nx, ny, nz. */
+/**
+ * Unit geometric normal normalize(cross(p1 − p0, p2 − p0)) into out.nx, ny, nz.
+ * Deliberate copy: written out from triangleEdges (geometry/triangle-edges.ts) for V8's
+ * inlining; checked by test tests/unit/core/triangle.test.ts ("triangleNormal").
+ */
 export function triangleNormal(
   p: Float64Array,
   a: number,

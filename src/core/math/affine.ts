@@ -6,6 +6,36 @@
  * determinant are needed, and no division by a tiny determinant can overflow.
  */
 
+/**
+ * The cofactor matrix C of the 3×3 matrix with rows (a b c), (d e f), (g h i), row by
+ * row: Cᵀ / det is its inverse, so C / det is its inverse transpose. Both normal
+ * matrices (this file's, row-major scene transforms; gltf/transforms.ts, column-major
+ * node matrices) take it from here.
+ */
+export function cofactors3(
+  a: number,
+  b: number,
+  c: number,
+  d: number,
+  e: number,
+  f: number,
+  g: number,
+  h: number,
+  i: number,
+): Float64Array {
+  return Float64Array.of(
+    e * i - f * h,
+    -(d * i - f * g),
+    d * h - e * g,
+    -(b * i - c * h),
+    a * i - c * g,
+    -(a * h - b * g),
+    b * f - c * e,
+    -(a * f - c * d),
+    a * e - b * d,
+  );
+}
+
 /** Why `m` is not an acceptable transform, or undefined if it is. */
 export function transformProblem(m: ArrayLike<number>): string | undefined {
   if (m[12] !== 0 || m[13] !== 0 || m[14] !== 0 || m[15] !== 1) {
@@ -81,17 +111,7 @@ export function normalMatrix(m: ArrayLike<number>): Float64Array {
     h = m[9] / s0,
     i = m[10] / s0;
   // Cofactors C[r][c] of A; (A⁻¹)ᵀ = C / det.
-  const cof = new Float64Array([
-    e * i - f * h,
-    -(d * i - f * g),
-    d * h - e * g,
-    -(b * i - c * h),
-    a * i - c * g,
-    -(a * h - b * g),
-    b * f - c * e,
-    -(a * f - c * d),
-    a * e - b * d,
-  ]);
+  const cof = cofactors3(a, b, c, d, e, f, g, h, i);
   const det = a * cof[0] + b * cof[1] + c * cof[2];
   if (det < 0) for (let k = 0; k < 9; k++) cof[k] = -cof[k];
   // Normals are renormalised; a largest entry of 1 keeps them away from underflow.
