@@ -1,7 +1,7 @@
 /**
  * The Web Worker interface the browser pool (src/view/pool.ts) and comlink use, over a
  * worker_threads worker: lets the pool's own code run in Node (bench/pool-node.ts,
- * tests/unit/pool-faults.test.ts).
+ * tests/unit/view/pool-faults.test.ts).
  */
 import { Worker as NodeWorker } from 'node:worker_threads';
 

@@ -30,7 +30,7 @@
  * The variance estimate treats a pixel's samples as independent. The
  * default sampler (Owen-scrambled Sobol) stratifies the first dimensions,
  * so the true error can fall below the estimate; with independent samples
- * the two agree in expectation (tests/unit/error-grid.test.ts).
+ * the two agree in expectation (tests/unit/app/error-grid.test.ts).
  */
 import { exactValue } from '../core/index.ts';
 

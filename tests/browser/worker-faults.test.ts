@@ -164,7 +164,7 @@ describe('render workers dying mid-render (Chromium)', () => {
     // Chromium lets a terminated worker finish the task it is in (the
     // stripe in hand) and stops it at the next yield, so these deaths leave
     // no claim behind (reclaimed stays 0); the crashes and the frozen worker
-    // below, and tests/unit/pool-faults.test.ts on Node's abrupt threads, do.
+    // below, and tests/unit/view/pool-faults.test.ts on Node's abrupt threads, do.
     expect(bitDifferences((await readLinear(page)).rgb, expected())).toBe(0);
     console.log(`shared, killed: ${JSON.stringify(f)}`);
     await page.close();

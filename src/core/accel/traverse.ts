@@ -9,7 +9,7 @@
  * index << 2 | kind; spheres 4 and quads 20 numbers per record, the quad
  * fields of geometry/shapes.ts): in the bundle an imported constant is a
  * context load and a Smi check at each use, and an overflow-checked
- * multiply for a stride. tests/unit/bvh.test.ts checks that the literals
+ * multiply for a stride. tests/unit/core/bvh.test.ts checks that the literals
  * match the named layout.
  */
 import type { SceneGeometry } from './scene-geometry.ts';
@@ -34,7 +34,7 @@ import { hitTriangle, setTriangleRay } from '../geometry/triangle.ts';
  *
  * Leaf tests by hand: the sphere and quad tests are written out here (the
  * same arithmetic as intersectSphere/intersectQuad, so the same hits bit for
- * bit; tests/unit/bvh.test.ts compares with the plain loop) rather than
+ * bit; tests/unit/core/bvh.test.ts compares with the plain loop) rather than
  * called. V8 inlines a call only if, when it optimises this function, the
  * call has run on at least 15 % of its invocations so far
  * (--min-inlining-frequency). A render starts at the top rows, whose rays

@@ -31,7 +31,7 @@
  *
  * The groups change the order in which quads are tested, so ties in t are
  * resolved explicitly as the index-ordered loop resolved them: the quad with
- * the lowest index wins (tests/unit/quad-list.test.ts).
+ * the lowest index wins (tests/unit/core/quad-list.test.ts).
  *
  * The loops step through the records by literal strides (8, 9, 13: the
  * *_STRIDE constants below): in the bundle a module constant is a context
