@@ -2,14 +2,9 @@
  * Command-line parsing for `pathwise render`. Every problem is a
  * UsageError with a one-line message; the caller exits with status 2.
  */
-import {
-  DEFAULT_SAMPLER,
-  type Estimator,
-  quote,
-  SAMPLER_KINDS,
-  type SamplerKind,
-  sanitize,
-} from '../core/index.ts';
+import { DEFAULT_SAMPLER, SAMPLER_KINDS, type SamplerKind } from '../core/sampling/sampler.ts';
+import type { Estimator } from '../core/integrator/path-tracer.ts';
+import { quote, sanitize } from '../core/util/message.ts';
 import {
   BATCH_OPTION_NAMES,
   BATCH_USAGE,

@@ -3,7 +3,8 @@
  * checkpoints) and the arguments of `pathwise merge`. Every problem is a
  * UsageError with a one-line message (exit status 2).
  */
-import { LIMITS, quote, sanitize } from '../core/index.ts';
+import { LIMITS } from '../core/scene/format/types.ts';
+import { quote, sanitize } from '../core/util/message.ts';
 import { UsageError } from './errors.ts';
 import {
   POSITIVE_DECIMAL,

@@ -21,7 +21,7 @@
  *   always runs;
  * - --checkpoint ends rounds near each checkpoint time, then writes.
  */
-import { estimateNoise } from '../core/index.ts';
+import { estimateNoise } from '../core/film/noise.ts';
 import type { RenderPool } from './render.ts';
 import { processSeconds } from './host.ts';
 

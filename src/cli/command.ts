@@ -4,16 +4,12 @@
  * or unreadable scene, or an output that cannot be written; 1 for anything else (a bug).
  */
 import { availableParallelism } from 'node:os';
-import {
-  countSkippedTriangles,
-  DEFAULT_SETTINGS,
-  FilmFileError,
-  printableLine,
-  quote,
-  SceneError,
-  sceneWarnings,
-  validateSettingsOverride,
-} from '../core/index.ts';
+import { FilmFileError } from '../core/film/film-file.ts';
+import { SceneError, validateSettingsOverride } from '../core/scene/validate/validate.ts';
+import { countSkippedTriangles } from '../core/scene/validate/mesh-desc.ts';
+import { sceneWarnings } from '../core/scene/validate/warnings.ts';
+import { printableLine, quote } from '../core/util/message.ts';
+import { DEFAULT_SETTINGS } from '../core/scene/format/types.ts';
 import { SYNOPSIS, USAGE, parseRenderArgs, type RenderArgs } from './args.ts';
 import { CliError, UsageError } from './errors.ts';
 import { commandArgv } from './host.ts';

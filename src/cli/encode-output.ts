@@ -6,14 +6,11 @@
  * or merged from parts.
  */
 import { deflateSync } from 'node:zlib';
-import {
-  encodeFilmFile,
-  encodePfm,
-  encodePng,
-  type Film,
-  type FilmHeader,
-  tonemapSums,
-} from '../core/index.ts';
+import { encodeFilmFile, type FilmHeader } from '../core/film/film-file.ts';
+import { encodePfm } from '../core/io/pfm.ts';
+import { encodePng } from '../core/io/png.ts';
+import { tonemapSums } from '../core/io/tonemap.ts';
+import type { Film } from '../core/film/film.ts';
 
 /** Whether `path` names a `.film` output (exact sums and a header). */
 export function isFilmPath(path: string): boolean {

@@ -3,7 +3,7 @@
  * naming the first difference in the words of the command line (`--seed`,
  * `--bounces`, …), so the user knows which part was rendered wrong.
  */
-import { type FilmSettings } from '../core/index.ts';
+import type { FilmSettings } from '../core/film/film-file.ts';
 import type { FilmIdentity } from './film-file.ts';
 import { SETTING_FLAGS } from './setting-flags.ts';
 

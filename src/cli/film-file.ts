@@ -6,21 +6,21 @@
 import { createHash } from 'node:crypto';
 import { closeSync, fstatSync, openSync, readSync, statSync } from 'node:fs';
 import {
+  FILM_FORMAT,
+  FilmFileError,
+  MAX_HEADER_BYTES,
   decodeFilmFile,
   decodeFilmHeader,
-  FILM_FORMAT,
   type FilmFile,
-  FilmFileError,
   type FilmHeader,
   type FilmSettings,
-  MAX_HEADER_BYTES,
-  renderSettingsOf,
-  SCALE_BITS,
-  type Scene,
-} from '../core/index.ts';
+} from '../core/film/film-file.ts';
+import { SCALE_BITS } from '../core/film/exact-sum.ts';
+import type { Scene } from '../core/scene/format/types.ts';
 import packageJson from '../../package.json' with { type: 'json' };
 import { CliError } from './errors.ts';
 import { reason, showPath } from './read-bounded.ts';
+import { renderSettingsOf } from '../core/scene/format/render-settings.ts';
 
 export const RENDERER = `pathwise ${packageJson.version}`;
 

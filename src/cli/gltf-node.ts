@@ -6,12 +6,10 @@
 import { readFile, stat } from 'node:fs/promises';
 import { createRequire } from 'node:module';
 import path from 'node:path';
-import {
-  createMikkTSpace,
-  decodeImageJs,
-  type GltfLoadOptions,
-  type TangentGenerator,
-} from '../core/index.ts';
+import type { GltfLoadOptions } from '../core/gltf/load.ts';
+import { createMikkTSpace } from '../core/gltf/mikktspace-wasm.ts';
+import type { TangentGenerator } from '../core/gltf/tangents.ts';
+import { decodeImageJs } from '../core/texture/decode-js.ts';
 
 let mikktspace: Promise<TangentGenerator> | null = null;
 

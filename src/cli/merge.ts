@@ -11,17 +11,17 @@
  * part at a time, so memory holds two films at most.
  */
 import { basename } from 'node:path';
+import { estimateNoise } from '../core/film/noise.ts';
 import {
-  estimateNoise,
-  type Film,
-  type FilmHeader,
   findOverlap,
   formatRanges,
   missingRanges,
   normalizeRanges,
   rangeSamples,
   type SampleRange,
-} from '../core/index.ts';
+} from '../core/film/sample-ranges.ts';
+import type { Film } from '../core/film/film.ts';
+import type { FilmHeader } from '../core/film/film-file.ts';
 import { MERGE_USAGE, parseMergeArgs, type MergeArgs } from './batch-args.ts';
 import { encodeOutput } from './encode-output.ts';
 import { CliError } from './errors.ts';

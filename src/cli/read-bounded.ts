@@ -9,7 +9,7 @@
 import { fstat, read } from 'node:fs';
 import { open, type FileHandle } from 'node:fs/promises';
 import { promisify } from 'node:util';
-import { sanitize } from '../core/index.ts';
+import { sanitize } from '../core/util/message.ts';
 import { CliError } from './errors.ts';
 
 const CHUNK = 1 << 20;

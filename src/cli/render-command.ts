@@ -4,16 +4,11 @@
  * the output and the JSON line.
  */
 import { existsSync } from 'node:fs';
-import {
-  estimateNoise,
-  type Film,
-  type FilmHeader,
-  formatRanges,
-  LIMITS,
-  type RenderSettings,
-  type Scene,
-  type SettingsDesc,
-} from '../core/index.ts';
+import { LIMITS, type Scene, type SettingsDesc } from '../core/scene/format/types.ts';
+import { estimateNoise } from '../core/film/noise.ts';
+import { formatRanges } from '../core/film/sample-ranges.ts';
+import type { Film } from '../core/film/film.ts';
+import type { FilmHeader } from '../core/film/film-file.ts';
 import type { RenderArgs } from './args.ts';
 import { processSeconds, runBatch, type BatchProgress } from './batch.ts';
 import { encodeOutput, isFilmPath } from './encode-output.ts';
@@ -27,6 +22,7 @@ import { showPath } from './read-bounded.ts';
 import { RenderPool, type EarlyWorkers } from './render.ts';
 import { startTestFaults, TEST_FAULTS_ENV } from './test-faults.ts';
 import { testStage } from './test-stages.ts';
+import type { RenderSettings } from '../core/scene/format/render-settings.ts';
 
 interface Resumed {
   film: Film;

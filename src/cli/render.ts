@@ -14,15 +14,11 @@
  */
 import { availableParallelism } from 'node:os';
 import { Worker } from 'node:worker_threads';
-import {
-  compileScene,
-  Film,
-  packScene,
-  type RenderSettings,
-  renderSettingsOf,
-  RenderStats,
-  type Scene,
-} from '../core/index.ts';
+import { Film } from '../core/film/film.ts';
+import { RenderStats } from '../core/integrator/render-stats.ts';
+import { compileScene } from '../core/scene/compile/compile.ts';
+import { packScene } from '../core/scene/compile/pack.ts';
+import type { Scene } from '../core/scene/format/types.ts';
 import type { StripeJob } from '../../workers/node/stripes.ts';
 import type {
   InitMessage,
@@ -43,6 +39,7 @@ import {
   type RoundRecovery,
 } from '../../workers/node/round-claims.ts';
 import { testStage } from './test-stages.ts';
+import { renderSettingsOf, type RenderSettings } from '../core/scene/format/render-settings.ts';
 
 export interface PoolRequest extends RenderSettings {
   scene: Scene;

@@ -3,16 +3,10 @@ import { basename, dirname } from 'node:path';
 // Only what every scene needs is imported statically: the glTF loader (glTF-Transform,
 // image decoders, MikkTSpace; most of the command line's code) is imported when a scene
 // names a model, so a scene of spheres and quads starts without compiling it.
-import {
-  GLTF_FILE_BYTES,
-  isModelFileName,
-  LIMITS,
-  parseScene,
-  type Scene,
-  SceneError,
-  sceneNeedsFiles,
-  sceneSizeProblem,
-} from '../core/index.ts';
+import { GLTF_FILE_BYTES, isModelFileName } from '../core/gltf/file-names.ts';
+import { SceneError, parseScene, sceneSizeProblem } from '../core/scene/validate/validate.ts';
+import { sceneNeedsFiles } from '../core/scene/validate/needs-files.ts';
+import { LIMITS, type Scene } from '../core/scene/format/types.ts';
 import { CliError } from './errors.ts';
 import { ReadLimitError, readBounded, showPath } from './read-bounded.ts';
 import { nodeSceneFiles } from './scene-files.ts';

@@ -4,7 +4,7 @@
  * or a pipe named as a mesh cannot make it read without end.
  */
 import { isAbsolute, resolve } from 'node:path';
-import { type SceneFileReader } from '../core/index.ts';
+import type { SceneFileReader } from '../core/scene/load/load.ts';
 import { ReadLimitError, readBounded } from './read-bounded.ts';
 
 export function nodeSceneFiles(sceneDir: string): SceneFileReader {

@@ -4,7 +4,7 @@
  * as 0 and `Infinity` as a number, so a typo in a batch script would run with a value
  * nobody wrote. Values are quoted in messages through `quote` (escaped, truncated).
  */
-import { quote } from '../core/index.ts';
+import { quote } from '../core/util/message.ts';
 import { CliError } from './errors.ts';
 
 /** A decimal integer: optional minus sign and digits, nothing else. */

@@ -16,13 +16,10 @@
  */
 import { getHeapStatistics } from 'node:v8';
 import { parentPort, workerData } from 'node:worker_threads';
-import {
-  Film,
-  type PackedScene,
-  type PathTracer,
-  RenderStats,
-  unpackScene,
-} from '../../src/core/index.ts';
+import { Film } from '../../src/core/film/film.ts';
+import type { PathTracer } from '../../src/core/integrator/path-tracer.ts';
+import { RenderStats } from '../../src/core/integrator/render-stats.ts';
+import { unpackScene, type PackedScene } from '../../src/core/scene/compile/pack.ts';
 import {
   claimStripe,
   renderStripeRound,

@@ -22,7 +22,9 @@
  * thread renders it, so the round's counters are summed from the stripes,
  * and a render with deaths reports what an undisturbed one does.
  */
-import { Film, type PathTracer, RenderStats } from '../../src/core/index.ts';
+import { Film } from '../../src/core/film/film.ts';
+import type { PathTracer } from '../../src/core/integrator/path-tracer.ts';
+import { RenderStats } from '../../src/core/integrator/render-stats.ts';
 
 /** Stripe state: free, or claimed by slot k (k + 1), or done this round. */
 export const STRIPE_FREE = 0;

@@ -7,12 +7,9 @@
  * for any stripe height, any number of workers and any split of the
  * samples.
  */
-import {
-  type CameraDesc,
-  type CompiledScene,
-  PathTracer,
-  type RenderSettings,
-} from '../../src/core/index.ts';
+import type { CameraDesc, CompiledScene, SamplerKind } from '../../src/core/index.ts';
+import { PathTracer, type Estimator } from '../../src/core/integrator/path-tracer.ts';
+import type { RenderSettings } from '../../src/core/scene/format/render-settings.ts';
 
 /** A render's settings, camera and stripes; the scene itself travels packed (core/scene/compile/pack.ts). */
 export interface StripeJob extends RenderSettings {

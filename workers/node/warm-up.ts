@@ -6,14 +6,10 @@
  * stop word or the budget is spent. What V8 learns here (type feedback, optimised
  * code) is what a cold first round would otherwise spend its time on.
  */
-import {
-  compileScene,
-  Film,
-  type MaterialDesc,
-  RenderStats,
-  type Scene,
-  type ShapeDesc,
-} from '../../src/core/index.ts';
+import { Film } from '../../src/core/film/film.ts';
+import { RenderStats } from '../../src/core/integrator/render-stats.ts';
+import { compileScene } from '../../src/core/scene/compile/compile.ts';
+import type { MaterialDesc, Scene, ShapeDesc } from '../../src/core/scene/format/types.ts';
 import { createTracer, type StripeJob } from './stripes.ts';
 
 /** Side of the throw-away film. */

@@ -1,0 +1,24 @@
+/**
+ * The loading entry: reading a scene's files (meshes, environment maps, glTF models with
+ * their textures and tangents) and bare glTF models. Heavier than the tracer's entry
+ * (glTF-Transform, the PNG and JPEG decoders): the command line imports it only when a
+ * scene names files; index.ts is both entries together.
+ */
+export {
+  loadScene,
+  resolveSceneFiles,
+  type LoadStage,
+  type ResolveOptions,
+  type SceneFileReader,
+} from './scene/load/load.ts';
+export {
+  bareModelScene,
+  isGlbBytes,
+  loadBareModel,
+  type BareSceneOptions,
+} from './scene/load/bare-scene.ts';
+export type { GltfLoadOptions } from './gltf/load.ts';
+export type { TangentGenerator } from './scene/format/gltf-model.ts';
+export { createMikkTSpace } from './gltf/mikktspace-wasm.ts';
+export { decodeImageJs } from './texture/decode-js.ts';
+export type { DecodedImage } from './texture/decoded-image.ts';
