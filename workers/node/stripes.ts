@@ -7,8 +7,8 @@
  * for any stripe height, any number of workers and any split of the
  * samples.
  */
-import type { CameraDesc, CompiledScene, SamplerKind } from '../../src/core/index.ts';
-import { PathTracer, type Estimator } from '../../src/core/integrator/path-tracer.ts';
+import type { CameraDesc, CompiledScene } from '../../src/core/index.ts';
+import { PathTracer } from '../../src/core/integrator/path-tracer.ts';
 import type { RenderSettings } from '../../src/core/scene/format/render-settings.ts';
 
 /** A render's settings, camera and stripes; the scene itself travels packed (core/scene/compile/pack.ts). */
