@@ -17,8 +17,3 @@ export {
   loadBareModel,
   type BareSceneOptions,
 } from './scene/load/bare-scene.ts';
-export type { GltfLoadOptions } from './gltf/load.ts';
-export type { TangentGenerator } from './scene/format/gltf-model.ts';
-export { createMikkTSpace } from './gltf/mikktspace-wasm.ts';
-export { decodeImageJs } from './texture/decode-js.ts';
-export type { DecodedImage } from './texture/decoded-image.ts';

@@ -6,12 +6,12 @@
  * bundle's assets.
  */
 import mikktspaceWasmUrl from 'mikktspace/dist/module/mikktspace_module_bg.wasm?url';
-import {
-  createMikkTSpace,
-  type DecodedImage,
-  decodeImageJs,
-  type TangentGenerator,
-} from '../../src/core/index.ts';
+// Deep imports: these are the browser host's own tools, not part of the core's public
+// entries (whose published declarations a consumer compiles).
+import { createMikkTSpace } from '../../src/core/gltf/mikktspace-wasm.ts';
+import type { TangentGenerator } from '../../src/core/scene/format/gltf-model.ts';
+import type { DecodedImage } from '../../src/core/texture/decoded-image.ts';
+import { decodeImageJs } from '../../src/core/texture/decode-js.ts';
 
 /** Decodes PNG or JPEG bytes to RGBA8; falls back to the pure-JS decoders where the platform cannot. */
 export async function decodeImageBrowser(
