@@ -22,7 +22,7 @@ export interface SceneFileOptions {
  * Reads and validates a scene file from any source (file, pipe, device) with the 16 MiB
  * bound on the bytes read, then the mesh, glTF and environment-map files it names
  * (relative to its folder). A `.glb` or `.gltf` is a bare model: it gets a scene of its
- * own (core/gltf/bare-scene.ts). Every problem is a CliError naming the file.
+ * own (core/scene/load/bare-scene.ts). Every problem is a CliError naming the file.
  */
 export async function loadSceneFile(path: string, options: SceneFileOptions = {}): Promise<Scene> {
   const model = isModelFileName(path);

@@ -156,7 +156,7 @@ export class SceneRequests {
 
   /**
    * Reads a scene: a File named `.glb` / `.gltf`, or bytes that are a GLB, is a bare
-   * model (core/gltf/bare-scene.ts), anything else a pathwise-scene/1 scene.
+   * model (core/scene/load/bare-scene.ts), anything else a pathwise-scene/1 scene.
    */
   private async readScene(value: unknown, files: SceneFileReader, owned: boolean): Promise<Loaded> {
     if (value instanceof Blob) {

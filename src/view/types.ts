@@ -88,7 +88,7 @@ export interface PathTracerOptions {
   cameraControls?: boolean;
 }
 
-/** A stage of loading a scene or model (core/scene/files.ts LoadStage), `done` of `total`. */
+/** A stage of loading a scene or model (core/scene/load/load.ts LoadStage), `done` of `total`. */
 export interface LoadProgressInfo {
   stage: LoadStage;
   done: number;

@@ -1,7 +1,7 @@
 /**
  * The scene worker: reads one scene off the page's thread — a pathwise-scene/1 file
  * (parse, validation, its mesh, map and glTF files) or a bare glTF model
- * (core/gltf/bare-scene.ts) with the browser's decoders (gltf-browser.ts) — compiles it
+ * (core/scene/load/bare-scene.ts) with the browser's decoders (gltf-browser.ts) — compiles it
  * and packs it (pack.ts), and posts both back, every array transferred (or shared), so
  * the page only installs views: no task of a load runs on the page, however large or
  * degenerate the scene. One worker per load; the page stops it when done or superseded

@@ -1,5 +1,5 @@
 /**
- * The browser's SceneFileReaders (core/scene/files.ts): the files a scene names are
+ * The browser's SceneFileReaders (core/scene/load/load.ts): the files a scene names are
  * fetched relative to the scene's URL, or taken from the files dropped together with
  * the scene — on the page or in a worker (fetch and File work in both). Both refuse a file over the reader's byte limit before holding it whole:
  * by its declared size (Content-Length, File.size), and while streaming by the bytes

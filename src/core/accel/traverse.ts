@@ -1,6 +1,6 @@
 /**
  * Ray queries through the BVH (layout in bvh.ts): the nearest hit
- * (`intersectBvh`) and any hit (`occludedBvh`), called by geometry/trace.ts
+ * (`intersectBvh`) and any hit (`occludedBvh`), called by accel/trace.ts
  * with the ray in the scene's ray record (geometry/ray.ts: origin,
  * direction, far bound r[6]).
  *

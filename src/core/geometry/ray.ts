@@ -27,7 +27,7 @@ export class Hit {
 
 export const SHAPE_SPHERE = 0;
 export const SHAPE_QUAD = 1;
-/** One triangle of a mesh; its index runs over all meshes' triangles (scene/compile-meshes.ts). */
+/** One triangle of a mesh; its index runs over all meshes' triangles (scene/compile/compile-meshes.ts). */
 export const SHAPE_TRIANGLE = 2;
 /** Not a shape: the environment map, as a kind of light (lights/lights.ts). */
 export const LIGHT_ENVIRONMENT = 3;

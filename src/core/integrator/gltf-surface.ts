@@ -3,8 +3,8 @@
  * out of the main loop so scenes without glTF never run it:
  * - `shadeGltfHit`: the vertex attributes at the hit (texture coordinates, colour,
  *   tangent), the per-hit BSDF parameters from the material's factors and textures
- *   (gltf/shading-fill.ts, pbr-book 4e §10.5: textures evaluated once per hit), and
- *   the normal map applied to the shading normal (gltf/normal-map.ts);
+ *   (gltf-material/shading-fill.ts, pbr-book 4e §10.5: textures evaluated once per hit), and
+ *   the normal map applied to the shading normal (gltf-material/normal-map.ts);
  * - `gltfLightEmission`: the emission a light sample sees at a point of an emissive
  *   glTF mesh (emissive texture × coverage);
  * - `shadowTransmittance`: the visibility of a shadow ray through alpha-blended or

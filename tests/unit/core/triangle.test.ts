@@ -19,7 +19,7 @@ import { hashToUnit, sampleKey } from '../../../src/core/rng/pcg.ts';
 import { cube, icosphere, octahedron, scaledMesh, type TestMesh } from '../../helpers/mesh-gen.ts';
 
 const r = new TriangleRay();
-/** A ray record: the far bound lives at index 6 (geometry/trace.ts R_T). */
+/** A ray record: the far bound lives at index 6 (accel/trace.ts R_T). */
 const best = new Float64Array(8);
 
 /** Distance by the fast test (hitTriangle), Infinity for a miss. */

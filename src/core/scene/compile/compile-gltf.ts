@@ -1,6 +1,6 @@
 /**
  * The scene's glTF shapes in the form the tracer reads (compile.ts): each model's
- * triangles split into one mesh per glTF material (gltf/groups.ts), so that an
+ * triangles split into one mesh per glTF material (scene/compile/groups.ts), so that an
  * emissive material is one light sampled by area like every emissive mesh; one
  * scene material of kind MATERIAL_GLTF per row of the models' material tables,
  * pointing at that row (M_GLTF_INDEX); the tables of all models in one table and

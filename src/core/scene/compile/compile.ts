@@ -181,7 +181,7 @@ export class CompiledScene implements SceneGeometry {
   readonly hasEnvironment: boolean;
   readonly bvh: Bvh | null;
   /**
-   * Scratch of the ray queries (geometry/trace.ts): the traversal stack,
+   * Scratch of the ray queries (accel/trace.ts): the traversal stack,
    * sized for the BVH's depth, and the ray record. Per scene object, never
    * shared between threads.
    */

@@ -68,7 +68,7 @@ export interface QuadDesc {
 /**
  * A triangle mesh, inline or from an `.obj` / `.ply` file. `data` holds its triangles
  * in world space (after `transform`): the loader fills it for inline meshes, and
- * `resolveSceneFiles` (scene/files.ts) for files; a scene whose meshes lack `data`
+ * `resolveSceneFiles` (scene/load/load.ts) for files; a scene whose meshes lack `data`
  * cannot be compiled.
  */
 export interface MeshDesc {
