@@ -19,7 +19,6 @@ import { RenderStats } from '../core/integrator/render-stats.ts';
 import { compileScene } from '../core/scene/compile/compile.ts';
 import { packScene } from '../core/scene/compile/pack.ts';
 import type { Scene } from '../core/scene/format/types.ts';
-import type { StripeJob } from '../../workers/node/stripes.ts';
 import type {
   InitMessage,
   ReadyReport,
@@ -176,9 +175,6 @@ export class RenderPool {
     this.film = new Film(req.width, req.height, this.filmBuffer);
     this.threads = threads;
     this.stripeRows = stripeRows;
-    // Not stripes.ts's helper: importing that module would bundle the tracer
-    // (path-tracer.ts sets trace on its prototype, a side effect) into the
-    // main thread's code, which never traces.
     this.stripes = Math.ceil(req.height / stripeRows);
     this.memory = roundMemory(this.stripes, threads);
     this.roundBuffers = roundBuffers(this.memory);

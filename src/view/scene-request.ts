@@ -33,7 +33,7 @@ import {
   validateScene,
 } from '../core/index.ts';
 import { ByteLimitError, readBlobBounded } from '../../workers/browser/read-bounded.ts';
-import { fetchBounded, fileNameOf, modelSizeProblem } from '../../workers/browser/url-load.ts';
+import { fetchBounded, modelSizeProblem, readFetched } from '../../workers/browser/url-load.ts';
 import { loadModelInWorker, type LoadedModel, type ModelJob } from './model-load.ts';
 import { urlSceneFiles, type PortableReader } from '../../workers/browser/scene-files.ts';
 import type { PathTracerOptions } from './types.ts';
@@ -128,16 +128,12 @@ export class SceneRequests {
    * before it was read resolves without loading anything.
    */
   async setScene(value: unknown, files?: SceneFileReader): Promise<void> {
-    return this.setSceneOf(value, files, false);
-  }
-
-  /** setScene; `owned`: `value` is bytes this object read (load), which it may hand over. */
-  private async setSceneOf(value: unknown, files: SceneFileReader | undefined, owned: boolean) {
     const request = this.newSceneRequest();
     // Mesh, glTF and environment-map files: fetched relative to the page unless the
     // caller says how (a scene's URL, dropped files, a preset's assets).
     const reader = files ?? this.host.options.files ?? urlSceneFiles(document.baseURI);
-    return this.install(request, () => this.readScene(value, reader, owned));
+    // The caller's bytes stay the caller's: copied to the scene worker, not handed over.
+    return this.install(request, () => this.readScene(value, reader, false));
   }
 
   /** A new scene request: the older ones lose (a fetch in flight is aborted, a model load stopped). */
@@ -284,16 +280,10 @@ export class SceneRequests {
    * in shared memory when the workers share it, and progress as `loadprogress` events.
    */
   private async gltfPlatform(): Promise<ResolveOptions> {
-    const { browserTangentGenerator, decodeImageBrowser } =
-      await import('../../workers/browser/gltf-browser.ts');
-    return {
-      decodeImage: decodeImageBrowser,
-      // Without it, normal maps of primitives that have no tangents are ignored with
-      // a warning (the loader says so) rather than failing the whole model.
-      generateTangents: await browserTangentGenerator().catch(() => null),
-      sharedTextures: this.host.shared(),
-      onProgress: (stage, done, total) => this.progressLoad(stage, done, total),
-    };
+    const { browserGltfPlatform } = await import('../../workers/browser/gltf-browser.ts');
+    return browserGltfPlatform(this.host.shared(), (stage, done, total) =>
+      this.progressLoad(stage, done, total),
+    );
   }
 
   private progressLoad(stage: LoadStage, done: number, total: number): void {
@@ -386,16 +376,12 @@ export class SceneRequests {
     }
     const abort = typeof AbortController !== 'undefined' ? new AbortController() : null;
     this.loadAbort = abort;
-    const { bytes, base, model } = await fetchBounded(href, url, progress, abort?.signal);
+    const fetched = await fetchBounded(href, url, progress, abort?.signal);
     if (this.loadAbort === abort) this.loadAbort = null;
-    // The files the scene (or the model) names live beside it.
-    const files = urlSceneFiles(base);
-    if (model || isGlbBytes(bytes)) {
-      const name = fileNameOf(base);
-      return this.readModel(bytes, name, files, true).catch((e: unknown): never => {
-        throw new Error(`${name}: ${e instanceof Error ? e.message : String(e)}`);
-      });
-    }
-    return this.readScene(bytes, files, true);
+    return readFetched(
+      fetched,
+      (bytes, name, files) => this.readModel(bytes, name, files, true),
+      (bytes, files) => this.readScene(bytes, files, true),
+    );
   }
 }

@@ -11,6 +11,7 @@ import mikktspaceWasmUrl from 'mikktspace/dist/module/mikktspace_module_bg.wasm?
 import { createMikkTSpace } from '../../src/core/gltf/mikktspace-wasm.ts';
 import type { TangentGenerator } from '../../src/core/scene/format/gltf-model.ts';
 import type { DecodedImage } from '../../src/core/texture/decoded-image.ts';
+import type { ResolveOptions } from '../../src/core/index.ts';
 import { decodeImageJs } from '../../src/core/texture/decode-js.ts';
 
 /** Decodes PNG or JPEG bytes to RGBA8; falls back to the pure-JS decoders where the platform cannot. */
@@ -36,6 +37,25 @@ export async function decodeImageBrowser(
   } finally {
     bitmap.close();
   }
+}
+
+/**
+ * What the loader takes from the browser, on the page and in the scene worker alike:
+ * the platform's image decoder, MikkTSpace, texels in shared memory when the workers
+ * share it, and the caller's progress.
+ */
+export async function browserGltfPlatform(
+  sharedTextures: boolean,
+  onProgress: ResolveOptions['onProgress'],
+): Promise<ResolveOptions> {
+  return {
+    decodeImage: decodeImageBrowser,
+    // Without it, normal maps of primitives that have no tangents are ignored with a
+    // warning (the loader says so) rather than failing the whole model.
+    generateTangents: await browserTangentGenerator().catch(() => null),
+    sharedTextures,
+    onProgress,
+  };
 }
 
 let mikktspace: Promise<TangentGenerator> | null = null;

@@ -12,7 +12,6 @@ import {
   CancelledError,
   compileScene,
   countSkippedTriangles,
-  isGlbBytes,
   loadBareModel,
   markValidated,
   packScene,
@@ -27,7 +26,7 @@ import {
   type Scene,
   type SceneFileReader,
 } from '../../src/core/index.ts';
-import { browserTangentGenerator, decodeImageBrowser } from './gltf-browser.ts';
+import { browserGltfPlatform } from './gltf-browser.ts';
 import {
   SHAPES_PER_MESSAGE,
   type LoadRequest,
@@ -35,8 +34,8 @@ import {
   type ModelRequest,
   type UrlRequest,
 } from './model-protocol.ts';
-import { readerOf, urlSceneFiles } from './scene-files.ts';
-import { fetchBounded, fileNameOf } from './url-load.ts';
+import { readerOf } from './scene-files.ts';
+import { fetchBounded, readFetched } from './url-load.ts';
 
 const post = (reply: ModelReply, transfer: Transferable[] = []) =>
   (self as unknown as Worker).postMessage(reply, transfer);
@@ -68,15 +67,8 @@ function forThePage(scene: Scene, transfer: Transferable[]): Scene {
   };
 }
 
-async function platform(req: LoadRequest, onProgress: ResolveOptions['onProgress']) {
-  return {
-    decodeImage: decodeImageBrowser,
-    // Without it, normal maps of primitives that have no tangents are ignored with a
-    // warning (the loader says so) rather than failing the whole model.
-    generateTangents: await browserTangentGenerator().catch(() => null),
-    sharedTextures: req.shared,
-    onProgress,
-  };
+function platform(req: LoadRequest, onProgress: ResolveOptions['onProgress']) {
+  return browserGltfPlatform(req.shared, onProgress);
 }
 
 async function read(req: LoadRequest, onProgress: ResolveOptions['onProgress']): Promise<Scene> {
@@ -123,17 +115,11 @@ async function readUrl(
   req: UrlRequest,
   onProgress: NonNullable<ResolveOptions['onProgress']>,
 ): Promise<Scene> {
-  const { bytes, base, model } = await fetchBounded(req.url, req.label, onProgress);
-  const files = urlSceneFiles(base);
-  if (model || isGlbBytes(bytes)) {
-    const name = fileNameOf(base);
-    try {
-      return await readModel(req, bytes, name, files, onProgress);
-    } catch (e) {
-      throw new Error(`${name}: ${e instanceof Error ? e.message : String(e)}`);
-    }
-  }
-  return withFiles(req, parseScene(bytes), files, onProgress);
+  return readFetched(
+    await fetchBounded(req.url, req.label, onProgress),
+    (bytes, name, files) => readModel(req, bytes, name, files, onProgress),
+    (bytes, files) => withFiles(req, parseScene(bytes), files, onProgress),
+  );
 }
 
 self.onmessage = async (e: MessageEvent<LoadRequest>) => {

@@ -6,12 +6,14 @@
  */
 import {
   GLTF_FILE_BYTES,
+  isGlbBytes,
   isModelFileName,
   LIMITS,
   type LoadStage,
   sceneSizeProblem,
 } from '../../src/core/index.ts';
 import { ByteLimitError, readResponseBounded } from './read-bounded.ts';
+import { urlSceneFiles, type PortableReader } from './scene-files.ts';
 
 export interface Fetched {
   bytes: Uint8Array;
@@ -65,5 +67,27 @@ export async function fetchBounded(
     if (!(e instanceof ByteLimitError)) throw e;
     const size = model ? modelSizeProblem(e.size, e.exact) : sceneSizeProblem(e.size, e.exact);
     throw new Error(`${label}: ${size}`);
+  }
+}
+
+/**
+ * What a fetched URL is, read by the caller's loaders: a bare model when its path names
+ * one or its bytes are a GLB (its loader's errors led by the file's name), else a
+ * pathwise-scene/1 file. The files either names are read beside it. One rule for the
+ * scene worker and for the page that loads without it.
+ */
+export async function readFetched<T>(
+  fetched: Fetched,
+  readModel: (bytes: Uint8Array, name: string, files: PortableReader) => Promise<T>,
+  readScene: (bytes: Uint8Array, files: PortableReader) => Promise<T>,
+): Promise<T> {
+  const { bytes, base, model } = fetched;
+  const files = urlSceneFiles(base);
+  if (!model && !isGlbBytes(bytes)) return readScene(bytes, files);
+  const name = fileNameOf(base);
+  try {
+    return await readModel(bytes, name, files);
+  } catch (e) {
+    throw new Error(`${name}: ${e instanceof Error ? e.message : String(e)}`);
   }
 }

@@ -26,7 +26,7 @@ import { decodeUtf8 } from '../io/utf8.ts';
 import { parseJson } from '../io/json.ts';
 import { quote } from '../util/message.ts';
 import type { ImageDecoder } from '../texture/decoded-image.ts';
-import { DEFAULT_TEXTURE_LIMIT_BYTES, type TextureStore } from '../texture/texture-store.ts';
+import { DEFAULT_TEXTURE_LIMIT_BYTES } from '../texture/texture-store.ts';
 import { GltfError, messageOf } from './errors.ts';
 import { GLTF_FILE_BYTES } from './file-names.ts';
 import { flattenGltf } from './flatten.ts';

@@ -12,7 +12,7 @@ import { EnvironmentSample } from '../lights/environment-map.ts';
 import { LightSample } from '../lights/lights.ts';
 import { TriangleSurface } from './triangle-surface.ts';
 import { GltfWork } from './gltf-surface.ts';
-import { DIM_PER_BOUNCE, DEFAULT_SAMPLER, Sampler, type SamplerKind } from '../sampling/sampler.ts';
+import { DIM_PER_BOUNCE, DEFAULT_SAMPLER, Sampler } from '../sampling/sampler.ts';
 import type { CompiledScene } from '../scene/compile/compile.ts';
 import type { CameraDesc } from '../scene/format/types.ts';
 import type { Estimator, RenderSettings } from '../scene/format/render-settings.ts';
