@@ -6,6 +6,7 @@
 import { existsSync } from 'node:fs';
 import { LIMITS, type Scene, type SettingsDesc } from '../core/scene/format/types.ts';
 import { estimateNoise } from '../core/film/noise.ts';
+import { emptyImageMessage } from '../core/integrator/empty-image.ts';
 import { formatRanges } from '../core/film/sample-ranges.ts';
 import type { Film } from '../core/film/film.ts';
 import type { FilmHeader } from '../core/film/film-file.ts';
@@ -160,6 +161,14 @@ export async function renderCommand(
     const spp = openEnded ? result.end : total;
     // The film rejects every sample that is not finite or out of range, so this finds
     // nothing; it is the guarantee that no Inf or NaN is ever written silently.
+    // Every sample dropped: there is no picture to write (issue 27), whatever the
+    // exit status of a black image would suggest.
+    if (pool.stats.paths > 0 && pool.stats.rejected === pool.stats.paths) {
+      throw new CliError(
+        `${showPath(args.scenePath)}: ` +
+          emptyImageMessage(scene.camera, settings.width, settings.height, pool.stats.rejected),
+      );
+    }
     const bad = countNonFinite(pool.film.mean());
     if (bad > 0) throw new Error(`${bad} pixel values are not finite; nothing was written`);
     testStage('write');

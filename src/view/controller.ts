@@ -31,6 +31,7 @@
  */
 import {
   unpackScene,
+  emptyImageMessage,
   encodePfm,
   type CameraDesc,
   type CompiledScene,
@@ -96,6 +97,7 @@ export class Controller extends EventTarget implements PathTracerController {
     emit: (type, detail) => this.emit(type, detail),
     target: () => this.target,
     previewing: () => this.films.previewing,
+    emptyImage: (rejected) => this.emptyImage(rejected),
   });
   private resizeObserver: ResizeObserver | null = null;
   private detachControls: (() => void) | null = null;
@@ -291,6 +293,16 @@ export class Controller extends EventTarget implements PathTracerController {
     this.meter.cleared();
     this.job.pool.kick();
     this.wake();
+  }
+
+  /** Every sample of the film's first pass was dropped: an error, and no more passes of it. */
+  private emptyImage(rejected: number): void {
+    const job = this.activeJob();
+    if (!job || !this.camera) return;
+    this.pause();
+    this.emit('error', {
+      message: emptyImageMessage(this.camera, job.width, job.height, rejected),
+    });
   }
 
   pause(): void {

@@ -3,7 +3,7 @@
  * second, the time a draw takes, the noise estimate, and the `progress` and
  * `converged` events, sent only when they say something new.
  */
-import { estimateNoise } from '../core/index.ts';
+import { estimateNoise, filmIsEmpty } from '../core/index.ts';
 import type { FilmJob } from './film-job.ts';
 import { RateMeter } from './rate-meter.ts';
 import type { ProgressInfo } from './types.ts';
@@ -18,6 +18,8 @@ export interface MeterHost {
   target(): number;
   /** Whether the preview film is active (its passes are not the image's samples). */
   previewing(): boolean;
+  /** A whole pass is done and the film accepted none of its `rejected` samples. */
+  emptyImage(rejected: number): void;
 }
 
 export class ProgressMeter {
@@ -36,6 +38,8 @@ export class ProgressMeter {
   /** spp and target of the last progress event (-1: none since the last restart). */
   private lastProgressSpp = -1;
   private lastProgressTarget = -1;
+  /** Whether this film's first pass was checked for an empty image. */
+  private emptyChecked = false;
 
   constructor(host: MeterHost) {
     this.host = host;
@@ -51,6 +55,7 @@ export class ProgressMeter {
   /** The film was cleared: its noise and progress are owed again. */
   cleared(): void {
     this.convergedSent = false;
+    this.emptyChecked = false;
     this.noise = NaN;
     this.lastProgressSpp = -1;
   }
@@ -92,6 +97,16 @@ export class ProgressMeter {
       this.lastProgressSpp = spp;
       this.lastProgressTarget = host.target();
       host.emit('progress', this.info(spp));
+    }
+    // Once per film, after its first whole pass: a film that accepted no
+    // sample is no picture (empty-image.ts), so it is an error, not black.
+    if (!this.emptyChecked && !host.previewing() && spp >= 1) {
+      this.emptyChecked = true;
+      const rejected = job.rejected();
+      if (rejected > 0 && filmIsEmpty(job.film.sums)) {
+        host.emptyImage(rejected);
+        return;
+      }
     }
     if (!this.convergedSent && !host.previewing() && spp >= host.target()) {
       this.convergedSent = true;

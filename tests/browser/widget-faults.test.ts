@@ -343,6 +343,39 @@ describe('<pathwise-view> lifecycle faults (Chromium)', () => {
     expect(errors).toEqual([]);
   });
 
+  it('a scene whose every sample is dropped gives one error event, not a black picture', async () => {
+    // tests/cli/empty-image.test.ts has the same scene through the command line.
+    const { page, errors } = await open();
+    const view = await addView(page, 'v', {
+      src: '/tests/browser/fixtures/hot-box.json',
+      spp: '8',
+    });
+    await waitForEvent(page, view, 'error');
+    const state = await page.evaluate(async (s) => {
+      const el = document.querySelector(s) as any;
+      // A while longer: the error is sent once, and the render stops.
+      const spp = el.controller.stats().spp;
+      await new Promise((r) => setTimeout(r, 500));
+      return {
+        paused: el.controller.paused,
+        sppBefore: spp,
+        sppAfter: el.controller.stats().spp,
+        shown: el.shadowRoot.querySelector('[part="message"]')?.hidden === false,
+        message: el.shadowRoot.querySelector('[part="message"]')?.textContent ?? '',
+      };
+    }, view);
+    const log = await events(page, view);
+    const errorEvents = log.filter((e) => e.type === 'error');
+    expect(errorEvents).toHaveLength(1);
+    expect(errorEvents[0].detail.message).toMatch(/^no image: all \d+ samples were not finite/);
+    expect(log.some((e) => e.type === 'converged')).toBe(false);
+    expect(state.shown).toBe(true);
+    expect(state.message).toBe(errorEvents[0].detail.message);
+    expect(state.paused).toBe(true);
+    expect(state.sppAfter).toBe(state.sppBefore);
+    expect(errors).toEqual([]);
+  });
+
   it('a worker that cannot start gives one clear error and is not restarted for ever', async () => {
     const { page } = await open();
     const view = await addView(page, 'w', {

@@ -38,6 +38,15 @@ export function buildMeshData(raw: RawMesh, transform: ArrayLike<number> | null)
   }
   const normals = raw.normals === null ? null : transformNormals(raw.normals, transform);
   const { indices, skipped } = dropZeroArea(positions, raw.indices);
+  // Skipping some zero-area triangles is the format's rule; losing all of them
+  // leaves a shape that renders as nothing, which no one means (issue 27).
+  if (indices.length === 0 && skipped > 0) {
+    throw new MeshError(
+      skipped === 1
+        ? 'its only triangle has zero area, so nothing of the mesh would render'
+        : `all ${skipped} of its triangles have zero area, so nothing of the mesh would render`,
+    );
+  }
   return { positions, indices, normals, skipped };
 }
 
