@@ -4,7 +4,7 @@
  * than on what the file holds, and so that a malformed segment is named instead of
  * surfacing as one of jpeg-js's internal TypeErrors:
  *
- * - every segment's length lies inside the file (B.1.1.4);
+ * - every segment's length lies inside the file (B.1.1.4), and the file ends with EOI;
  * - exactly one frame, of a process jpeg-js decodes: baseline, extended (8-bit) or
  *   progressive Huffman (SOF0, SOF1, SOF2; B.2.2), with 1–4 components, sampling
  *   factors 1–4, and a height given in the frame header (not by a DNL marker);
@@ -72,14 +72,16 @@ export function checkJpeg(bytes: Uint8Array, maxTexels: number): JpegFrame {
   let scans = 0;
   let p = 2;
   for (;;) {
-    if (p >= n) break; // no EOI: jpeg-js decodes what there is, like browsers do
+    // A file cut short is damaged: reported, rather than decoded in part as a browser
+    // would, so that Node and the browser agree (the browser runs this check too).
+    if (p >= n) fail(`the file ends at byte ${n} without an EOI marker (truncated?)`);
     if (bytes[p] !== 0xff) fail(`byte ${p}: expected a marker (FF xx), found ${bytes[p]}`);
     while (p + 1 < n && bytes[p + 1] === 0xff) p++; // fill bytes (B.1.1.2)
-    if (p + 1 >= n) break;
+    if (p + 1 >= n) fail(`the file ends at byte ${n} without an EOI marker (truncated?)`);
     const marker = bytes[p + 1];
     const at = p;
     p += 2;
-    if (marker === 0xd9) break; // EOI
+    if (marker === 0xd9) break; // EOI; anything after it is not part of the image
     if (marker === 0x01 || (marker >= 0xd0 && marker <= 0xd7)) continue; // TEM, RSTn: no length
     if (marker === 0xd8 || marker === 0x00)
       fail(`marker ${hex(marker)} at byte ${at} is out of place`);
