@@ -69,8 +69,8 @@ const ADAM7 = [
 /** Deflate's largest expansion (RFC 1951 §3.2.5: 258 bytes from a 2-bit code at best) is below 1032:1. */
 export const DEFLATE_MAX_RATIO = 1032;
 
-/** Input slice per inflate step: its output is at most ~16.5 MiB, the most held at once. */
-const INFLATE_SLICE = 16 * 1024;
+/** Input slice per inflate step: its output is at most ~2 MiB, the most inflated past the limit. */
+const INFLATE_SLICE = 2048;
 
 function fail(detail: string): never {
   throw new FormatError('PNG', detail);
