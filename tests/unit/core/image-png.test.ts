@@ -7,7 +7,7 @@
 import { describe, expect, it } from 'vitest';
 import { FormatError } from '../../../src/core/io/format-error.ts';
 import { decodeImageJs, decodePngBytes } from '../../../src/core/texture/decode-js.ts';
-import { pngDataSize } from '../../../src/core/texture/png-check.ts';
+import { pngDataSize } from '../../../src/core/texture/png-data.ts';
 import {
   IEND,
   chunkAt,
