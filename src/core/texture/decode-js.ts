@@ -9,7 +9,7 @@
  */
 import { convertIndexedToRgb, decode as decodePng } from 'fast-png';
 import jpeg from 'jpeg-js';
-import { FormatError } from '../io/format-error.ts';
+import { FormatError } from '../util/format-error.ts';
 import { DEFAULT_MAX_TEXELS, type DecodedImage } from './decoded-image.ts';
 import { imageDecodeError, libraryMessage } from './image-error.ts';
 import { notPngOrJpeg, sniffImageType } from './image-header.ts';

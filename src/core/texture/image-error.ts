@@ -3,7 +3,7 @@
  * file>" (issue 27, deliverable 4), whoever decoded it (fast-png, jpeg-js, the
  * browser's createImageBitmap) and whichever check caught it.
  */
-import { FormatError } from '../io/format-error.ts';
+import { FormatError } from '../util/format-error.ts';
 import { sanitize } from '../util/message.ts';
 
 /**

@@ -19,7 +19,7 @@
  *   EOBRUN code. A frame that needs more than the whole file holds is rejected;
  * - the frame's texels against the decoded-texel budget.
  */
-import { FormatError } from '../io/format-error.ts';
+import { FormatError } from '../util/format-error.ts';
 
 export interface JpegFrame {
   width: number;

@@ -24,8 +24,8 @@
  * The second inflate (fast-png's) runs on a stream already proven to hold exactly the
  * needed bytes, so it is bounded by the header, which is bounded by the file.
  */
-import { crc32 } from '../io/crc32.ts';
-import { FormatError } from '../io/format-error.ts';
+import { crc32 } from '../util/crc32.ts';
+import { FormatError } from '../util/format-error.ts';
 import { sanitize } from '../util/message.ts';
 import { DEFLATE_MAX_RATIO, inflateChecked, pngDataSize, type PngHeader } from './png-data.ts';
 

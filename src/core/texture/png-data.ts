@@ -8,7 +8,7 @@
  * headers), which bounds what a header may claim for the compressed bytes it has.
  */
 import { Unzlib } from 'fflate';
-import { FormatError } from '../io/format-error.ts';
+import { FormatError } from '../util/format-error.ts';
 import { sanitize } from '../util/message.ts';
 
 /** Samples per pixel by colour type (§11.2.1, Table 11.1). */
