@@ -16,7 +16,9 @@
  *   difference code and the end-of-block code (F.1.2: a Huffman code is at least one
  *   bit long), and at least 1 bit in progressive mode, whose first DC scan codes every
  *   block's DC difference (G.1.2.1) while AC scans may skip runs of blocks with one
- *   EOBRUN code. A frame that needs more than the whole file holds is rejected;
+ *   EOBRUN code. A frame that needs more than the whole file holds is rejected at
+ *   once, and one that needs more than its scans hold once they are walked (so that
+ *   COM or APPn padding cannot stand in for image data);
  * - the frame's texels against the decoded-texel budget.
  */
 import { FormatError } from '../util/format-error.ts';
@@ -70,6 +72,9 @@ export function checkJpeg(bytes: Uint8Array, maxTexels: number): JpegFrame {
   const ac = new Set<number>();
   const quant = new Set<number>();
   let scans = 0;
+  /** Bytes of entropy-coded data in all scans; `least` of them are needed. */
+  let entropyBytes = 0;
+  let least = 0;
   let p = 2;
   for (;;) {
     // A file cut short is damaged: reported, rather than decoded in part as a browser
@@ -131,7 +136,7 @@ export function checkJpeg(bytes: Uint8Array, maxTexels: number): JpegFrame {
           `the frame header claims ${width}×${height}, over the budget of ${maxTexels} decoded texels`,
         );
       }
-      const least = jpegMinimumBytes(width, height, sampling, progressive);
+      least = jpegMinimumBytes(width, height, sampling, progressive);
       if (least > n) {
         fail(
           `the frame header claims ${width}×${height} but the file has only ${n} bytes (at least ${least} needed)`,
@@ -189,6 +194,7 @@ export function checkJpeg(bytes: Uint8Array, maxTexels: number): JpegFrame {
         }
       }
       scans++;
+      const start = p;
       // Skip the entropy-coded data: up to the next marker that is not a stuffed
       // zero (FF00) or a restart (FFD0–FFD7) (B.1.1.5).
       while (
@@ -201,11 +207,20 @@ export function checkJpeg(bytes: Uint8Array, maxTexels: number): JpegFrame {
       )
         p++;
       if (p + 1 >= n) p = n;
+      entropyBytes += p - start;
     }
     // APPn, COM, DRI, DNL and the rest: skipped by their length.
   }
   if (frame === null) fail('no frame header (SOF marker)');
   if (scans === 0) fail('no image data (no SOS segment)');
+  // The same bound against the scans alone, so that padding (COM or APPn segments)
+  // cannot stand in for image data.
+  if (entropyBytes < least) {
+    fail(
+      `the frame header claims ${frame.width}×${frame.height} but its scans hold only ` +
+        `${entropyBytes} bytes of entropy-coded data (at least ${least} needed)`,
+    );
+  }
   for (let i = 0; i < quantIds.length; i++) {
     if (!quant.has(quantIds[i])) {
       fail(`component ${i} uses quantization table ${quantIds[i]}, which no DQT segment defines`);

@@ -78,6 +78,16 @@ describe('JPEG frame size against the bytes present', () => {
     );
   });
 
+  it('COM padding does not stand in for image data: the scans alone are counted', () => {
+    const lying = jpegWithSize(sample, 256, 256);
+    const com = concatBytes([0xff, 0xfe, 0x07, 0xd2], new Uint8Array(2000).fill(0x41));
+    const padded = concatBytes(lying.subarray(0, 2), com, lying.subarray(2));
+    expect(padded.length).toBeGreaterThan(768);
+    expect(jpegError(padded)).toMatch(
+      /^JPEG: the frame header claims 256×256 but its scans hold only \d+ bytes of entropy-coded data \(at least 768 needed\)$/,
+    );
+  });
+
   it('more texels than the budget', () => {
     expect(jpegError(sample, 100)).toBe(
       'JPEG: the frame header claims 16×8, over the budget of 100 decoded texels',
