@@ -12,6 +12,13 @@ import { sanitize } from '../util/message.ts';
  * nothing to a user, so it is replaced.
  */
 export function libraryMessage(e: unknown): string {
+  // An allocation the engine refused is not the file's fault in the same way: said so.
+  if (
+    e instanceof RangeError &&
+    /allocation failed|Invalid (typed )?array length/.test(e.message)
+  ) {
+    return 'out of memory while decoding';
+  }
   if (e instanceof Error && !(e instanceof TypeError) && !(e instanceof RangeError)) {
     return sanitize(e.message, 80);
   }
