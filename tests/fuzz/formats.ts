@@ -27,7 +27,25 @@ import {
 } from '../../src/core/index.ts';
 import { GM_STRIDE } from '../../src/core/gltf-material/material-table.ts';
 import { type GltfModel, loadGltf } from '../../src/core/gltf/load.ts';
-import { decodeImageJs } from '../../src/core/texture/decode-js.ts';
+import {
+  decodeImageJs,
+  decodeJpegBytes,
+  decodePngBytes,
+} from '../../src/core/texture/decode-js.ts';
+import type { DecodedImage } from '../../src/core/texture/decoded-image.ts';
+import {
+  IEND,
+  ihdr,
+  jpegImage,
+  jpegWithSize,
+  pngChunk,
+  pngFile,
+  pngImage,
+  pngIndexed,
+  pngInterlacedGrey,
+  rawRows,
+  zlib,
+} from './image-samples.ts';
 import { POSITION_Y2_OFFSET, quadGlb, quadGltfDataUri } from './gltf-samples.ts';
 import type { RawMesh } from '../../src/core/geometry/mesh-data.ts';
 import { parseObj } from '../../src/core/io/obj.ts';
@@ -600,4 +618,93 @@ FORMATS.push(
     nonFinite: () => [],
     others: () => [{ name: 'not an HDR', bytes: ascii('P6\n'), message: /not a Radiance HDR/ }],
   },
+
+  {
+    name: 'PNG',
+    decode: (bytes) => decodePngBytes(bytes),
+    check: checkImage,
+    samples: () => [
+      pngImage(3, 2, 6),
+      pngImage(2, 2, 0),
+      pngIndexed(3, 1, [255, 0, 0, 0, 255, 0, 0, 0, 255], (x) => x, [pngChunk('tRNS', [0, 128])]),
+      pngInterlacedGrey(5, 3, (x, y) => 40 * y + x),
+    ],
+    lyingHeaders: () => [
+      {
+        name: 'a 4×4 image whose data inflates to 16 MiB (a deflate bomb)',
+        bytes: pngFile(ihdr(4, 4), pngChunk('IDAT', zlib(new Uint8Array(16 << 20))), IEND),
+        message: /^PNG: the image data inflates past the 68 bytes its 4×4 header needs$/,
+      },
+      {
+        name: '60000 × 60000 texels in a few bytes',
+        bytes: pngFile(ihdr(60000, 60000, 8, 0), pngChunk('IDAT', zlib([0])), IEND),
+        message: /over the budget of \d+ decoded texels/,
+      },
+      {
+        name: '10000 × 10000 texels in a few bytes',
+        bytes: pngFile(ihdr(10000, 10000, 1, 0), pngChunk('IDAT', zlib([0])), IEND),
+        message: /^PNG: the header claims 10000×10000 .* but the file has only 9 bytes of IDAT/,
+      },
+      {
+        name: 'image data shorter than the header needs',
+        bytes: pngFile(ihdr(4, 4), pngChunk('IDAT', zlib(rawRows(4, 2, 4, () => 0))), IEND),
+        message: /inflates to 34 bytes, but the 4×4 header needs 68$/,
+      },
+      {
+        name: 'a chunk length of 2^31',
+        bytes: pngFile(ihdr(4, 4), Uint8Array.of(0x80, 0, 0, 0, 0x49, 0x44, 0x41, 0x54), IEND),
+        message: /its length 2147483648 runs past the end of the file/,
+      },
+    ],
+    // PNG samples are integers: nothing to make non-finite.
+    nonFinite: () => [],
+    others: () => [
+      {
+        name: 'colour type 3 without PLTE',
+        bytes: pngFile(ihdr(2, 1, 8, 3), pngChunk('IDAT', zlib([0, 0, 0])), IEND),
+        message: /colour type 3 \(indexed-colour\) needs a PLTE chunk/,
+      },
+      {
+        name: 'an empty PLTE',
+        bytes: pngFile(ihdr(2, 1, 8, 3), pngChunk('PLTE'), pngChunk('IDAT', zlib([0, 0, 0])), IEND),
+        message: /PLTE must hold 1 to 256 RGB entries/,
+      },
+      { name: 'not a PNG', bytes: ascii('GIF89a'), message: /not a PNG file/ },
+    ],
+  },
+  {
+    name: 'JPEG',
+    decode: (bytes) => decodeJpegBytes(bytes),
+    check: checkImage,
+    samples: () => [jpegImage(16, 8, 90), jpegImage(9, 3, 50)],
+    lyingHeaders: () => [
+      {
+        name: '16384 × 8192 in a few hundred bytes',
+        bytes: jpegWithSize(jpegImage(16, 8, 90), 16384, 8192),
+        message:
+          /^JPEG: the frame header claims 16384×8192 but the file has only \d+ bytes \(at least 1572864 needed\)$/,
+      },
+      {
+        name: '9000 × 9000 in a few hundred bytes',
+        bytes: jpegWithSize(jpegImage(16, 8, 90), 9000, 9000),
+        message: /claims 9000×9000 but the file has only \d+ bytes \(at least 949219 needed\)$/,
+      },
+      {
+        name: '65535 × 65535, over the texel budget',
+        bytes: jpegWithSize(jpegImage(16, 8, 90), 65535, 65535),
+        message: /over the budget of \d+ decoded texels/,
+      },
+    ],
+    nonFinite: () => [],
+    others: () => [{ name: 'not a JPEG', bytes: ascii('\xff\xd9'), message: /no SOI marker/ }],
+  },
 );
+
+/** A decoded image: samples for every texel, each within its bit depth. */
+function checkImage(value: unknown): void {
+  const img = value as DecodedImage;
+  expect(img.width >= 1 && img.height >= 1).toBe(true);
+  expect(img.data.length).toBe(img.width * img.height * img.channels);
+  const max = img.depth === 16 ? 65535 : 255;
+  expect(img.data.every((v) => Number.isInteger(v) && v >= 0 && v <= max)).toBe(true);
+}

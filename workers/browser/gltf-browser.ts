@@ -10,27 +10,55 @@ import mikktspaceWasmUrl from 'mikktspace/dist/module/mikktspace_module_bg.wasm?
 // entries (whose published declarations a consumer compiles).
 import { createMikkTSpace } from '../../src/core/gltf/mikktspace-wasm.ts';
 import type { TangentGenerator } from '../../src/core/scene/format/gltf-model.ts';
-import type { DecodedImage } from '../../src/core/texture/decoded-image.ts';
+import { DEFAULT_MAX_TEXELS, type DecodedImage } from '../../src/core/texture/decoded-image.ts';
+import { imageDecodeError, libraryMessage } from '../../src/core/texture/image-error.ts';
+import { notPngOrJpeg, sniffImageType } from '../../src/core/texture/image-header.ts';
+import { checkJpeg } from '../../src/core/texture/jpeg-check.ts';
+import { checkPng } from '../../src/core/texture/png-check.ts';
 import type { ResolveOptions } from '../../src/core/index.ts';
 import { decodeImageJs } from '../../src/core/texture/decode-js.ts';
 
-/** Decodes PNG or JPEG bytes to RGBA8; falls back to the pure-JS decoders where the platform cannot. */
+/**
+ * Decodes PNG or JPEG bytes to RGBA8; falls back to the pure-JS decoders where the
+ * platform cannot. The same checks as in Node run first (png-check.ts: chunks, the
+ * declared size against the bytes and the budget, the image data inflated under a hard
+ * limit; jpeg-check.ts: segments and the frame size against the bytes), so that a
+ * lying header or a deflate bomb fails here with the same message as in the CLI
+ * instead of reaching the browser's decoder; its own failures read the same way.
+ */
 export async function decodeImageBrowser(
   bytes: Uint8Array,
   mimeType: string,
+  maxTexels = DEFAULT_MAX_TEXELS,
 ): Promise<DecodedImage> {
+  const type = sniffImageType(bytes);
+  if (type === null) throw new Error(notPngOrJpeg(bytes, mimeType));
   if (typeof createImageBitmap !== 'function' || typeof OffscreenCanvas !== 'function') {
-    return decodeImageJs(bytes, mimeType);
+    return decodeImageJs(bytes, mimeType, maxTexels);
   }
-  const blob = new Blob([bytes as Uint8Array<ArrayBuffer>], { type: mimeType });
-  const bitmap = await createImageBitmap(blob, {
-    colorSpaceConversion: 'none',
-    premultiplyAlpha: 'none',
-  });
+  try {
+    if (type === 'image/png') checkPng(bytes, maxTexels);
+    else checkJpeg(bytes, maxTexels);
+  } catch (e) {
+    throw imageDecodeError(e);
+  }
+  const blob = new Blob([bytes as Uint8Array<ArrayBuffer>], { type });
+  let bitmap: ImageBitmap;
+  try {
+    bitmap = await createImageBitmap(blob, {
+      colorSpaceConversion: 'none',
+      premultiplyAlpha: 'none',
+    });
+  } catch (e) {
+    throw new Error(
+      `cannot decode ${type === 'image/png' ? 'PNG' : 'JPEG'}: the browser could not decode it ` +
+        `(${libraryMessage(e)})`,
+    );
+  }
   try {
     const canvas = new OffscreenCanvas(bitmap.width, bitmap.height);
     const ctx = canvas.getContext('2d', { willReadFrequently: true });
-    if (ctx === null) return decodeImageJs(bytes, mimeType);
+    if (ctx === null) return decodeImageJs(bytes, mimeType, maxTexels);
     ctx.drawImage(bitmap, 0, 0);
     const data = ctx.getImageData(0, 0, bitmap.width, bitmap.height).data;
     return { width: bitmap.width, height: bitmap.height, data, channels: 4, depth: 8 };

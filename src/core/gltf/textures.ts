@@ -11,8 +11,20 @@ import { B_IMAGE } from '../gltf-material/material-table.ts';
 import type { TextureRequest } from './materials.ts';
 import type { ImageDecoder } from '../texture/decoded-image.ts';
 import { writeDecodedImage } from '../texture/decoded-image.ts';
-import { readImageInfo, sniffImageType } from '../texture/image-header.ts';
-import { EMPTY_TEXTURES, TextureLayout, type TextureStore } from '../texture/texture-store.ts';
+import { imageDecodeError } from '../texture/image-error.ts';
+import {
+  checkImageBytes,
+  notPngOrJpeg,
+  otherImageFormat,
+  readImageInfo,
+  sniffImageType,
+} from '../texture/image-header.ts';
+import {
+  EMPTY_TEXTURES,
+  TEXEL_BYTES,
+  TextureLayout,
+  type TextureStore,
+} from '../texture/texture-store.ts';
 import { GltfError, messageOf } from './errors.ts';
 
 export async function decodeGltfTextures(
@@ -35,9 +47,13 @@ export async function decodeGltfTextures(
     }
     const mime = sniffImageType(bytes);
     if (mime === null) {
-      warn(
-        `${what}: ${r.texture.getMimeType() || 'unknown format'} is not PNG or JPEG; the texture is ignored`,
-      );
+      // Another image format (WebP, KTX2) is honestly ignored; bytes that are no
+      // image at all, though declared PNG or JPEG, are a damaged file.
+      const other = otherImageFormat(bytes, r.texture.getMimeType());
+      if (other === null) {
+        throw new GltfError(`${what}: ${notPngOrJpeg(bytes, r.texture.getMimeType())}`);
+      }
+      warn(`${what}: ${other} is not PNG or JPEG; the texture is ignored`);
       continue;
     }
     let info;
@@ -51,6 +67,12 @@ export async function decodeGltfTextures(
     } catch (e) {
       throw new GltfError(messageOf(e));
     }
+    // The declared size against the bytes present, before the store is allocated.
+    try {
+      checkImageBytes(bytes, limitBytes / TEXEL_BYTES);
+    } catch (e) {
+      throw new GltfError(`${what}: ${imageDecodeError(e).message}`);
+    }
     usable.push({ request: r, bytes, mime });
   }
   if (usable.length === 0) return EMPTY_TEXTURES;
@@ -61,7 +83,7 @@ export async function decodeGltfTextures(
     progress(i, usable.length);
     let img;
     try {
-      img = await decode(bytes, mime);
+      img = await decode(bytes, mime, limitBytes / TEXEL_BYTES);
     } catch (e) {
       throw new GltfError(`${what}: ${messageOf(e)}`);
     }

@@ -1,20 +1,4 @@
-/**
- * The error of every file decoder (PFM here; OBJ, PLY, HDR, glTF and film files alike): a
- * file that is truncated, whose header lies, or whose data holds NaN is rejected with one
- * printable line that names the format and where in the file the problem is. Decoders
- * never throw anything else on bad bytes (no RangeError from a DataView, no allocation
- * sized by an unchecked header): tests/fuzz/formats.test.ts checks that contract for each
- * format in its table.
- */
-import { printableLine } from '../util/message.ts';
-
-export class FormatError extends Error {
-  override name = 'FormatError';
-  /** Short name of the format, e.g. "PFM". */
-  readonly format: string;
-
-  constructor(format: string, detail: string) {
-    super(printableLine(`${format}: ${detail}`, 400));
-    this.format = format;
-  }
-}
+// Moved to src/core/util/format-error.ts so that the image checks (src/core/texture) can
+// throw it without an import of io, which would close a folder loop (io → geometry →
+// scene/format → texture); re-exported here for the existing importers.
+export { FormatError } from '../util/format-error.ts';

@@ -34,7 +34,11 @@ export function decodeHdr(bytes: Uint8Array, limits: ImageLimits): RgbImage {
   const { width, height, flipY, flipX, data } = readHeader(bytes, limits);
   // Cheapest possible encoding of a scanline: RLE runs of 127 for each channel (plus
   // its 4-byte marker), or flat texels where RLE is not allowed. A header that claims
-  // more than the file can hold is rejected before the image is allocated.
+  // more than the file can hold is rejected before the image is allocated. Old-style
+  // RLE (a texel (1, 1, 1, n) repeating the previous one, Radiance's color.c), which
+  // could encode more texels than bytes without this bound, is not read (see above),
+  // so the bound is exact for every file this reader accepts; the texel budget is
+  // `limits` (the scene format's environment-map size limit).
   const rle = width >= 8 && width <= 0x7fff;
   const minScanline = rle ? 4 + 4 * 2 * Math.ceil(width / 127) : 4 * width;
   const available = bytes.length - data;

@@ -88,6 +88,8 @@ export function decodePfm(bytes: Uint8Array, options: PfmDecodeOptions = {}): Pf
   if (!/^[-+]?[0-9.]+([eE][-+]?[0-9]+)?$/.test(ss) || !Number.isFinite(scale) || scale === 0) {
     fail(`the scale must be a non-zero number (its sign gives the byte order), got ${quote(ss)}`);
   }
+  // A PFM has no compression: its data is exactly width · height · 3 channels · 4
+  // bytes, so the size is checked against the file before anything is allocated.
   const need = width * height * 12;
   const have = bytes.length - pos;
   if (have < need) {

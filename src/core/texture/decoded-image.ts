@@ -4,7 +4,18 @@
  * textures converted from sRGB to linear, everything 16-bit.
  */
 import { srgb16ToLinear16, srgb8ToLinear16Table, TEXEL_MAX } from './srgb.ts';
-import { I_HEIGHT, I_OFFSET, I_WIDTH, INFO_STRIDE, type TextureStore } from './texture-store.ts';
+import {
+  DEFAULT_TEXTURE_LIMIT_BYTES,
+  I_HEIGHT,
+  I_OFFSET,
+  I_WIDTH,
+  INFO_STRIDE,
+  TEXEL_BYTES,
+  type TextureStore,
+} from './texture-store.ts';
+
+/** Decoded-texel budget of one image by default: what the default texture memory limit holds. */
+export const DEFAULT_MAX_TEXELS = DEFAULT_TEXTURE_LIMIT_BYTES / TEXEL_BYTES;
 
 export interface DecodedImage {
   width: number;
@@ -20,9 +31,16 @@ export interface DecodedImage {
 /**
  * Decodes image bytes of the given MIME type (`image/png`, `image/jpeg`, …).
  * Node uses the pure-JS decoders of decode-js.ts; the browser may decode with
- * createImageBitmap instead. Rejects with a clear message on bad data.
+ * createImageBitmap instead. Rejects with a clear message on bad data
+ * ("cannot decode PNG: …"), and before allocating anything when the image would
+ * hold more than `maxTexels` texels (default DEFAULT_MAX_TEXELS) or more than its
+ * bytes can encode.
  */
-export type ImageDecoder = (bytes: Uint8Array, mimeType: string) => Promise<DecodedImage>;
+export type ImageDecoder = (
+  bytes: Uint8Array,
+  mimeType: string,
+  maxTexels?: number,
+) => Promise<DecodedImage>;
 
 /**
  * Writes `img` into image slot `index` of `store`. `srgb` marks a colour

@@ -4,6 +4,9 @@
  * (a 1 KB PNG can claim 65535 × 65535 texels). PNG: the IHDR chunk; JPEG:
  * the first start-of-frame marker (ITU T.81 §B.2.2).
  */
+import { sanitize } from '../util/message.ts';
+import { checkJpeg } from './jpeg-check.ts';
+import { readPngChunks } from './png-check.ts';
 
 export interface ImageInfo {
   mimeType: 'image/png' | 'image/jpeg';
@@ -67,5 +70,61 @@ export function readImageInfo(bytes: Uint8Array, what = ''): ImageInfo {
     }
     fail(`JPEG without a frame header (truncated?)`);
   }
-  return fail(`not a PNG or JPEG image (unrecognised signature)`);
+  return fail(notPngOrJpeg(bytes));
+}
+
+/**
+ * Checks an image's structure and its declared size against the bytes present and
+ * the texel budget (png-check.ts, jpeg-check.ts), without decoding or inflating:
+ * cheap, so it runs on every image before the texture store is allocated. Throws
+ * FormatError('PNG' | 'JPEG', …); non-images are the caller's to rule out first.
+ */
+export function checkImageBytes(bytes: Uint8Array, maxTexels: number): void {
+  if (sniffImageType(bytes) === 'image/png') readPngChunks(bytes, maxTexels);
+  else checkJpeg(bytes, maxTexels);
+}
+
+/** Image formats glTF extensions carry that are not decoded here, by signature. */
+function otherFormat(b: Uint8Array): string | null {
+  const text = (from: number, to: number) => String.fromCharCode(...b.subarray(from, to));
+  if (b.length >= 12 && text(0, 4) === 'RIFF' && text(8, 12) === 'WEBP') return 'WebP';
+  if (b.length >= 12 && b[0] === 0xab && text(1, 7) === 'KTX 20') return 'KTX2';
+  if (b.length >= 6 && (text(0, 6) === 'GIF87a' || text(0, 6) === 'GIF89a')) return 'GIF';
+  if (b.length >= 12 && text(4, 8) === 'ftyp' && /^(avi[fs]|hei[cfsx]|mif1)$/.test(text(8, 12))) {
+    return 'AVIF/HEIF';
+  }
+  return null;
+}
+
+/**
+ * The format of an image that is not PNG or JPEG but honestly another one, to be
+ * ignored rather than rejected: by its signature ("a WebP image"), else by a declared
+ * MIME type other than PNG's or JPEG's ("image/ktx2"). Null for bytes that claim to be
+ * PNG or JPEG (or nothing) and are not: those are damage.
+ */
+export function otherImageFormat(bytes: Uint8Array, declared: string): string | null {
+  const other = otherFormat(bytes);
+  if (other !== null) return `a ${other} image`;
+  if (declared !== '' && declared !== 'image/png' && declared !== 'image/jpeg') {
+    return sanitize(declared, 40);
+  }
+  return null;
+}
+
+/**
+ * The message for bytes that are neither PNG nor JPEG: the format when it is one we
+ * know by its signature, else the first bytes (hex and printable text), and the
+ * MIME type the file declared when it claims otherwise.
+ */
+export function notPngOrJpeg(bytes: Uint8Array, declared = ''): string {
+  const said = declared === '' ? '' : `; its mimeType says ${sanitize(declared, 40)}`;
+  const other = otherFormat(bytes);
+  if (other !== null) return `a ${other} image, not PNG or JPEG${said}`;
+  if (bytes.length === 0) return `not a PNG or JPEG image (it is empty${said})`;
+  const head = bytes.subarray(0, 8);
+  const hexes = Array.from(head, (b) => b.toString(16).padStart(2, '0')).join(' ');
+  const text = Array.from(head, (b) => (b >= 0x20 && b < 0x7f ? String.fromCharCode(b) : '.')).join(
+    '',
+  );
+  return `not a PNG or JPEG image (it starts with ${hexes}${bytes.length > 8 ? ' …' : ''}, "${sanitize(text, 16, true)}"${said})`;
 }

@@ -289,7 +289,7 @@ describe('malformed structure', () => {
     await mutated((j, bin) => {
       const view = j.bufferViews[j.images[0].bufferView];
       bin.fill(0, view.byteOffset + 40, view.byteOffset + view.byteLength);
-    }, /^glTF: images\[0\] \(materials\[0\]\.baseColorTexture\): cannot decode image\/png: /);
+    }, /^glTF: images\[0\] \(materials\[0\]\.baseColorTexture\): cannot decode PNG: /);
     await mutated((j, bin) => {
       const view = j.bufferViews[j.images[0].bufferView];
       new DataView(bin.buffer).setUint32(view.byteOffset + 16, 16000);
