@@ -2,7 +2,7 @@
  * The browser's SceneFileReaders (core/scene/load/load.ts): the files a scene names are
  * fetched relative to the scene's URL, or taken from the files dropped together with
  * the scene — on the page or in a worker (fetch and File work in both). A URL stays
- * inside the scene's folder (urlInside). Both refuse a file over the reader's byte limit before holding it whole:
+ * on the scene's origin (urlInside). Both refuse a file over the reader's byte limit before holding it whole:
  * by its declared size (Content-Length, File.size), and while streaming by the bytes
  * actually received.
  */
@@ -51,11 +51,12 @@ export function urlSceneFiles(base: string | URL): PortableReader {
 /**
  * The URL of the file at `path` (a path, as in the scene format and as the core makes of
  * a model's URIs: core/gltf/io.ts) relative to `base`. Each segment is percent-encoded,
- * so `%2e%2e`, `?`, `#` and `:` stay parts of a name rather than becoming a parent, a
- * query or a scheme (WHATWG URL §4.4 reads `%2e%2e` as `..`). The URL must lie inside
- * the base's folder, on its origin: the rule of the command line (src/cli/scene-files.ts,
- * docs/gltf.md "Files a model may read"), so a model fetched by URL reads only files
- * beside it.
+ * so `%2e%2e`, `\`, `?`, `#` and `:` stay parts of a name rather than becoming a parent,
+ * a separator, a query or a scheme (WHATWG URL §4.4 reads `%2e%2e` as `..` and `\` as
+ * `/`), and the URL must stay on the base's origin. Which folders a model may read is
+ * the core's rule, checked before a path reaches here (docs/gltf.md, "Files a model may
+ * read"): a model fetched by URL reads only files beside it. A scene's own `..` is
+ * allowed here: the scene's origin holds nothing its page could not fetch anyway.
  */
 export function urlInside(path: string, base: string | URL): URL {
   let folder: URL;
@@ -66,10 +67,8 @@ export function urlInside(path: string, base: string | URL): URL {
   } catch {
     throw new Error('it is not a valid URL');
   }
-  if (url.origin !== folder.origin || !url.pathname.startsWith(folder.pathname)) {
-    throw new Error(
-      `it lies outside the folder of ${folder.href}; only files beside the scene or the model are read`,
-    );
+  if (url.origin !== folder.origin) {
+    throw new Error(`it is not on the origin of ${folder.href}; files are read from there only`);
   }
   return url;
 }

@@ -8,11 +8,12 @@ import { mkdirSync, mkdtempSync, symlinkSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { Document } from '@gltf-transform/core';
-import { describe, expect, it } from 'vitest';
+import { afterEach, describe, expect, it, vi } from 'vitest';
 import { nodeSceneFiles } from '../../../src/cli/scene-files.ts';
 import { resolveUri } from '../../../src/core/gltf/io.ts';
 import { loadGltf } from '../../../src/core/gltf/load.ts';
-import { urlInside } from '../../../workers/browser/scene-files.ts';
+import { loadBareModel } from '../../../src/core/scene/load/bare-scene.ts';
+import { urlInside, urlSceneFiles } from '../../../workers/browser/scene-files.ts';
 import { docWith, memoryOptions, quadPrimitive, toGltfFiles } from '../../helpers/gltf.ts';
 
 const W = 'buffers[0].uri';
@@ -147,11 +148,41 @@ describe('the browser reader: URLs inside the base folder', () => {
     expect(urlInside('a?b#c', base).href).toBe('https://site.example/models/a%3Fb%23c');
   });
 
-  it('refuses a URL that climbs above the folder or leaves the origin', () => {
-    for (const path of ['../outside.bin', '/outside.bin', '//evil.example/x']) {
+  it("refuses a URL that leaves the origin; which folder is the core's rule", () => {
+    for (const path of ['//evil.example/x', '//evil.example']) {
       expect(() => urlInside(path, base), path).toThrow(
-        'it lies outside the folder of https://site.example/models/; only files beside the scene or the model are read',
+        'it is not on the origin of https://site.example/models/; files are read from there only',
       );
     }
+    // A scene's own .. stays on its origin (a model's URIs were checked by the core).
+    expect(urlInside('../scenes/sky.hdr', base).href).toBe('https://site.example/scenes/sky.hdr');
+  });
+});
+
+describe('a model fetched by URL', () => {
+  afterEach(() => vi.unstubAllGlobals());
+
+  it('reads its buffer beside it, and never fetches ../outside.bin', async () => {
+    const doc = new Document();
+    const files = await toGltfFiles(docWith(doc, quadPrimitive(doc)), 'm');
+    const json = JSON.parse(new TextDecoder().decode(files.get('m.gltf')!));
+    const bytes = files.get(json.buffers[0].uri)!;
+    const asked: string[] = [];
+    vi.stubGlobal('fetch', async (url: URL) => {
+      asked.push(url.href);
+      return new Response(bytes);
+    });
+    const reader = urlSceneFiles('https://site.example/models/m.gltf');
+    const text = (uri: string) =>
+      new TextEncoder().encode(JSON.stringify({ ...json, buffers: [{ ...json.buffers[0], uri }] }));
+    await loadBareModel(text('m.bin'), 'm.gltf', reader);
+    expect(asked).toEqual(['https://site.example/models/m.bin']);
+    await expect(loadBareModel(text('../outside.bin'), 'm.gltf', reader)).rejects.toThrow(
+      /buffers\[0\]\.uri: "\.\.\/outside\.bin" resolves to "\.\.\/outside\.bin", outside the model's folder and the scene's/,
+    );
+    await expect(loadBareModel(text('%2e%2e/outside.bin'), 'm.gltf', reader)).rejects.toThrow(
+      /outside the model's folder/,
+    );
+    expect(asked).toHaveLength(1);
   });
 });
