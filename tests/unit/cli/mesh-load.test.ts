@@ -153,7 +153,10 @@ describe('inline meshes', () => {
         { positions: [...TRI.slice(0, 8), '1'] },
         'shapes[0].positions[8] must be a finite number, got the string "1"',
       ],
-      [{ positions: 'x' }, 'shapes[0].positions must be a flat array of numbers, got the string "x"'],
+      [
+        { positions: 'x' },
+        'shapes[0].positions must be a flat array of numbers, got the string "x"',
+      ],
       [
         { positions: TRI, indices: [0, 1, 3] },
         'shapes[0].indices[2] must be a vertex index in [0, 2], got 3',

@@ -170,7 +170,7 @@ describe('a model fetched by URL', () => {
     const asked: string[] = [];
     vi.stubGlobal('fetch', async (url: URL) => {
       asked.push(url.href);
-      return new Response(bytes);
+      return new Response(bytes.slice().buffer);
     });
     const reader = urlSceneFiles('https://site.example/models/m.gltf');
     const text = (uri: string) =>
