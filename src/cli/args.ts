@@ -34,6 +34,8 @@ export interface RenderArgs {
   json: boolean;
   stripeRows?: number;
   batch: BatchOptions;
+  /** `--allow-read DIR`, repeatable: folders beyond the scene's whose files may be read. */
+  allowRead: string[];
 }
 
 export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png|FILE.film [options]
@@ -51,6 +53,8 @@ export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png|
   --sampler sobol|independent  random numbers: Owen-scrambled Sobol for the leading dimensions (default), or the independent PCG hash
   --stripe-rows R     rows per work stripe (default: automatic; the image does not depend on it)
   --json              print one JSON line of statistics on stdout (a switch: no value)
+  --allow-read DIR    files may also be read from DIR (repeatable); by default a scene and its
+                      models read only files inside the scene's folder (a bare model's folder)
 ${BATCH_USAGE}`;
 
 /** The first line of USAGE, printed alone (on stderr) when no command is given. */
@@ -80,6 +84,7 @@ function parseInteger(name: string, text: string, min: number, max: number): num
 export function parseRenderArgs(argv: string[]): RenderArgs {
   const positional: string[] = [];
   const options = new Map<string, string | true>();
+  const allowRead: string[] = [];
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i];
     if (!a.startsWith('--')) {
@@ -88,6 +93,13 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     }
     const eq = a.indexOf('=');
     const name = eq >= 0 ? a.slice(2, eq) : a.slice(2);
+    if (name === 'allow-read') {
+      // Repeatable: each names one more folder (docs/gltf.md, "Files a model may read").
+      const dir = eq >= 0 ? a.slice(eq + 1) : argv[++i];
+      if (dir === undefined || dir === '') throw new UsageError('--allow-read needs a folder');
+      allowRead.push(dir);
+      continue;
+    }
     if (options.has(name)) throw new UsageError(`--${sanitize(name)} is given twice`);
     if (SWITCHES.has(name)) {
       if (eq >= 0) {
@@ -169,5 +181,6 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     json: options.has('json'),
     stripeRows: int('stripe-rows', 1, 1 << 24),
     batch: parseBatchOptions(options),
+    allowRead,
   };
 }

@@ -41,7 +41,11 @@ async function render(argv: string[]): Promise<void> {
 }
 
 async function renderScene(args: RenderArgs, early: EarlyWorkers): Promise<void> {
-  const scene = await loadSceneFile(args.scenePath, { width: args.width, height: args.height });
+  const scene = await loadSceneFile(args.scenePath, {
+    width: args.width,
+    height: args.height,
+    allowRead: args.allowRead,
+  });
   for (const w of sceneWarnings(scene)) {
     process.stderr.write(`pathwise: note: ${printableLine(w)}\n`);
   }

@@ -8,14 +8,21 @@ import { closeSync, fstatSync, openSync, readSync, statSync } from 'node:fs';
 import {
   FILM_FORMAT,
   FilmFileError,
+  FilmHeaderError,
   MAX_HEADER_BYTES,
+  checksumMismatch,
+  countsProblem,
   decodeFilmFile,
   decodeFilmHeader,
+  filmCountsOffset,
+  tooManySamples,
   type FilmFile,
   type FilmHeader,
   type FilmSettings,
 } from '../core/film/film-file.ts';
 import { SCALE_BITS } from '../core/film/exact-sum.ts';
+import { rangeSamples } from '../core/film/sample-ranges.ts';
+import { crc32 } from '../core/io/crc32.ts';
 import type { Scene } from '../core/scene/format/types.ts';
 import packageJson from '../../package.json' with { type: 'json' };
 import { CliError } from './errors.ts';
@@ -89,13 +96,93 @@ export function makeHeader(
   };
 }
 
-/** Reads and checks only the header of a `.film` file (and that the file's length matches it). */
+const CHUNK = 1 << 20;
+
+/**
+ * The header of a `.film` file, once the whole file is known to be intact: its length
+ * matches the header, its checksum matches its bytes, and its pixels' sample counts
+ * agree with the header's ranges and stats. The body is streamed in 1 MiB chunks, never
+ * held whole, so `merge` can refuse a damaged or inconsistent part before it compares
+ * parts (a flipped bit in a header would otherwise read as "renders of different
+ * scenes", and pixels holding samples outside empty ranges as "missing samples").
+ */
 export function readFilmHeader(path: string): FilmHeader {
   return withFile(path, (fd, total) => {
     const prefix = Buffer.alloc(Math.min(total, 20 + MAX_HEADER_BYTES));
     readFully(fd, prefix, 0);
-    return decodeFilmHeader(prefix, total).header;
+    let decoded: { header: FilmHeader; byteLength: number };
+    try {
+      decoded = decodeFilmHeader(prefix, total);
+    } catch (e) {
+      // A header that says something wrong may have been changed after it was written:
+      // if the checksum of the file as it stands does not match, say that instead.
+      if (e instanceof FilmHeaderError && total >= 24) {
+        const { stored, computed } = checksums(fd, total);
+        if (stored !== computed) throw checksumMismatch(stored, computed);
+      }
+      throw e;
+    }
+    const { header, byteLength } = decoded;
+    const { width, height } = header.settings;
+    const n = width * height;
+    const samples = rangeSamples(header.ranges);
+    // Counts start 8-aligned and chunks are 4-aligned: no count straddles two chunks.
+    const countsAt = filmCountsOffset(prefix.readUInt32LE(16));
+    const countsEnd = countsAt + 4 * n;
+    const chunk = Buffer.alloc(Math.min(CHUNK, byteLength));
+    let crc = 0;
+    let accepted = 0;
+    let first: Error | null = null;
+    for (let at = 0; at < byteLength - 4;) {
+      const want = Math.min(chunk.length, byteLength - 4 - at);
+      readRange(fd, chunk, want, at);
+      crc = crc32(chunk.subarray(0, want), crc);
+      for (let o = Math.max(at, countsAt); o < Math.min(at + want, countsEnd); o += 4) {
+        const count = chunk.readUInt32LE(o - at);
+        accepted += count;
+        if (count > samples && first === null) {
+          first = tooManySamples((o - countsAt) / 4, width, count, samples);
+        }
+      }
+      at += want;
+    }
+    readRange(fd, chunk, 4, byteLength - 4);
+    const stored = chunk.readUInt32LE(0);
+    // Damage first: a changed byte explains any inconsistency after it.
+    if (stored !== crc) throw checksumMismatch(stored, crc);
+    if (first !== null) throw first;
+    const problem = countsProblem(header, accepted);
+    if (problem !== null) throw problem;
+    return header;
   });
+}
+
+/** The CRC-32 stored in the last 4 of `total` bytes, and the one of the bytes before. */
+function checksums(fd: number, total: number): { stored: number; computed: number } {
+  const chunk = Buffer.alloc(Math.min(CHUNK, total));
+  let computed = 0;
+  for (let at = 0; at < total - 4;) {
+    const want = Math.min(chunk.length, total - 4 - at);
+    readRange(fd, chunk, want, at);
+    computed = crc32(chunk.subarray(0, want), computed);
+    at += want;
+  }
+  readRange(fd, chunk, 4, total - 4);
+  return { stored: chunk.readUInt32LE(0), computed };
+}
+
+/** Reads `length` bytes at `position` into the start of `into`. */
+function readRange(fd: number, into: Buffer, length: number, position: number): void {
+  let got = 0;
+  while (got < length) {
+    const n = readSync(fd, into, got, length - got, position + got);
+    if (n === 0) {
+      throw new FilmFileError(
+        `truncated while reading: ${position + got} of ${position + length} bytes`,
+      );
+    }
+    got += n;
+  }
 }
 
 /**

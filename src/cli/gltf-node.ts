@@ -1,15 +1,15 @@
 /**
  * What loading glTF needs in Node: files read from disk relative to the
- * scene (bounded), the pure-JS image decoders, and MikkTSpace from the
+ * scene (bounded, kept inside its folder: scene-files.ts), the pure-JS image decoders, and MikkTSpace from the
  * `mikktspace` package (its Node build loads its WebAssembly synchronously).
  */
-import { readFile, stat } from 'node:fs/promises';
+import { readFile } from 'node:fs/promises';
 import { createRequire } from 'node:module';
-import path from 'node:path';
 import type { GltfLoadOptions } from '../core/gltf/load.ts';
 import { createMikkTSpace } from '../core/gltf/mikktspace-wasm.ts';
 import type { TangentGenerator } from '../core/gltf/tangents.ts';
 import { decodeImageJs } from '../core/texture/decode-js.ts';
+import { nodeSceneFiles } from './scene-files.ts';
 
 let mikktspace: Promise<TangentGenerator> | null = null;
 
@@ -26,18 +26,16 @@ export function nodeTangentGenerator(): Promise<TangentGenerator> {
   return mikktspace;
 }
 
-/** Loader options for a model whose relative paths resolve against `baseDir`. */
-export async function nodeGltfOptions(baseDir: string): Promise<GltfLoadOptions> {
+/**
+ * Loader options for a model whose relative paths resolve against `baseDir`, read as
+ * the command line reads a scene's files: inside that folder (or `allowRead`), bounded.
+ */
+export async function nodeGltfOptions(
+  baseDir: string,
+  allowRead: readonly string[] = [],
+): Promise<GltfLoadOptions> {
   return {
-    reader: {
-      async read(file: string, maxBytes: number): Promise<Uint8Array> {
-        const full = path.resolve(baseDir, file);
-        const size = (await stat(full)).size;
-        if (size > maxBytes)
-          throw new Error(`file is ${size} bytes, over the limit of ${maxBytes}`);
-        return new Uint8Array(await readFile(full));
-      },
-    },
+    reader: nodeSceneFiles(baseDir, { allowRead }),
     decodeImage: decodeImageJs,
     generateTangents: await nodeTangentGenerator(),
   };

@@ -4,11 +4,14 @@
  * the result is the same bits as one render of all the samples, in
  * whatever order the parts come and wherever the ranges were cut.
  *
- * Every header is read and checked before any pixel is: parts of another
- * scene or other settings, overlapping ranges and disagreeing totals are
- * refused with one sentence each, and missing ranges are named (written
- * anyway, with a warning, under --allow-gaps). Pixels are then read one
- * part at a time, so memory holds two films at most.
+ * Every part is checked whole before parts are compared (film-file.ts,
+ * readFilmHeader: its checksum, then its pixels' counts against its header),
+ * so a damaged part is named as damaged, not as a render of another scene.
+ * Then the headers: parts of another scene or other settings, overlapping
+ * ranges and disagreeing totals are refused with one sentence each, and
+ * missing ranges are named (written anyway, with a warning, under
+ * --allow-gaps). Pixels are then read one part at a time, so memory holds
+ * two films at most.
  */
 import { basename } from 'node:path';
 import { estimateNoise } from '../core/film/noise.ts';

@@ -16,12 +16,14 @@ export interface SceneFileOptions {
   /** Image size asked for on the command line: a bare model's camera frames it at this aspect. */
   width?: number;
   height?: number;
+  /** Folders beyond the scene's whose files may be read (`--allow-read`; scene-files.ts). */
+  allowRead?: readonly string[];
 }
 
 /**
  * Reads and validates a scene file from any source (file, pipe, device) with the 16 MiB
  * bound on the bytes read, then the mesh, glTF and environment-map files it names
- * (relative to its folder). A `.glb` or `.gltf` is a bare model: it gets a scene of its
+ * (relative to its folder, and inside it or an `allowRead` folder). A `.glb` or `.gltf` is a bare model: it gets a scene of its
  * own (core/scene/load/bare-scene.ts). Every problem is a CliError naming the file.
  */
 export async function loadSceneFile(path: string, options: SceneFileOptions = {}): Promise<Scene> {
@@ -38,7 +40,7 @@ export async function loadSceneFile(path: string, options: SceneFileOptions = {}
     throw e;
   }
   try {
-    const files = nodeSceneFiles(dirname(path));
+    const files = nodeSceneFiles(dirname(path), { allowRead: options.allowRead });
     // MikkTSpace's WebAssembly is read only for glTF: a scene of spheres,
     // quads and meshes needs nothing beyond the bundle itself.
     const tangents = async () => {
@@ -50,7 +52,8 @@ export async function loadSceneFile(path: string, options: SceneFileOptions = {}
       const { loadBareModel } = await import('../core/scene/load/bare-scene.ts');
       return await loadBareModel(bytes, basename(path), files, {
         ...(await tangents()),
-        ...options,
+        width: options.width,
+        height: options.height,
       });
     }
     testStage('parse');

@@ -1,7 +1,8 @@
 /**
  * The browser's SceneFileReaders (core/scene/load/load.ts): the files a scene names are
  * fetched relative to the scene's URL, or taken from the files dropped together with
- * the scene — on the page or in a worker (fetch and File work in both). Both refuse a file over the reader's byte limit before holding it whole:
+ * the scene — on the page or in a worker (fetch and File work in both). A URL stays
+ * on the scene's origin (urlInside). Both refuse a file over the reader's byte limit before holding it whole:
  * by its declared size (Content-Length, File.size), and while streaming by the bytes
  * actually received.
  */
@@ -29,12 +30,7 @@ export function urlSceneFiles(base: string | URL): PortableReader {
   return {
     source: { kind: 'url', base: String(base) },
     async read(path: string, maxBytes: number): Promise<Uint8Array> {
-      let url: URL;
-      try {
-        url = new URL(path, base);
-      } catch {
-        throw new Error('it is not a valid URL');
-      }
+      const url = urlInside(path, base);
       let response: Response;
       try {
         response = await fetch(url);
@@ -50,6 +46,31 @@ export function urlSceneFiles(base: string | URL): PortableReader {
       return readLimited(response, maxBytes);
     },
   };
+}
+
+/**
+ * The URL of the file at `path` (a path, as in the scene format and as the core makes of
+ * a model's URIs: core/gltf/io.ts) relative to `base`. Each segment is percent-encoded,
+ * so `%2e%2e`, `\`, `?`, `#` and `:` stay parts of a name rather than becoming a parent,
+ * a separator, a query or a scheme (WHATWG URL §4.4 reads `%2e%2e` as `..` and `\` as
+ * `/`), and the URL must stay on the base's origin. Which folders a model may read is
+ * the core's rule, checked before a path reaches here (docs/gltf.md, "Files a model may
+ * read"): a model fetched by URL reads only files beside it. A scene's own `..` is
+ * allowed here: the scene's origin holds nothing its page could not fetch anyway.
+ */
+export function urlInside(path: string, base: string | URL): URL {
+  let folder: URL;
+  let url: URL;
+  try {
+    folder = new URL('.', base);
+    url = new URL(path.split('/').map(encodeURIComponent).join('/'), folder);
+  } catch {
+    throw new Error('it is not a valid URL');
+  }
+  if (url.origin !== folder.origin) {
+    throw new Error(`it is not on the origin of ${folder.href}; files are read from there only`);
+  }
+  return url;
 }
 
 /** The body, at most `maxBytes` (read-bounded.ts, as the scene's own fetch is). */

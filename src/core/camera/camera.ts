@@ -118,7 +118,18 @@ export class Camera {
       dy = focusY - oy;
       dz = focusZ - oz;
     }
-    const inv = 1 / Math.sqrt(dx * dx + dy * dy + dz * dz);
+    let squared = dx * dx + dy * dy + dz * dz;
+    if (!(squared < Infinity)) {
+      // A lens or a focus distance near the double range (aperture 1e308 is finite, so the
+      // format allows it): the squares overflow, and 1/√∞ = 0 would make a ray with no
+      // direction. Scaled by the largest component first; the usual case keeps its bits.
+      const m = Math.max(Math.abs(dx), Math.abs(dy), Math.abs(dz));
+      dx /= m;
+      dy /= m;
+      dz /= m;
+      squared = dx * dx + dy * dy + dz * dz;
+    }
+    const inv = 1 / Math.sqrt(squared);
     ray.ox = ox;
     ray.oy = oy;
     ray.oz = oz;

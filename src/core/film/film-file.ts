@@ -29,6 +29,7 @@ import type { RenderSettings } from '../scene/format/render-settings.ts';
 import { SAMPLER_KINDS, type SamplerKind } from '../sampling/sampler.ts';
 import { crc32 } from '../io/crc32.ts';
 import { FormatError } from '../io/format-error.ts';
+import { JsonError, parseJson } from '../io/json.ts';
 import { MAX_COUNT, SCALE_BITS, isValidExact } from './exact-sum.ts';
 import { Film } from './film.ts';
 import { normalizeRanges, rangeSamples, type SampleRange } from './sample-ranges.ts';
@@ -47,6 +48,15 @@ export class FilmFileError extends FormatError {
   constructor(detail: string) {
     super(FILM_FORMAT, detail);
   }
+}
+
+/**
+ * A problem with what the header says (not JSON, a field out of range, a key given
+ * twice), as opposed to the file's length or magic: a reader that can check the
+ * checksum first (src/cli/film-file.ts) reports a damaged file as damaged instead.
+ */
+export class FilmHeaderError extends FilmFileError {
+  override name = 'FilmHeaderError';
 }
 
 /** Everything that changes a sample's value, besides the scene: the render settings. */
@@ -149,15 +159,7 @@ export function decodeFilmHeader(
   if (prefix.length < PROLOGUE + h) {
     throw new RangeError(`decodeFilmHeader needs the first ${PROLOGUE + h} bytes`);
   }
-  const text = asciiText(prefix.subarray(PROLOGUE, PROLOGUE + h));
-  if (text === null) throw new FilmFileError('header is not ASCII JSON');
-  let value: unknown;
-  try {
-    value = JSON.parse(text);
-  } catch (e) {
-    throw new FilmFileError(`header is not valid JSON: ${(e as Error).message}`);
-  }
-  const header = validateHeader(value);
+  const header = parseHeader(prefix.subarray(PROLOGUE, PROLOGUE + h));
   const byteLength = filmFileLength(h, header.settings.width, header.settings.height);
   if (total < byteLength) {
     throw new FilmFileError(
@@ -169,7 +171,53 @@ export function decodeFilmHeader(
       `${total} bytes, more than the ${byteLength} that its ${header.settings.width}×${header.settings.height} header describes`,
     );
   }
+  // What the header alone can tell once its size is known right: a pixel traces one path
+  // per sample of the ranges, so the paths are pixels × samples, and no more were
+  // rejected than traced. (Whether the pixels' counts agree needs the body.)
+  const { paths, rejected } = header.stats;
+  const n = header.settings.width * header.settings.height;
+  const samples = rangeSamples(header.ranges);
+  if (paths !== n * samples || rejected > paths) {
+    throw new FilmHeaderError(
+      `stats do not add up: ${paths} paths and ${rejected} rejected for ${n} pixels × ${samples} samples of its ranges (inconsistent)`,
+    );
+  }
   return { header, byteLength };
+}
+
+/**
+ * The header's bytes, parsed and checked: a FilmFileError when they are not JSON (or
+ * repeat a key), a FilmHeaderError when the JSON says something impossible.
+ */
+function parseHeader(bytes: Uint8Array): FilmHeader {
+  const value = parseHeaderText(bytes);
+  try {
+    return validateHeader(value);
+  } catch (e) {
+    if (e instanceof FilmFileError && !(e instanceof FilmHeaderError)) {
+      throw new FilmHeaderError(e.message.slice(FILM_FORMAT.length + 2));
+    }
+    throw e;
+  }
+}
+
+function parseHeaderText(bytes: Uint8Array): unknown {
+  const text = asciiText(bytes);
+  if (text === null) throw new FilmFileError('header is not ASCII JSON');
+  let value: unknown;
+  try {
+    // The strict parser (io/json.ts): JSON.parse keeps the last of a key given twice, so
+    // `"seed": 1, …, "seed": 2` would read as one seed though the writer wrote two.
+    value = parseJson(text);
+  } catch (e) {
+    if (e instanceof JsonError && e.kind === 'duplicate') {
+      throw new FilmFileError(
+        `header: key ${e.path} given twice, at line ${e.line}, byte ${PROLOGUE + e.offset}`,
+      );
+    }
+    throw new FilmFileError(`header is not valid JSON: ${(e as Error).message}`);
+  }
+  return value;
 }
 
 /** The bytes of an ASCII string (the core has no TextEncoder: no DOM lib). */
@@ -202,19 +250,28 @@ function startsWith(bytes: Uint8Array, prefix: string | Uint8Array): boolean {
 
 /** Decodes a whole `.film` file. Throws FilmFileError naming the first problem. */
 export function decodeFilmFile(bytes: Uint8Array): FilmFile {
-  const { header, byteLength } = decodeFilmHeader(bytes, bytes.length);
   const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+  let decoded: { header: FilmHeader; byteLength: number };
+  try {
+    decoded = decodeFilmHeader(bytes, bytes.length);
+  } catch (e) {
+    // A header that says something wrong in a file whose checksum fails was damaged
+    // after it was written: that is the problem to name.
+    if (e instanceof FilmHeaderError && bytes.length >= PROLOGUE + 4) {
+      const stored = view.getUint32(bytes.length - 4, true);
+      const actual = crc32(bytes.subarray(0, bytes.length - 4));
+      if (stored !== actual) throw checksumMismatch(stored, actual);
+    }
+    throw e;
+  }
+  const { header, byteLength } = decoded;
   const stored = view.getUint32(byteLength - 4, true);
   const actual = crc32(bytes.subarray(0, byteLength - 4));
-  if (stored !== actual) {
-    throw new FilmFileError(
-      `checksum mismatch (stored ${hex8(stored)}, computed ${hex8(actual)}): the file is corrupt`,
-    );
-  }
+  if (stored !== actual) throw checksumMismatch(stored, actual);
   const { width, height } = header.settings;
   const n = width * height;
   const film = new Film(width, height);
-  let at = align8(PROLOGUE + view.getUint32(16, true));
+  let at = filmCountsOffset(view.getUint32(16, true));
   const counts = new Uint32Array(n);
   for (let p = 0; p < n; p++) counts[p] = view.getUint32(at + 4 * p, true);
   at += align8(4 * n);
@@ -236,11 +293,7 @@ export function decodeFilmFile(bytes: Uint8Array): FilmFile {
   for (let p = 0; p < n; p++) {
     const count = counts[p];
     const where = () => `pixel (${p % width}, ${Math.floor(p / width)})`;
-    if (count > samples) {
-      throw new FilmFileError(
-        `${where()} has ${count} samples, more than the ${samples} of its ranges`,
-      );
-    }
+    if (count > samples) throw tooManySamples(p, width, count, samples);
     for (let c = 0; c < 4; c++) {
       const i = p * 4 + c;
       if (!isValidExact(hi[i], lo[i], count)) {
@@ -254,14 +307,54 @@ export function decodeFilmFile(bytes: Uint8Array): FilmFile {
     sums[p * 4 + 3] = count;
     accepted += count;
   }
-  const { paths, rejected } = header.stats;
-  if (paths !== n * samples || accepted + rejected !== paths) {
-    throw new FilmFileError(
-      `stats do not add up: ${paths} paths and ${rejected} rejected for ${n} pixels × ${samples} samples with ${accepted} accepted`,
-    );
-  }
+  const statsProblem = countsProblem(header, accepted);
+  if (statsProblem !== null) throw statsProblem;
   film.resolve();
   return { header, film };
+}
+
+/** Where the per-pixel sample counts begin, in a file whose header takes `headerBytes`. */
+export function filmCountsOffset(headerBytes: number): number {
+  return align8(PROLOGUE + headerBytes);
+}
+
+/** The stored CRC-32 differs from the bytes': the file changed after it was written. */
+export function checksumMismatch(stored: number, computed: number): FilmFileError {
+  return new FilmFileError(
+    `checksum mismatch (stored ${hex8(stored)}, computed ${hex8(computed)}): the file is corrupt (damaged since it was written)`,
+  );
+}
+
+/** Pixel `p` holds more samples than the header's ranges: the file contradicts itself. */
+export function tooManySamples(
+  p: number,
+  width: number,
+  count: number,
+  samples: number,
+): FilmFileError {
+  const where = `pixel (${p % width}, ${Math.floor(p / width)})`;
+  return new FilmFileError(
+    samples === 0
+      ? `inconsistent: ${where} has ${count} samples, but the header's ranges are empty`
+      : `${where} has ${count} samples, more than the ${samples} of its ranges (inconsistent)`,
+  );
+}
+
+/**
+ * Whether the samples the pixels hold (`accepted`, their sum) and the header's stats
+ * agree: every path of every pixel of every sample of the ranges was traced, and was
+ * either accepted or rejected. null when they do.
+ */
+export function countsProblem(header: FilmHeader, accepted: number): FilmFileError | null {
+  const n = header.settings.width * header.settings.height;
+  const samples = rangeSamples(header.ranges);
+  const { paths, rejected } = header.stats;
+  if (paths !== n * samples || accepted + rejected !== paths) {
+    return new FilmFileError(
+      `stats do not add up: ${paths} paths and ${rejected} rejected for ${n} pixels × ${samples} samples with ${accepted} accepted (inconsistent)`,
+    );
+  }
+  return null;
 }
 
 function hex8(v: number): string {
@@ -362,6 +455,8 @@ function validateHeader(v: unknown): FilmHeader {
   const st = v.stats;
   if (!isObject(st)) throw new FilmFileError('header: stats must be an object');
   exactKeys(st, ['paths', 'segments', 'rejected'], 'stats.');
+  const paths = integer(st.paths, 'stats.paths', 0, Number.MAX_SAFE_INTEGER);
+  const rejected = integer(st.rejected, 'stats.rejected', 0, Number.MAX_SAFE_INTEGER);
   return {
     format: FILM_FORMAT,
     renderer: v.renderer,
@@ -372,9 +467,9 @@ function validateHeader(v: unknown): FilmHeader {
     spp,
     ranges,
     stats: {
-      paths: integer(st.paths, 'stats.paths', 0, Number.MAX_SAFE_INTEGER),
+      paths,
       segments: integer(st.segments, 'stats.segments', 0, Number.MAX_SAFE_INTEGER),
-      rejected: integer(st.rejected, 'stats.rejected', 0, Number.MAX_SAFE_INTEGER),
+      rejected,
     },
   };
 }

@@ -33,24 +33,49 @@ export function dirname(path: string): string {
   return i < 0 ? '' : path.slice(0, i + 1);
 }
 
-/** `a/b/` + `../c.bin` → `a/c.bin`; leading `..` that climb above the base are kept. */
+/**
+ * `a/b/` + `../c.bin` → `a/c.bin`. Leading `..` that climb above a relative base are
+ * kept (`../c.bin` names a file beside the scene's folder); an absolute base keeps its
+ * leading `/`, and `..` at the root stays at the root.
+ */
 export function joinPath(base: string, rel: string): string {
+  const absolute = base.startsWith('/') || (base === '' && rel.startsWith('/'));
   const parts = (base + rel).split('/');
   const out: string[] = [];
   for (const p of parts) {
     if (p === '.' || p === '') continue;
     if (p === '..' && out.length > 0 && out[out.length - 1] !== '..') out.pop();
+    else if (p === '..' && absolute) continue;
     else out.push(p);
   }
-  return out.join('/');
+  return (absolute ? '/' : '') + out.join('/');
 }
 
 /**
- * The path of a relative URI of the file at `filePath`. URIs with a scheme
- * (http:, file:) and absolute paths are refused: a model's resources live
- * beside it.
+ * Whether the normalized path `file` lies inside the normalized folder `folder`
+ * (`''`: the scene's folder, which every relative path without a leading `..` is in).
  */
-export function resolveUri(filePath: string, uri: string, where: string): string {
+export function isInsideFolder(file: string, folder: string): boolean {
+  if (folder === '') return !file.startsWith('/') && file !== '..' && !file.startsWith('../');
+  return file.startsWith(folder.endsWith('/') ? folder : folder + '/');
+}
+
+/**
+ * The path, relative to the scene's folder, of the file a model at `filePath` names by
+ * `uri`. A model's resources stay beside it (docs/gltf.md, "Files a model may read"):
+ * the path must lie inside the model's folder, or inside the scene's folder (for a bare
+ * model the two are one), or inside one of `allowedFolders` (normalized like joinPath's
+ * results; the command line's `--allow-read`). URIs with a scheme (http:, file:),
+ * absolute paths, backslashes (not a separator in a URI, RFC 3986 §3.3, but one on
+ * Windows and in a browser's URL parser) and `..` that climbs out are refused. Links on
+ * disk are the reader's to check (src/cli/scene-files.ts), since only it sees them.
+ */
+export function resolveUri(
+  filePath: string,
+  uri: string,
+  where: string,
+  allowedFolders: readonly string[] = [],
+): string {
   if (/^[a-zA-Z][a-zA-Z0-9+.-]*:/.test(uri) || uri.startsWith('/')) {
     throw new GltfError(
       `${where}: ${quote(uri)} is not a relative path; only files beside the model can be read`,
@@ -62,7 +87,31 @@ export function resolveUri(filePath: string, uri: string, where: string): string
   } catch {
     throw new GltfError(`${where}: ${quote(uri)} is not a valid URI`);
   }
-  return joinPath(dirname(filePath), decoded);
+  // Checked again once decoded: `%2F` is a slash, `%5C` a backslash, `%3A` a colon.
+  if (decoded.startsWith('/') || /[\\\u0000]/.test(decoded)) {
+    throw new GltfError(
+      `${where}: ${quote(uri)} is not a relative path of forward slashes; only files beside the model can be read`,
+    );
+  }
+  const folder = dirname(filePath);
+  const file = joinPath(folder, decoded);
+  // A segment with a colon would read as a URL scheme once joined (`a/../http:x`).
+  if (/^[a-zA-Z][a-zA-Z0-9+.-]*:/.test(file)) {
+    throw new GltfError(`${where}: ${quote(uri)} resolves to ${quote(file)}, which reads as a URL`);
+  }
+  const modelFolder = joinPath(folder, '');
+  const inside =
+    isInsideFolder(file, '') ||
+    (modelFolder !== '' && isInsideFolder(file, modelFolder)) ||
+    allowedFolders.some((f) => isInsideFolder(file, f));
+  if (!inside) {
+    throw new GltfError(
+      `${where}: ${quote(uri)} resolves to ${quote(file)}, outside the model's folder` +
+        (modelFolder === '' ? '' : ` (${quote(modelFolder)})`) +
+        " and the scene's; a model may read only files beside it (docs/gltf.md)",
+    );
+  }
+  return file;
 }
 
 const BASE64 = 'ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/';

@@ -247,7 +247,7 @@ async function readResource(
   options: GltfLoadOptions,
 ): Promise<Uint8Array> {
   if (uri.startsWith('data:')) return decodeDataUri(uri, `${where}.uri`);
-  const file = resolveUri(path, uri, `${where}.uri`);
+  const file = resolveUri(path, uri, `${where}.uri`, options.reader?.allowedFolders);
   if (options.reader === null) {
     throw new GltfError(
       `${where}.uri: names the file ${quote(file)}, but no way to read files beside the model was given`,

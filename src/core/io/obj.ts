@@ -1,6 +1,7 @@
 /**
  * Wavefront OBJ, the subset the scene format reads (docs/scene-format.md, Meshes):
- * `v x y z` (further numbers, such as w or a colour, are ignored), `vn x y z`, and
+ * `v x y z` (further numbers, such as w or a colour, are ignored), `vn x y z` (exactly
+ * three), and
  * `f` with vertices written `v`, `v/vt`, `v//vn` or `v/vt/vn` (1-based; negative
  * indices count back from the last vertex defined so far). Polygons become fans
  * (v0, vi, vi+1). Every other statement (vt, o, g, s, usemtl, mtllib, l, p, comments)
@@ -194,6 +195,18 @@ function readVector(
     }
     out[o + a] = x;
     i = te;
+  }
+  // `vn i j k` has exactly three (Wavefront's OBJ specification, "vn"); a fourth number is
+  // a line that means something else, not one to read in part. (`v` may carry w or a
+  // colour after x y z, which are ignored: see the top of this file.)
+  if (isNormal) {
+    const extra = skipBlanks(bytes, i, end);
+    if (extra < end) {
+      fail(
+        line,
+        `vn has 3 numbers, but the line goes on with ${quoteBytes(bytes, extra, tokenEnd(bytes, extra, end))}`,
+      );
+    }
   }
   if (isNormal && out[o] === 0 && out[o + 1] === 0 && out[o + 2] === 0) {
     fail(line, 'vn has zero length');

@@ -151,9 +151,12 @@ describe('inline meshes', () => {
       ],
       [
         { positions: [...TRI.slice(0, 8), '1'] },
-        'shapes[0].positions[8] must be a finite number, got "1"',
+        'shapes[0].positions[8] must be a finite number, got the string "1"',
       ],
-      [{ positions: 'x' }, 'shapes[0].positions must be a flat array of numbers, got "x"'],
+      [
+        { positions: 'x' },
+        'shapes[0].positions must be a flat array of numbers, got the string "x"',
+      ],
       [
         { positions: TRI, indices: [0, 1, 3] },
         'shapes[0].indices[2] must be a vertex index in [0, 2], got 3',
@@ -329,8 +332,10 @@ describe('mesh files', () => {
       /cannot read .*nope\.obj: no such file or directory/,
     );
     await expect(reader.read('.', 10)).rejects.toThrow(/directory/);
-    // A device reports no size: the read stops past the limit instead of running on.
-    await expect(reader.read('/dev/zero', 1 << 16)).rejects.toThrow(
+    // A device reports no size: the read stops past the limit instead of running on
+    // (/dev is outside the scene's folder: allowed as --allow-read /dev would).
+    const devices = nodeSceneFiles(dir, { allowRead: ['/dev'] });
+    await expect(devices.read('/dev/zero', 1 << 16)).rejects.toThrow(
       'the file has more than the limit of 65536 bytes',
     );
   });

@@ -227,13 +227,13 @@ describe('environment maps in scenes', () => {
       'environment.scale must be an array of 3 numbers, got [1, 1]',
     ]);
     expect(await p({ type: 'map', file: 'a.hdr', rotationY: '90' })).toEqual([
-      'environment.rotationY must be a finite number, got "90" (numbers must not be quoted)',
+      'environment.rotationY must be a finite number, got the string "90" (numbers must not be quoted)',
     ]);
     expect(await p({ type: 'map', file: 'a.hdr', rotation: 90 })).toEqual([
       'environment.rotation is not a known key (did you mean rotationY?)',
     ]);
     expect(await p('sky')).toEqual([
-      'environment must be [r, g, b] or an environment map object, got "sky"',
+      'environment must be [r, g, b] or an environment map object, got the string "sky"',
     ]);
   });
 });

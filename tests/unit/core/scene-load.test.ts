@@ -154,7 +154,7 @@ describe('top level', () => {
   it.each([
     [null, 'scene must be an object, got null'],
     [[1, 2], 'scene must be an object, got [1, 2]'],
-    ['scene', 'scene must be an object, got "scene"'],
+    ['scene', 'scene must be an object, got the string "scene"'],
     [42, 'scene must be an object, got 42'],
   ])('rejects a non-object scene %j', (value, text) => {
     expect(errorOf(() => validateScene(value)).message).toBe(text);
@@ -225,11 +225,11 @@ describe('types of values', () => {
     s.settings.spp = '512';
     const problems = problemsOf(s);
     expect(problems).toContain(
-      'shapes[0].radius must be a finite number, got "1" (numbers must not be quoted)',
+      'shapes[0].radius must be a finite number, got the string "1" (numbers must not be quoted)',
     );
-    expect(problems.some((p) => p.startsWith('settings.spp') && p.includes('got "512"'))).toBe(
-      true,
-    );
+    expect(
+      problems.some((p) => p.startsWith('settings.spp') && p.includes('got the string "512"')),
+    ).toBe(true);
   });
 
   it('requires vectors of exactly 3 numbers', () => {
@@ -414,7 +414,7 @@ describe('materials', () => {
   it('rejects a material that is not an object', () => {
     const s = base();
     s.materials.red = 'red';
-    expectProblem(s, 'materials.red must be an object, got "red"');
+    expectProblem(s, 'materials.red must be an object, got the string "red"');
   });
 });
 

@@ -28,7 +28,7 @@ import { sceneRadius } from './bounds.ts';
 import { CompiledMeshes, compileMeshArrays, type MeshArrays } from './compile-meshes.ts';
 import { compileGltfShapes } from './compile-gltf.ts';
 import { GltfScene } from './gltf-scene.ts';
-import { gltfMeshPower } from './light-power.ts';
+import { gltfMeshPower, selectionWeights } from './light-power.ts';
 import type { GltfDesc, MeshDesc, QuadDesc, Scene, SphereDesc } from '../format/types.ts';
 
 /**
@@ -317,6 +317,8 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
   const kinds: number[] = [];
   const shapes: number[] = [];
   const power: number[] = [];
+  // log2 of each power from its factors, for when a product overflows (light-power.ts).
+  const powerLog: number[] = [];
   const scale: number[] = [];
   const material: number[] = [];
   const emitted = (m: number): number => {
@@ -339,6 +341,7 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
     kinds.push(SHAPE_SPHERE);
     shapes.push(i);
     power.push(lum * 4 * Math.PI * r * r);
+    powerLog.push(Math.log2(lum) + Math.log2(4 * Math.PI) + 2 * Math.log2(r));
     scale.push(sphereScale[i]);
     material.push(sphereMaterial[i]);
   }
@@ -349,6 +352,7 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
     kinds.push(SHAPE_QUAD);
     shapes.push(i);
     power.push(lum * quads[i * QUAD_STRIDE + Q_AREA]);
+    powerLog.push(Math.log2(lum) + Math.log2(quads[i * QUAD_STRIDE + Q_AREA]));
     scale.push(quadScale[i]);
     material.push(quadMaterial[i]);
   }
@@ -366,14 +370,15 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
     // weight follows it (light-power.ts), but never drops to 0.
     const m = mesh.meshMaterial[k];
     const gm = m >= names.length ? m - names.length : -1;
-    power.push(
+    const p =
       gm < 0
         ? lum * area
         : Math.max(
             gltfMeshPower(mesh, first, count, gltf!.table, gm, gltf!.textures),
             1e-6 * lum * area,
-          ),
-    );
+          );
+    power.push(p);
+    powerLog.push(p > 0 && p < Infinity ? Math.log2(p) : Math.log2(lum) + Math.log2(area));
     scale.push(mesh.meshScale[k]);
     material.push(mesh.meshMaterial[k]);
   }
@@ -391,6 +396,7 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
       kinds.push(LIGHT_ENVIRONMENT);
       shapes.push(0);
       power.push(integral * r * r);
+      powerLog.push(Math.log2(integral) + 2 * Math.log2(r));
       scale.push(0);
       material.push(-1);
     }
@@ -420,7 +426,7 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
     quadScale,
     lightKind: Int32Array.from(kinds),
     lightShape: Int32Array.from(shapes),
-    lightPower: Float64Array.from(power),
+    lightPower: Float64Array.from(selectionWeights(power, powerLog)),
     lightScale: Float64Array.from(scale),
     lightMaterial: Int32Array.from(material),
     environment: Float64Array.from(scene.environment),

@@ -45,3 +45,25 @@ export function gltfMeshPower(
   }
   return power;
 }
+
+/**
+ * The lights' selection weights: their powers as computed, unless a power or their sum
+ * overflows (an emitter of radiance 10¹² and area 10³⁰⁰, or an environment map around
+ * a scene 10¹⁶⁰ across: both finite, as the format allows). Then Distribution1D would
+ * divide Infinity by Infinity and every light sample would be NaN; instead the weights
+ * are the powers relative to the largest, 2^(log2 pᵢ − max log2 p), from `logs` (each
+ * power's log2, summed from its finite factors). Only the choice among lights changes:
+ * each light sample is still weighted by its exact probability, so this costs noise,
+ * never bias. Scenes whose powers add up finitely keep their weights bit for bit.
+ */
+export function selectionWeights(power: number[], logs: number[]): number[] {
+  let total = 0;
+  for (const p of power) total += p;
+  if (Number.isFinite(total)) return power;
+  // A factor that is itself infinite (it should not be: extent.ts refuses such areas)
+  // counts as the largest possible, 2^3072, three factors of at most 2^1024.
+  const clamped = logs.map((l) => (Number.isNaN(l) ? -Infinity : Math.min(l, 3072)));
+  let max = -Infinity;
+  for (const l of clamped) if (l > max) max = l;
+  return clamped.map((l) => 2 ** (l - max));
+}

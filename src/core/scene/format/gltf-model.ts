@@ -28,6 +28,12 @@ export type TangentGenerator = (
 /** Reads the file at `path` (relative to the scene), refusing files longer than maxBytes. */
 export interface GltfFileReader {
   read(path: string, maxBytes: number): Promise<Uint8Array>;
+  /**
+   * Folders, besides the model's and the scene's, whose files a model may name
+   * (normalized: relative to the scene's folder, `..` only leading, or absolute); the
+   * command line's `--allow-read`. Absent: none (core/gltf/io.ts, resolveUri).
+   */
+  readonly allowedFolders?: readonly string[];
 }
 
 export interface GltfGeometry {

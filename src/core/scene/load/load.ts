@@ -40,6 +40,8 @@ export interface SceneFileReader {
    * read, with an Error whose message says why in one line (the caller adds the path).
    */
   read(path: string, maxBytes: number): Promise<Uint8Array>;
+  /** Folders beyond the scene's whose files a glTF model may name (GltfFileReader). */
+  readonly allowedFolders?: readonly string[];
 }
 
 /**

@@ -8,6 +8,7 @@ import type { EnvironmentMapDesc, Vec3 } from '../format/types.ts';
 import {
   NON_NEGATIVE,
   describe,
+  describeType,
   expectKnownKeys,
   expectNumber,
   expectOneOf,
@@ -39,7 +40,7 @@ export function checkEnvironment(
   }
   if (typeof value !== 'object' || value === null) {
     problems.push(
-      `environment must be [r, g, b] or an environment map object, got ${describe(value)}`,
+      `environment must be [r, g, b] or an environment map object, got ${describeType(value)}`,
     );
     return undefined;
   }

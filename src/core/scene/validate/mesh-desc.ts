@@ -9,7 +9,13 @@
 import { buildMeshData, MeshError } from '../../geometry/mesh-data.ts';
 import { transformProblem } from '../../math/affine.ts';
 import type { MeshDesc, Scene } from '../format/types.ts';
-import { describe, expectString, indexPath, type Problems } from './validate-helpers.ts';
+import {
+  describe,
+  describeType,
+  expectString,
+  indexPath,
+  type Problems,
+} from './validate-helpers.ts';
 
 export const MESH_KEYS = [
   'type',
@@ -107,7 +113,7 @@ export function checkMesh(
 /** A flat array of finite numbers whose length is a multiple of 3, as a fresh Float64Array. */
 function numberArray(value: unknown, path: string, problems: Problems): Float64Array | undefined {
   if (!Array.isArray(value)) {
-    problems.push(`${path} must be a flat array of numbers, got ${describe(value)}`);
+    problems.push(`${path} must be a flat array of numbers, got ${describeType(value)}`);
     return undefined;
   }
   if (value.length % 3 !== 0) {
@@ -118,7 +124,7 @@ function numberArray(value: unknown, path: string, problems: Problems): Float64A
   for (let i = 0; i < value.length; i++) {
     const x = value[i];
     if (typeof x !== 'number' || !Number.isFinite(x)) {
-      problems.push(`${indexPath(path, i)} must be a finite number, got ${describe(x)}`);
+      problems.push(`${indexPath(path, i)} must be a finite number, got ${describeType(x)}`);
       return undefined;
     }
     out[i] = x;
@@ -133,7 +139,7 @@ function indexArray(
   problems: Problems,
 ): Uint32Array | undefined {
   if (!Array.isArray(value)) {
-    problems.push(`${path} must be a flat array of vertex indices, got ${describe(value)}`);
+    problems.push(`${path} must be a flat array of vertex indices, got ${describeType(value)}`);
     return undefined;
   }
   if (value.length % 3 !== 0) {
@@ -145,7 +151,7 @@ function indexArray(
     const x = value[i];
     if (typeof x !== 'number' || !Number.isInteger(x) || x < 0 || x >= vertices) {
       problems.push(
-        `${indexPath(path, i)} must be a vertex index in [0, ${vertices - 1}], got ${describe(x)}` +
+        `${indexPath(path, i)} must be a vertex index in [0, ${vertices - 1}], got ${describeType(x)}` +
           (vertices === 0 ? ' (positions is empty)' : ''),
       );
       return undefined;
@@ -160,14 +166,14 @@ export function checkTransform(value: unknown, path: string, problems: Problems)
   const at = `${path}.transform`;
   if (!Array.isArray(value) || value.length !== 16) {
     problems.push(
-      `${at} must be an array of 16 numbers (a row-major 4×4 matrix), got ${describe(value)}`,
+      `${at} must be an array of 16 numbers (a row-major 4×4 matrix), got ${describeType(value)}`,
     );
     return null;
   }
   for (let i = 0; i < 16; i++) {
     const x = value[i];
     if (typeof x !== 'number' || !Number.isFinite(x)) {
-      problems.push(`${indexPath(at, i)} must be a finite number, got ${describe(x)}`);
+      problems.push(`${indexPath(at, i)} must be a finite number, got ${describeType(x)}`);
       return null;
     }
   }

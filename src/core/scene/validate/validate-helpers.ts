@@ -45,6 +45,15 @@ export function describe(value: unknown): string {
   return `a ${typeof value}`;
 }
 
+/**
+ * A value of the wrong type, named by its type: `the string "0"` where a number or an
+ * object is wanted (a quoted number reads like the number itself otherwise), `an object`,
+ * `an array of length 2`. Never `[object Object]`: every type has words.
+ */
+export function describeType(value: unknown): string {
+  return typeof value === 'string' ? `the string ${quote(value)}` : describe(value);
+}
+
 export function formatVec(v: Vec3): string {
   return `[${v[0]}, ${v[1]}, ${v[2]}]`;
 }
@@ -110,7 +119,7 @@ export function expectObject(
     return value as Record<string, unknown>;
   }
   if (missing(value, path, problems, 'an object')) return undefined;
-  problems.push(`${path} must be an object, got ${describe(value)}`);
+  problems.push(`${path} must be an object, got ${describeType(value)}`);
   return undefined;
 }
 
@@ -162,7 +171,7 @@ function notANumber(value: unknown, path: string, what: string): string {
     typeof value === 'string' && value.trim() !== '' && Number.isFinite(Number(value))
       ? ' (numbers must not be quoted)'
       : '';
-  return `${path} must be ${what}, got ${describe(value)}${quoted}`;
+  return `${path} must be ${what}, got ${describeType(value)}${quoted}`;
 }
 
 /** A finite number (NaN and ±Infinity can arrive through validateScene), or a problem. */
@@ -240,7 +249,7 @@ export function expectVec3(
   if (plain !== undefined) return plain;
   if (!Array.isArray(value) || value.length !== 3) {
     if (missing(value, path, problems, 'an array of 3 numbers')) return undefined;
-    problems.push(`${path} must be an array of 3 numbers, got ${describe(value)}`);
+    problems.push(`${path} must be an array of 3 numbers, got ${describeType(value)}`);
     return undefined;
   }
   const before = problems.length;

@@ -10,7 +10,6 @@
 import {
   DEFAULT_SETTINGS,
   LIMITS,
-  type CameraDesc,
   type MaterialDesc,
   type Scene,
   type SettingsDesc,
@@ -19,13 +18,12 @@ import {
   type Vec3,
 } from '../format/types.ts';
 import {
-  NON_NEGATIVE,
   POSITIVE,
   UNIT_INTERVAL,
   childPath,
   closest,
-  cross,
   describe,
+  describeType,
   expectInteger,
   expectKnownKeys,
   expectNumber,
@@ -36,15 +34,14 @@ import {
   formatVec,
   indexPath,
   length,
-  normalize,
   plainVec3,
-  sub,
   type Problems,
 } from './validate-helpers.ts';
 import { decodeUtf8, Utf8Error, utf8Length } from '../../io/utf8.ts';
 import { JsonError, parseJson } from '../../io/json.ts';
 import { RADIANCE } from './radiance.ts';
 import { Q_NORMAL, QUAD_STRIDE, writeQuadRecord } from '../../geometry/shapes.ts';
+import { checkCamera } from './camera-desc.ts';
 import { checkEnvironment } from './environment-desc.ts';
 import { GLTF_KEYS, checkGltfShape } from './gltf-desc.ts';
 import { MESH_KEYS, checkMesh } from './mesh-desc.ts';
@@ -164,64 +161,6 @@ export function markValidated(scene: Scene): Scene {
 /** Whether `value` is a scene this loader made (in this thread). */
 export function isValidatedScene(value: unknown): value is Scene {
   return typeof value === 'object' && value !== null && validated.has(value);
-}
-
-const CAMERA_KEYS = ['position', 'target', 'up', 'fovY', 'aperture', 'focusDistance'];
-
-function checkCamera(value: unknown, problems: Problems): CameraDesc | undefined {
-  const obj = expectObject(value, 'camera', problems);
-  if (obj === undefined) return undefined;
-  const before = problems.length;
-  expectKnownKeys(obj, 'camera', CAMERA_KEYS, problems);
-  const position = expectVec3(obj.position, 'camera.position', problems);
-  const target = expectVec3(obj.target, 'camera.target', problems);
-  const up = expectVec3(obj.up, 'camera.up', problems);
-  const fovY = expectNumber(obj.fovY, 'camera.fovY', problems, {
-    ok: (x) => x > 0 && x < 180,
-    rule: 'be in (0, 180) degrees',
-  });
-  const aperture =
-    obj.aperture === undefined
-      ? 0
-      : expectNumber(obj.aperture, 'camera.aperture', problems, NON_NEGATIVE);
-  const focus =
-    obj.focusDistance === undefined
-      ? undefined
-      : expectNumber(obj.focusDistance, 'camera.focusDistance', problems, POSITIVE);
-
-  // The frame (forward, right, upImage) must exist: forward needs position != target, and
-  // right = normalize(cross(forward, up)) needs up non-zero and not parallel to forward.
-  // Parallelism is tested on unit vectors, so it does not depend on the scene's scale.
-  const upUnit = up === undefined ? undefined : normalize(up);
-  if (up !== undefined && upUnit === undefined) {
-    problems.push(`camera.up must be non-zero, got ${formatVec(up)}`);
-  }
-  let distance: number | undefined;
-  if (position !== undefined && target !== undefined) {
-    const forward = sub(target, position);
-    distance = length(forward);
-    if (distance === 0) {
-      problems.push(
-        `camera.target must differ from camera.position, both are ${formatVec(target)}`,
-      );
-    } else if (!Number.isFinite(distance)) {
-      problems.push(`camera.target - camera.position must be finite, got ${formatVec(forward)}`);
-    } else if (upUnit !== undefined && length(cross(normalize(forward)!, upUnit)) < 1e-6) {
-      problems.push(
-        `camera.up must not be parallel to camera.target - camera.position, got up ` +
-          `${formatVec(up!)} and target - position ${formatVec(forward)}`,
-      );
-    }
-  }
-  if (problems.length > before) return undefined;
-  return {
-    position: position!,
-    target: target!,
-    up: up!,
-    fovY: fovY!,
-    aperture: aperture!,
-    focusDistance: focus ?? distance!,
-  };
 }
 
 const SETTING_KEYS = ['width', 'height', 'maxBounces', 'spp'] as const;
@@ -379,7 +318,7 @@ function checkShapes(
     return undefined;
   }
   if (!Array.isArray(value)) {
-    problems.push(`shapes must be an array, got ${describe(value)}`);
+    problems.push(`shapes must be an array, got ${describeType(value)}`);
     return undefined;
   }
   // The limit bounds the work of loading and building the scene, so past it the shapes
