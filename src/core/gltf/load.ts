@@ -128,6 +128,13 @@ export async function loadGltf(
     );
   }
   for (const note of summary.notes) warn(note);
+  const asset = json.asset as Record<string, unknown>;
+  if (asset.version !== '2.0') {
+    // §3.2: a 2.x file whose minVersion (checked above) is at most 2.0 is meant to load
+    // in a 2.0 reader; glTF-Transform refuses any version but "2.0", so it is told 2.0.
+    warn(`asset.version: ${quote(asset.version as string)} is read as glTF 2.0`);
+    json.asset = { ...asset, version: '2.0' };
+  }
   dropSourcelessTextures(json, summary.sourceless, warn);
   for (const name of (json.extensionsUsed as unknown[] | undefined) ?? []) {
     if (typeof name === 'string' && !HONOURED_EXTENSIONS.has(name)) {
