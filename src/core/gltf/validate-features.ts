@@ -171,7 +171,14 @@ export function checkNodeFeatures(n: Json, p: string, a: Arrays, skins: Json[]):
   }
 }
 
-/** §3.9.4 alpha coverage: the three modes, upper case. */
-export function checkAlphaMode(m: Json, p: string): void {
-  oneOf(m, 'alphaMode', p, ['OPAQUE', 'MASK', 'BLEND']);
+/**
+ * §3.9.4 alpha coverage: "OPAQUE", "MASK" or "BLEND". The schema admits any string (an
+ * open enum, for later versions; the validator warns, VALUE_NOT_IN_LIST), so another
+ * string is not an error: it is rendered OPAQUE, the default, and the note says so.
+ */
+export function alphaModeNote(m: Json, p: string): string | undefined {
+  const v = m.alphaMode;
+  if (v === undefined || v === 'OPAQUE' || v === 'MASK' || v === 'BLEND') return undefined;
+  if (typeof v !== 'string') fail(`${p}.alphaMode`, `must be a string, got ${describeValue(v)}`);
+  return `${p}.alphaMode: ${describeValue(v)} is not "OPAQUE", "MASK" or "BLEND" (upper case); the material is rendered OPAQUE`;
 }

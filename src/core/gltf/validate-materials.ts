@@ -1,15 +1,13 @@
 /**
  * A material's numbers and texture bindings as glTF 2.0 §5.19 ("Material") and the
- * schemas of the extensions pathwise reads bound them: factors in [0, 1], alphaMode one
- * of the three modes (§3.9.4), and each textureInfo (§5.20) with the TEXCOORD set it
- * reads (KHR_texture_transform's texCoord overrides the textureInfo's).
+ * schemas of the extensions pathwise reads bound them (factors in [0, 1]…), and each
+ * textureInfo (§5.20) with the TEXCOORD set it reads (KHR_texture_transform's texCoord
+ * overrides the textureInfo's).
  */
-import { checkAlphaMode } from './validate-features.ts';
 import { bounded, boundedArray, fail, integer, isObject, type Json } from './validate-values.ts';
 
 /** The numbers of a material and of the extensions pathwise reads, as the glTF schemas bound them. */
 export function checkMaterialNumbers(m: Json, p: string): void {
-  checkAlphaMode(m, p);
   const pbr = m.pbrMetallicRoughness;
   const pp = `${p}.pbrMetallicRoughness`;
   boundedArray(pbr, 'baseColorFactor', pp, 4, 0, 1);

@@ -12,6 +12,7 @@ import { quote } from '../util/message.ts';
 import { checkPrimitiveAttributes } from './validate-attributes.ts';
 import { checkMaterialNumbers, textureBindings } from './validate-materials.ts';
 import {
+  alphaModeNote,
   checkAnimations,
   checkCameras,
   checkNodeFeatures,
@@ -236,6 +237,8 @@ export function validateGltfJson(json: unknown): GltfSummary {
   materials.forEach((m, i) => {
     const p = `materials[${i}]`;
     checkMaterialNumbers(m, p);
+    const alpha = alphaModeNote(m, p);
+    if (alpha !== undefined && notes.length < 10) notes.push(alpha);
     for (const b of textureBindings(m, p)) textureInfo(b.info, b.path);
   });
   meshes.forEach((mesh, i) => {

@@ -206,18 +206,24 @@ describe('the rest of issue 27 list 7', () => {
     }, /^glTF: nodes\[1\]\.children: lists nodes\[0\] twice$/);
   });
 
-  it('alphaMode must be one of the three upper-case modes; BLEND is honoured', async () => {
-    await refused(
-      (j) => {
-        j.materials[0].alphaMode = 'blend';
-      },
-      /^glTF: materials\[0\]\.alphaMode: must be one of "OPAQUE", "MASK", "BLEND", got the string "blend"$/,
-      true,
-    );
+  it('an alphaMode other than the three upper-case modes is noted and rendered OPAQUE', async () => {
+    const blend = await load((j) => {
+      j.materials[0].alphaMode = 'blend';
+    }, true);
+    expect(blend.warnings).toEqual([
+      'materials[0].alphaMode: the string "blend" is not "OPAQUE", "MASK" or "BLEND" (upper case); the material is rendered OPAQUE',
+    ]);
     const model = await load((j) => {
       j.materials[0].alphaMode = 'BLEND';
     }, true);
     expect(model.warnings).toEqual([]);
+    await refused(
+      (j) => {
+        j.materials[0].alphaMode = 2;
+      },
+      /^glTF: materials\[0\]\.alphaMode: must be a string, got 2$/,
+      true,
+    );
   });
 
   it('cameras: yfov, znear, aspectRatio, zfar in range; the projection present', async () => {
