@@ -245,10 +245,20 @@ export function flattenGltf(
         const x = nrm[s],
           y = nrm[s + 1],
           z = nrm[s + 2];
-        const wx = nm[0] * x + nm[3] * y + nm[6] * z;
-        const wy = nm[1] * x + nm[4] * y + nm[7] * z;
-        const wz = nm[2] * x + nm[5] * y + nm[8] * z;
-        const l = Math.sqrt(wx * wx + wy * wy + wz * wz);
+        let wx = nm[0] * x + nm[3] * y + nm[6] * z;
+        let wy = nm[1] * x + nm[4] * y + nm[7] * z;
+        let wz = nm[2] * x + nm[5] * y + nm[8] * z;
+        let l = Math.sqrt(wx * wx + wy * wy + wz * wz);
+        if (!(l > 0 && l < Infinity)) {
+          // The squares under- or overflowed (a scale of 1e200 on one axis): rescale first.
+          const s = Math.max(Math.abs(wx), Math.abs(wy), Math.abs(wz));
+          if (s > 0 && s < Infinity) {
+            wx /= s;
+            wy /= s;
+            wz /= s;
+            l = Math.sqrt(wx * wx + wy * wy + wz * wz);
+          }
+        }
         if (!(l > 0) || !Number.isFinite(l)) {
           throw new GltfError(
             `${where}.attributes.NORMAL: vertex ${src(k)} has a zero-length normal`,
