@@ -42,6 +42,7 @@ import type {
 import { decodeGltfTextures } from './textures.ts';
 import { fromRowMajor } from './transforms.ts';
 import { validateGltfBuffers } from './validate-buffers.ts';
+import { checkPrimitiveCounts } from './validate-attributes.ts';
 import { validateSparseIndices } from './validate-sparse.ts';
 import { validateGltfJson } from './validate.ts';
 import { dropSourcelessTextures } from './sourceless.ts';
@@ -185,6 +186,7 @@ export async function loadGltf(
     json,
     data.map((d) => d.length),
   );
+  checkPrimitiveCounts(json);
   validateSparseIndices(json, data);
   const images = (json.images as Record<string, unknown>[] | undefined) ?? [];
   for (let i = 0; i < images.length; i++) {

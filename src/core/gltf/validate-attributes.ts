@@ -132,8 +132,6 @@ export function checkPrimitiveAttributes(
 ): void {
   if (!isObject(pr.attributes))
     fail(`${path}.attributes`, `is required, an object; got ${describeValue(pr.attributes)}`);
-  let count = -1;
-  let first = '';
   const base = new Set<string>();
   for (const [name, v] of Object.entries(pr.attributes)) {
     const p = `${path}.attributes.${name}`;
@@ -149,16 +147,6 @@ export function checkPrimitiveAttributes(
       checkOne(name, a, accessors, p, RULES[sem], quantized);
     }
     base.add(name);
-    const n = accessors[a].count as number;
-    if (count < 0) {
-      count = n;
-      first = name;
-    } else if (n !== count) {
-      fail(
-        p,
-        `has ${n} elements, but ${first} has ${count}; a primitive's attributes have one count`,
-      );
-    }
   }
   if (pr.targets === undefined) return;
   if (!Array.isArray(pr.targets))
@@ -175,8 +163,44 @@ export function checkPrimitiveAttributes(
       else if (!name.startsWith('_'))
         fail(p, 'is not a morph target attribute (POSITION, NORMAL, TANGENT, TEXCOORD_n, COLOR_n)');
       if (!base.has(name)) fail(p, `the primitive has no ${name} attribute for it to displace`);
-      const n = accessors[a].count as number;
-      if (n !== count) fail(p, `has ${n} elements, but the primitive's attributes have ${count}`);
     }
+  });
+}
+
+/**
+ * One count per primitive (validator: MESH_PRIMITIVE_UNEQUAL_ACCESSOR_COUNT) and per
+ * morph target. Run once the byte ranges are checked (validate-buffers.ts), so that a
+ * count that lies about the data is reported as the bytes it would need.
+ */
+export function checkPrimitiveCounts(json: Json): void {
+  const accessors = (json.accessors as Json[] | undefined) ?? [];
+  ((json.meshes as Json[] | undefined) ?? []).forEach((mesh, i) => {
+    (mesh.primitives as Json[]).forEach((pr, j) => {
+      const path = `meshes[${i}].primitives[${j}]`;
+      let count = -1;
+      let first = '';
+      for (const [name, a] of Object.entries(pr.attributes as Json)) {
+        const n = accessors[a as number].count as number;
+        if (count < 0) {
+          count = n;
+          first = name;
+        } else if (n !== count) {
+          fail(
+            `${path}.attributes.${name}`,
+            `has ${n} elements, but ${first} has ${count}; a primitive's attributes have one count`,
+          );
+        }
+      }
+      ((pr.targets as Json[] | undefined) ?? []).forEach((t, k) => {
+        for (const [name, a] of Object.entries(t)) {
+          const n = accessors[a as number].count as number;
+          if (n !== count)
+            fail(
+              `${path}.targets[${k}].${name}`,
+              `has ${n} elements, but the primitive's attributes have ${count}`,
+            );
+        }
+      });
+    });
   });
 }
