@@ -204,3 +204,36 @@ export function checkPrimitiveCounts(json: Json): void {
     });
   });
 }
+
+/**
+ * §3.6.2.1 (buffer views): "When two or more vertex attribute accessors use the same
+ * bufferView, its byteStride MUST be defined" (validator:
+ * MESH_PRIMITIVE_ACCESSOR_WITHOUT_BYTESTRIDE). Without it, the elements of the two
+ * accessors are interleaved in a way no stride describes: the file is corrupt.
+ */
+export function checkSharedVertexViews(json: Json): void {
+  const accessors = (json.accessors as Json[] | undefined) ?? [];
+  const views = (json.bufferViews as Json[] | undefined) ?? [];
+  const users = new Map<number, number>();
+  const use = (a: number, path: string): void => {
+    const v = accessors[a].bufferView;
+    if (typeof v !== 'number' || views[v].byteStride !== undefined) return;
+    const other = users.get(v);
+    if (other === undefined) users.set(v, a);
+    else if (other !== a)
+      fail(
+        path,
+        `accessors[${a}] and accessors[${other}] both read bufferViews[${v}], which has no byteStride (required when vertex accessors share a view)`,
+      );
+  };
+  ((json.meshes as Json[] | undefined) ?? []).forEach((mesh, i) => {
+    (mesh.primitives as Json[]).forEach((pr, j) => {
+      const p = `meshes[${i}].primitives[${j}]`;
+      for (const [name, a] of Object.entries(pr.attributes as Json))
+        use(a as number, `${p}.attributes.${name}`);
+      ((pr.targets as Json[] | undefined) ?? []).forEach((t, k) => {
+        for (const [name, a] of Object.entries(t)) use(a as number, `${p}.targets[${k}].${name}`);
+      });
+    });
+  });
+}

@@ -4,10 +4,32 @@
  * textureInfo (§5.20) with the TEXCOORD set it reads (KHR_texture_transform's texCoord
  * overrides the textureInfo's).
  */
-import { bounded, boundedArray, fail, integer, isObject, type Json } from './validate-values.ts';
+import {
+  bounded,
+  boundedArray,
+  describeValue,
+  fail,
+  integer,
+  isObject,
+  type Json,
+} from './validate-values.ts';
 
 /** The numbers of a material and of the extensions pathwise reads, as the glTF schemas bound them. */
 export function checkMaterialNumbers(m: Json, p: string): void {
+  for (const [o, k, path] of [
+    [m, 'pbrMetallicRoughness', p],
+    [m, 'extensions', p],
+    [m, 'normalTexture', p],
+  ] as const) {
+    if (o[k] !== undefined && !isObject(o[k]))
+      fail(`${path}.${k}`, `must be an object, got ${describeValue(o[k])}`);
+  }
+  if (isObject(m.extensions)) {
+    for (const [name, ext] of Object.entries(m.extensions)) {
+      if (!isObject(ext))
+        fail(`${p}.extensions.${name}`, `must be an object, got ${describeValue(ext)}`);
+    }
+  }
   const pbr = m.pbrMetallicRoughness;
   const pp = `${p}.pbrMetallicRoughness`;
   boundedArray(pbr, 'baseColorFactor', pp, 4, 0, 1);
@@ -56,7 +78,9 @@ export function checkMaterialNumbers(m: Json, p: string): void {
 export function textureBindings(m: Json, p: string): { path: string; set: number; info: Json }[] {
   const out: { path: string; set: number; info: Json }[] = [];
   const add = (o: unknown, path: string): void => {
-    if (!isObject(o)) return;
+    if (o === undefined) return;
+    // A textureInfo that is not an object is listed for validate.ts to refuse.
+    if (!isObject(o)) return void out.push({ path, set: 0, info: o as Json });
     let set = typeof o.texCoord === 'number' ? o.texCoord : 0;
     const tt = isObject(o.extensions) ? o.extensions.KHR_texture_transform : undefined;
     // KHR_texture_transform's texCoord overrides the textureInfo's.

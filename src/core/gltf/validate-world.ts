@@ -39,7 +39,11 @@ export function vertexOverflow(
   );
 }
 
-/** A triangle whose edges' cross product (twice its area) overflows in world space. */
+/**
+ * A triangle whose edges' cross product (twice its area) overflows in world space: its
+ * normal and area are not numbers, and the renderer's intersection test (a cubic in the
+ * coordinates, geometry/triangle.ts) cannot find it; it would vanish from the image.
+ */
 export function areaOverflow(node: number, where: string, triangle: number): GltfError {
   return new GltfError(
     `nodes[${node}]: triangle ${triangle} of ${where} has an area beyond the double range in world ` +

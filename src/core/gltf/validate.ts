@@ -9,12 +9,13 @@
  * "Properties reference").
  */
 import { quote } from '../util/message.ts';
-import { checkPrimitiveAttributes } from './validate-attributes.ts';
+import { checkPrimitiveAttributes, checkSharedVertexViews } from './validate-attributes.ts';
 import { checkMaterialNumbers, textureBindings } from './validate-materials.ts';
 import {
   alphaModeNote,
   checkAnimations,
   checkCameras,
+  checkMorphTargets,
   checkNodeFeatures,
   checkSamplers,
   checkSkins,
@@ -258,7 +259,7 @@ export function validateGltfJson(json: unknown): GltfSummary {
       if (mat !== undefined) {
         const attributes = pr.attributes as Json;
         for (const b of textureBindings(materials[mat], `materials[${mat}]`)) {
-          const t = textures[(b.info.index as number) ?? -1];
+          const t = isObject(b.info) ? textures[b.info.index as number] : undefined;
           if (t === undefined || t.source === undefined) continue;
           if (attributes[`TEXCOORD_${b.set}`] === undefined)
             fail(
@@ -273,7 +274,9 @@ export function validateGltfJson(json: unknown): GltfSummary {
       }
       integer(pr, 'mode', p, 0, 6);
     });
+    checkMorphTargets(mesh, `meshes[${i}]`);
   });
+  checkSharedVertexViews(json);
   checkCameras(cameras);
   const skins = checkSkins(json, arrays);
   checkAnimations(json, arrays);

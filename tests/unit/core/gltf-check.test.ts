@@ -273,7 +273,47 @@ describe('the rest of issue 27 list 7', () => {
     );
     expect(imageCount(model.textures)).toBe(0);
     await refused((j) => {
-      j.samplers = [{ magFilter: 1 }];
-    }, /^glTF: samplers\[0\]\.magFilter: must be one of 9728, 9729, got 1$/);
+      j.samplers = [{ magFilter: '9729' }];
+    }, /^glTF: samplers\[0\]\.magFilter: must be an integer, got the string "9729"$/);
+    await refused((j) => {
+      j.samplers = [{ wrapS: 1 }];
+    }, /^glTF: samplers\[0\]\.wrapS: must be one of 33071, 33648, 10497, got 1$/);
   });
+});
+
+describe('found by the seeded differential fuzz (tests/fuzz/gltf-validator.test.ts)', () => {
+  it('a camera type glTF-Transform cannot read is one line, not its TypeError', () =>
+    refused((j) => {
+      j.cameras = [{ type: 'fisheye', perspective: { yfov: 0.8, znear: 0.1 } }];
+      j.nodes.push({ camera: 0 });
+      j.scenes[0].nodes.push(1);
+    }, /^glTF: cameras\[0\]\.type: the string "fisheye" is not a camera type pathwise reads \("perspective", "orthographic"\)$/));
+
+  it('two vertex accessors sharing a view without byteStride (§3.6.2.1)', () =>
+    refused((j) => {
+      j.accessors[1].bufferView = 0;
+    }, /^glTF: meshes\[0\]\.primitives\[0\]\.attributes\.NORMAL: accessors\[1\] and accessors\[0\] both read bufferViews\[0\], which has no byteStride/));
+
+  it('morph targets: an empty one, weights of the wrong type or number', async () => {
+    await refused((j) => {
+      prim(j).targets = [{}];
+    }, /^glTF: meshes\[0\]\.primitives\[0\]\.targets\[0\]: must name at least one attribute$/);
+    await refused((j) => {
+      prim(j).targets = [{ NORMAL: 1 }];
+      j.meshes[0].weights = ['0'];
+    }, /^glTF: meshes\[0\]\.weights: must be an array of finite numbers, got an array of 1 element$/);
+    await refused((j) => {
+      prim(j).targets = [{ NORMAL: 1 }];
+      j.meshes[0].weights = [0, 0];
+    }, /^glTF: meshes\[0\]\.weights: has 2 weights for 1 morph targets$/);
+  });
+
+  it('a textureInfo that is not an object', () =>
+    refused(
+      (j) => {
+        j.materials[0].pbrMetallicRoughness.baseColorTexture = 3;
+      },
+      /^glTF: materials\[0\]\.pbrMetallicRoughness\.baseColorTexture: must be an object, got 3$/,
+      true,
+    ));
 });
