@@ -434,7 +434,7 @@ describe('pathwise and the Khronos glTF validator agree, or say why not', () => 
 function richQuad(mutate: (j: Json) => void): Uint8Array {
   return quadGlb({
     texture: true,
-    edit: (j) => {
+    edit: (j: Json) => {
       camera({ yfov: 0.8, znear: 0.1 })(j);
       j.accessors[1].min = [0, 0, 1];
       j.accessors[1].max = [0, 0, 1];
