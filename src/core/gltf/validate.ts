@@ -7,6 +7,14 @@
  * or allocates what a lying count asks for; here each gets one message
  * naming its place in the file (glTF 2.0 §3.6 "Binary data storage", §5
  * "Properties reference").
+ *
+ * The checks by concern: validate-values.ts (JSON types, indices, ranges),
+ * validate-attributes.ts (what each attribute semantic allows, one count per
+ * primitive, shared vertex views), validate-materials.ts, validate-features.ts
+ * (skins, animations, samplers, cameras, morph weights: read or not, they
+ * must be well formed); once the buffers are read, validate-buffers.ts (byte
+ * ranges) and validate-sparse.ts; after the node transforms,
+ * validate-world.ts (world space finite and not collapsed).
  */
 import { quote } from '../util/message.ts';
 import { checkPrimitiveAttributes, checkSharedVertexViews } from './validate-attributes.ts';
