@@ -79,4 +79,27 @@ describe('world space is checked after the transforms', () => {
       expect(Math.max(...image.mean)).toBeGreaterThan(0);
     }
   });
+
+  it("a camera whose node's matrix is singular is ignored, and the warning says why", async () => {
+    for (const matrix of [
+      [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 3, 1], // z scaled to 0: no view direction
+      [1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 3, 1], // up onto the view direction
+    ]) {
+      const model = await loadGltf(
+        quadGlb({
+          edit: (j: Json) => {
+            j.cameras = [{ type: 'perspective', perspective: { yfov: 0.8, znear: 0.1 } }];
+            j.nodes.push({ camera: 0, matrix });
+            j.scenes[0].nodes.push(1);
+          },
+        }),
+        'cam.glb',
+        await memoryOptions(),
+      );
+      expect(model.cameras).toEqual([]);
+      expect(model.warnings).toEqual([
+        "cameras[0] (at nodes[1]): its node's world matrix is singular, so it has no view direction and up; ignored",
+      ]);
+    }
+  });
 });
