@@ -23,8 +23,13 @@ export function readCamera(cam: Json, m: Mat4): GltfCamera | string {
     fz = -m[10];
   const l = Math.hypot(fx, fy, fz);
   const ul = Math.hypot(m[4], m[5], m[6]);
-  if (!(l > 0 && ul > 0))
-    return "its node's world matrix is singular (scaled to zero), so it has no view direction";
+  // A singular matrix (a scale of 0, or up mapped onto the view direction) leaves the
+  // camera without a view direction or without a right vector.
+  const rx = (fy * m[6] - fz * m[5]) / (l * ul),
+    ry = (fz * m[4] - fx * m[6]) / (l * ul),
+    rz = (fx * m[5] - fy * m[4]) / (l * ul);
+  if (!(l > 0 && ul > 0 && Math.hypot(rx, ry, rz) > 1e-9))
+    return "its node's world matrix is singular, so it has no view direction and up";
   // The target a step along the view: a unit step is lost to rounding beyond ~1e16
   // (target = position, no direction at all), so the step grows with the position.
   const step = Math.max(
