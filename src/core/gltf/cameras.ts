@@ -25,10 +25,11 @@ export function readCamera(cam: Json, m: Mat4): GltfCamera | string {
   const ul = Math.hypot(m[4], m[5], m[6]);
   // A singular matrix (a scale of 0, or up mapped onto the view direction) leaves the
   // camera without a view direction or without a right vector.
-  const rx = (fy * m[6] - fz * m[5]) / (l * ul),
-    ry = (fz * m[4] - fx * m[6]) / (l * ul),
-    rz = (fx * m[5] - fy * m[4]) / (l * ul);
-  if (!(l > 0 && ul > 0 && Math.hypot(rx, ry, rz) > 1e-9))
+  // (Unit vectors first: the products of a node scaled by 1e200 would overflow.)
+  const [ax, ay, az] = [fx / l, fy / l, fz / l];
+  const [bx, by, bz] = [m[4] / ul, m[5] / ul, m[6] / ul];
+  const right = Math.hypot(ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx);
+  if (!(l > 0 && ul > 0 && right > 1e-9))
     return "its node's world matrix is singular, so it has no view direction and up";
   // The target a step along the view: a unit step is lost to rounding beyond ~1e16
   // (target = position, no direction at all), so the step grows with the position.

@@ -102,4 +102,25 @@ describe('world space is checked after the transforms', () => {
       ]);
     }
   });
+
+  it('a camera on a node scaled by 1e200 is used (its basis is normalised first)', async () => {
+    const model = await loadGltf(
+      quadGlb({
+        edit: (j: Json) => {
+          j.cameras = [{ type: 'perspective', perspective: { yfov: 0.8, znear: 0.1 } }];
+          j.nodes.push({ camera: 0, translation: [0.5, 0.5, 3], scale: [1e200, 1e200, 1e200] });
+          j.scenes[0].nodes.push(1);
+        },
+      }),
+      'cam.glb',
+      await memoryOptions(),
+    );
+    expect(model.cameras.map((c) => [c.position, c.target, c.up])).toEqual([
+      [
+        [0.5, 0.5, 3],
+        [0.5, 0.5, 2],
+        [0, 1, 0],
+      ],
+    ]);
+  });
 });
