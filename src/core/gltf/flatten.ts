@@ -35,6 +35,13 @@ import type { GltfGeometry, TangentGenerator } from '../scene/format/gltf-model.
 import { generatePrimitiveTangents, weldCorners } from './tangents.ts';
 import { det3, identity, type Mat4, multiply, nodeMatrix, normalMatrix } from './transforms.ts';
 import { MODE_TRIANGLE_FAN, MODE_TRIANGLE_STRIP, MODE_TRIANGLES } from './validate.ts';
+import {
+  areaOverflow,
+  checkWorldMatrix,
+  collapsed,
+  hasLocalArea,
+  vertexOverflow,
+} from './validate-world.ts';
 
 export type { GltfCamera, GltfGeometry };
 
@@ -77,7 +84,7 @@ export function flattenGltf(
   const nodes = (json.nodes as Json[] | undefined) ?? [];
   const jsonCameras = (json.cameras as Json[] | undefined) ?? [];
   const cameras: GltfCamera[] = [];
-  const instances: { mesh: number; matrix: Mat4 }[] = [];
+  const instances: { mesh: number; matrix: Mat4; node: number }[] = [];
   if (sceneIndex >= 0) {
     const scene = (json.scenes as Json[])[sceneIndex];
     const base = shapeTransform ?? identity();
@@ -88,10 +95,12 @@ export function flattenGltf(
       const { node, parent } = stack.pop()!;
       const n = nodes[node];
       const world = multiply(parent, nodeMatrix(n));
-      if (typeof n.mesh === 'number') instances.push({ mesh: n.mesh, matrix: world });
+      checkWorldMatrix(world, node);
+      if (typeof n.mesh === 'number') instances.push({ mesh: n.mesh, matrix: world, node });
       if (typeof n.camera === 'number') {
+        const where = `cameras[${n.camera}] (at nodes[${node}])`;
         const cam = readCamera(jsonCameras[n.camera], world);
-        if (cam === null) warn(`cameras[${n.camera}]: only perspective cameras are used; ignored`);
+        if (typeof cam === 'string') warn(`${where}: ${cam}; ignored`);
         else cameras.push(cam);
       }
       const children = (n.children as number[] | undefined) ?? [];
@@ -165,12 +174,12 @@ export function flattenGltf(
   };
   let vertexTotal = 0;
   let triangleTotal = 0;
-  const work: { plan: Plan; matrix: Mat4 }[] = [];
+  const work: { plan: Plan; matrix: Mat4; node: number }[] = [];
   const has = { normal: false, uv0: false, uv1: false, color: false, tangent: false };
   for (const inst of instances) {
     for (const plan of planOf(inst.mesh)) {
       if (plan === null) continue;
-      work.push({ plan, matrix: inst.matrix });
+      work.push({ plan, matrix: inst.matrix, node: inst.node });
       vertexTotal += plan.vertexCount;
       triangleTotal += plan.triangles.length / 3;
       const p = plan.prim;
@@ -195,7 +204,7 @@ export function flattenGltf(
   let v0 = 0;
   let t = 0;
   let skipped = 0;
-  for (const { plan, matrix } of work) {
+  for (const { plan, matrix, node } of work) {
     const { prim, where, source } = plan;
     // A singular node (scale 0 hides objects in some files): all its triangles have no area.
     if (det3(matrix) === 0) {
@@ -215,6 +224,12 @@ export function flattenGltf(
       const o = 3 * (v0 + k);
       for (let a = 0; a < 3; a++) {
         const w = m[a] * x + m[4 + a] * y + m[8 + a] * z + m[12 + a];
+        if (!Number.isFinite(w))
+          throw vertexOverflow(node, where, src(k), [
+            m[0] * x + m[4] * y + m[8] * z + m[12],
+            m[1] * x + m[5] * y + m[9] * z + m[13],
+            m[2] * x + m[6] * y + m[10] * z + m[14],
+          ]);
         positions[o + a] = w;
         if (w < bounds[a]) bounds[a] = w;
         if (w > bounds[3 + a]) bounds[3 + a] = w;
@@ -230,10 +245,20 @@ export function flattenGltf(
         const x = nrm[s],
           y = nrm[s + 1],
           z = nrm[s + 2];
-        const wx = nm[0] * x + nm[3] * y + nm[6] * z;
-        const wy = nm[1] * x + nm[4] * y + nm[7] * z;
-        const wz = nm[2] * x + nm[5] * y + nm[8] * z;
-        const l = Math.sqrt(wx * wx + wy * wy + wz * wz);
+        let wx = nm[0] * x + nm[3] * y + nm[6] * z;
+        let wy = nm[1] * x + nm[4] * y + nm[7] * z;
+        let wz = nm[2] * x + nm[5] * y + nm[8] * z;
+        let l = Math.sqrt(wx * wx + wy * wy + wz * wz);
+        if (!(l > 0 && l < Infinity)) {
+          // The squares under- or overflowed (a scale of 1e200 on one axis): rescale first.
+          const s = Math.max(Math.abs(wx), Math.abs(wy), Math.abs(wz));
+          if (s > 0 && s < Infinity) {
+            wx /= s;
+            wy /= s;
+            wz /= s;
+            l = Math.sqrt(wx * wx + wy * wy + wz * wz);
+          }
+        }
         if (!(l > 0) || !Number.isFinite(l)) {
           throw new GltfError(
             `${where}.attributes.NORMAL: vertex ${src(k)} has a zero-length normal`,
@@ -292,6 +317,7 @@ export function flattenGltf(
       }
     }
     const tris = plan.triangles;
+    const kept = t;
     for (let k = 0; k < tris.length; k += 3) {
       const a = v0 + tris[k];
       const b = v0 + tris[k + (flip ? 2 : 1)];
@@ -310,11 +336,22 @@ export function flattenGltf(
         skipped++;
         continue;
       }
+      if (!(Number.isFinite(cx) && Number.isFinite(cy) && Number.isFinite(cz)))
+        throw areaOverflow(node, where, k / 3);
       indices[3 * t] = a;
       indices[3 * t + 1] = b;
       indices[3 * t + 2] = c;
       triangleMaterial[t] = plan.material;
       t++;
+    }
+    if (t === kept && tris.length > 0 && hasLocalArea(pos, tris, source)) {
+      const a = tris[0] + v0;
+      const at = Math.max(
+        Math.abs(positions[3 * a]),
+        Math.abs(positions[3 * a + 1]),
+        Math.abs(positions[3 * a + 2]),
+      );
+      throw collapsed(node, where, tris.length / 3, at);
     }
     v0 += n;
   }

@@ -42,7 +42,10 @@ import type {
 import { decodeGltfTextures } from './textures.ts';
 import { fromRowMajor } from './transforms.ts';
 import { validateGltfBuffers } from './validate-buffers.ts';
+import { checkPrimitiveCounts } from './validate-attributes.ts';
+import { validateSparseIndices } from './validate-sparse.ts';
 import { validateGltfJson } from './validate.ts';
+import { dropSourcelessTextures } from './sourceless.ts';
 
 /** Extensions whose content is used (everything else is reported as ignored). */
 export const HONOURED_EXTENSIONS = new Set([
@@ -125,6 +128,15 @@ export async function loadGltf(
         `left of the scene's limit`,
     );
   }
+  for (const note of summary.notes) warn(note);
+  const asset = json.asset as Record<string, unknown>;
+  if (asset.version !== '2.0') {
+    // §3.2: a 2.x file whose minVersion (checked above) is at most 2.0 is meant to load
+    // in a 2.0 reader; glTF-Transform refuses any version but "2.0", so it is told 2.0.
+    warn(`asset.version: ${quote(asset.version as string)} is read as glTF 2.0`);
+    json.asset = { ...asset, version: '2.0' };
+  }
+  dropSourcelessTextures(json, summary.sourceless, warn);
   for (const name of (json.extensionsUsed as unknown[] | undefined) ?? []) {
     if (typeof name === 'string' && !HONOURED_EXTENSIONS.has(name)) {
       warn(`extension ${quote(name)} is not supported; its content is ignored`);
@@ -148,29 +160,34 @@ export async function loadGltf(
   // Resources: the GLB chunk, data URIs, files beside the model.
   const resources: Record<string, Uint8Array> = {};
   const buffers = (json.buffers as Record<string, unknown>[] | undefined) ?? [];
-  const lengths: number[] = [];
+  const data: Uint8Array[] = [];
   for (let i = 0; i < buffers.length; i++) {
     const b = buffers[i];
     const where = `buffers[${i}]`;
-    let data: Uint8Array;
+    let bytes: Uint8Array;
     if (b.uri === undefined) {
       if (i !== 0 || bin === null)
         throw new GltfError(`${where}: has no uri and the file has no GLB binary chunk`);
-      data = bin;
+      bytes = bin;
       resources['@glb.bin'] = bin;
     } else {
-      data = await readResource(
+      bytes = await readResource(
         b.uri as string,
         path,
         where,
         (b.byteLength as number) + 4096,
         options,
       );
-      resources[b.uri as string] = data;
+      resources[b.uri as string] = bytes;
     }
-    lengths.push(data.length);
+    data.push(bytes);
   }
-  validateGltfBuffers(json, lengths);
+  validateGltfBuffers(
+    json,
+    data.map((d) => d.length),
+  );
+  checkPrimitiveCounts(json);
+  validateSparseIndices(json, data);
   const images = (json.images as Record<string, unknown>[] | undefined) ?? [];
   for (let i = 0; i < images.length; i++) {
     const uri = images[i].uri;

@@ -90,6 +90,10 @@ export function compileGltfMaterials(
     info: TextureInfo | null,
   ): void => {
     if (texture === null || info === null) return;
+    // Only TEXCOORD_0 and TEXCOORD_1 reach the renderer; a texture on another set is
+    // ignored (validate.ts notes it, and refuses a set the primitive lacks).
+    const setOf = info.getExtension<Transform>('KHR_texture_transform')?.getTexCoord() ?? null;
+    if ((setOf ?? info.getTexCoord()) > 1) return;
     const b = m * GM_STRIDE + GM_TEXTURES + slot * BINDING_STRIDE;
     const imageIndex = textures.indexOf(texture);
     const srgb = isColorSlot(slot);

@@ -83,15 +83,21 @@ export function det3(m: Mat4): number {
  * times the sign of det, and no division can fail.
  */
 export function normalMatrix(m: Mat4): Float64Array {
-  const a = m[0],
-    b = m[4],
-    c = m[8];
-  const d = m[1],
-    e = m[5],
-    f = m[9];
-  const g = m[2],
-    h = m[6],
-    i = m[10];
+  // A uniform scale changes neither the direction of normals nor the sign of the
+  // determinant; a largest entry of 1 keeps the cofactors' products in range (a matrix
+  // of diag(1e308) has cofactors of 1e616 otherwise, and every normal would be Infinity).
+  let s0 = 0;
+  for (const k of [0, 1, 2, 4, 5, 6, 8, 9, 10]) s0 = Math.max(s0, Math.abs(m[k]));
+  if (!(s0 > 0)) s0 = 1;
+  const a = m[0] / s0,
+    b = m[4] / s0,
+    c = m[8] / s0;
+  const d = m[1] / s0,
+    e = m[5] / s0,
+    f = m[9] / s0;
+  const g = m[2] / s0,
+    h = m[6] / s0,
+    i = m[10] / s0;
   const s = det3(m) < 0 ? -1 : 1;
   // Cofactor matrix of the 3×3 (= det · inverse transpose), column-major.
   const out = cofactors3(a, b, c, d, e, f, g, h, i);

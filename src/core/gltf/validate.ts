@@ -7,11 +7,44 @@
  * or allocates what a lying count asks for; here each gets one message
  * naming its place in the file (glTF 2.0 §3.6 "Binary data storage", §5
  * "Properties reference").
+ *
+ * The checks by concern: validate-values.ts (JSON types, indices, ranges),
+ * validate-attributes.ts (what each attribute semantic allows, one count per
+ * primitive, shared vertex views), validate-materials.ts, validate-features.ts
+ * (skins, animations, samplers, cameras, morph weights: read or not, they
+ * must be well formed); once the buffers are read, validate-buffers.ts (byte
+ * ranges) and validate-sparse.ts; after the node transforms,
+ * validate-world.ts (world space finite and not collapsed).
  */
 import { quote } from '../util/message.ts';
-import { GltfError } from './errors.ts';
+import { checkPrimitiveAttributes, checkSharedVertexViews } from './validate-attributes.ts';
+import { checkMaterialNumbers, textureBindings } from './validate-materials.ts';
+import {
+  alphaModeNote,
+  checkAnimations,
+  checkCameras,
+  checkMorphTargets,
+  checkNodeFeatures,
+  checkSamplers,
+  checkSkins,
+} from './validate-features.ts';
+import {
+  bounded,
+  boundedArray,
+  describeValue,
+  fail,
+  finiteArray,
+  index,
+  indexArray,
+  integer,
+  isObject,
+  list,
+  MAX_OBJECTS,
+  required,
+  type Json,
+} from './validate-values.ts';
 
-type Json = Record<string, unknown>;
+export { fail, list };
 
 /** Extensions a file may require: those pathwise reads (see docs/gltf.md). */
 export const SUPPORTED_REQUIRED = new Set([
@@ -29,7 +62,7 @@ export const GLTF_LIMITS = {
   /** Elements of one accessor. */
   accessorCount: 1 << 28,
   /** Nodes, meshes, accessors… of one kind. */
-  objects: 1_000_000,
+  objects: MAX_OBJECTS,
   /** All buffers of one file together (the scene format's limit for one mesh file). */
   bufferBytes: 1024 * 1024 * 1024,
 } as const;
@@ -55,156 +88,49 @@ export const MODE_TRIANGLES = 4;
 export const MODE_TRIANGLE_STRIP = 5;
 export const MODE_TRIANGLE_FAN = 6;
 
-function isObject(v: unknown): v is Json {
-  return typeof v === 'object' && v !== null && !Array.isArray(v);
-}
-
-export function fail(path: string, what: string): never {
-  throw new GltfError(`${path}: ${what}`);
-}
-
-/** The array at json[key] (absent: empty), each element an object. */
-export function list(json: Json, key: string, path = key): Json[] {
-  const v = json[key];
-  if (v === undefined) return [];
-  if (!Array.isArray(v)) fail(path, 'must be an array');
-  if (v.length > GLTF_LIMITS.objects)
-    fail(path, `${v.length} entries, over the limit of ${GLTF_LIMITS.objects}`);
-  v.forEach((e, i) => {
-    if (!isObject(e)) fail(`${path}[${i}]`, 'must be an object');
-  });
-  return v as Json[];
-}
-
-function integer(
-  o: Json,
-  key: string,
-  path: string,
-  min: number,
-  max = Number.MAX_SAFE_INTEGER,
-): number | undefined {
-  const v = o[key];
-  if (v === undefined) return undefined;
-  if (typeof v !== 'number' || !Number.isInteger(v) || v < min || v > max) {
-    fail(
-      `${path}.${key}`,
-      `must be an integer in [${min}, ${max}], got ${typeof v === 'string' ? quote(v) : String(v)}`,
-    );
-  }
-  return v;
-}
-
-function required(o: Json, key: string, path: string, min: number, max?: number): number {
-  const v = integer(o, key, path, min, max);
-  if (v === undefined) fail(`${path}.${key}`, 'is required');
-  return v;
-}
-
-function index(o: Json, key: string, path: string, n: number, what: string): number | undefined {
-  const v = o[key];
-  if (v === undefined) return undefined;
-  if (typeof v !== 'number' || !Number.isInteger(v) || v < 0 || v >= n) {
-    fail(`${path}.${key}`, `refers to ${what}[${String(v)}], but the file has ${n}`);
-  }
-  return v;
-}
-
-function finiteArray(o: Json, key: string, path: string, length: number): void {
-  const v = o[key];
-  if (v === undefined) return;
-  if (
-    !Array.isArray(v) ||
-    v.length !== length ||
-    !v.every((x) => typeof x === 'number' && Number.isFinite(x))
-  ) {
-    fail(`${path}.${key}`, `must be ${length} finite numbers`);
-  }
-}
-
-/** A number at o[key], if present, finite and within [min, max]. */
-function bounded(o: unknown, key: string, path: string, min: number, max: number): void {
-  if (!isObject(o) || o[key] === undefined) return;
-  const v = o[key];
-  if (typeof v !== 'number' || !(v >= min && v <= max)) {
-    fail(
-      `${path}.${key}`,
-      `must be a number in [${min}, ${max}], got ${typeof v === 'number' ? String(v) : typeof v}`,
-    );
-  }
-}
-
-/** An array of `length` numbers at o[key], if present, each within [min, max]. */
-function boundedArray(
-  o: unknown,
-  key: string,
-  path: string,
-  length: number,
-  min: number,
-  max: number,
-): void {
-  if (!isObject(o) || o[key] === undefined) return;
-  const v = o[key];
-  if (
-    !Array.isArray(v) ||
-    v.length !== length ||
-    !v.every((x) => typeof x === 'number' && x >= min && x <= max)
-  ) {
-    fail(`${path}.${key}`, `must be ${length} numbers in [${min}, ${max}]`);
-  }
-}
-
-/** The numbers of a material and of the extensions pathwise reads, as the glTF schemas bound them. */
-function checkMaterialNumbers(m: Json, p: string): void {
-  const pbr = m.pbrMetallicRoughness;
-  const pp = `${p}.pbrMetallicRoughness`;
-  boundedArray(pbr, 'baseColorFactor', pp, 4, 0, 1);
-  bounded(pbr, 'metallicFactor', pp, 0, 1);
-  bounded(pbr, 'roughnessFactor', pp, 0, 1);
-  boundedArray(m, 'emissiveFactor', p, 3, 0, 1);
-  bounded(m, 'alphaCutoff', p, 0, Number.MAX_VALUE);
-  bounded(m.normalTexture, 'scale', `${p}.normalTexture`, -Number.MAX_VALUE, Number.MAX_VALUE);
-  const ext = isObject(m.extensions) ? m.extensions : {};
-  const e = (name: string): [unknown, string] => [ext[name], `${p}.extensions.${name}`];
-  // Emission is radiance: bounded like every radiance of the scene format.
-  const [es, esPath] = e('KHR_materials_emissive_strength');
-  bounded(es, 'emissiveStrength', esPath, 0, 1e12);
-  const [ior, iorPath] = e('KHR_materials_ior');
-  bounded(ior, 'ior', iorPath, 0, 1e6);
-  if (isObject(ior) && typeof ior.ior === 'number' && ior.ior > 0 && ior.ior < 1) {
-    fail(`${iorPath}.ior`, `must be 0 or at least 1, got ${ior.ior}`);
-  }
-  const [tr, trPath] = e('KHR_materials_transmission');
-  bounded(tr, 'transmissionFactor', trPath, 0, 1);
-  const [spec, specPath] = e('KHR_materials_specular');
-  bounded(spec, 'specularFactor', specPath, 0, 1);
-  boundedArray(spec, 'specularColorFactor', specPath, 3, 0, 1e6);
-  const infos: [unknown, string][] = [
-    [isObject(pbr) ? pbr.baseColorTexture : undefined, `${pp}.baseColorTexture`],
-    [isObject(pbr) ? pbr.metallicRoughnessTexture : undefined, `${pp}.metallicRoughnessTexture`],
-    [m.normalTexture, `${p}.normalTexture`],
-    [m.emissiveTexture, `${p}.emissiveTexture`],
-  ];
-  for (const [info, ip] of infos) {
-    const tt =
-      isObject(info) && isObject(info.extensions)
-        ? info.extensions.KHR_texture_transform
-        : undefined;
-    if (tt === undefined) continue;
-    const tp = `${ip}.extensions.KHR_texture_transform`;
-    if (!isObject(tt)) fail(tp, 'must be an object');
-    boundedArray(tt, 'offset', tp, 2, -1e9, 1e9);
-    boundedArray(tt, 'scale', tp, 2, -1e9, 1e9);
-    bounded(tt, 'rotation', tp, -1e9, 1e9);
-    integer(tt, 'texCoord', tp, 0, 1 << 16);
-  }
-}
-
 /** What the loader needs from the checked document. */
 export interface GltfSummary {
   /** Index of the scene to instance, or −1 when the file has none. */
   scene: number;
   /** Triangles the scene instances (before zero-area ones are dropped). */
   triangles: number;
+  /** Indices of textures without an image source (§5.29: `source` is optional); ignored. */
+  sourceless: number[];
+  /** Notes for what is valid but not rendered (texture coordinate sets beyond 1). */
+  notes: string[];
+}
+
+/** The version this reader implements (glTF 2.0 §3.2 "Asset"). */
+const SUPPORTED_MINOR = 0;
+
+/** §3.2: "version" and "minVersion" are "<major>.<minor>"; a loader refuses a minVersion it lacks. */
+function checkAsset(json: Json): void {
+  const asset = json.asset;
+  if (!isObject(asset) || asset.version === undefined) fail('asset.version', 'is required');
+  const parse = (key: string): [number, number] | undefined => {
+    const v = asset[key];
+    if (v === undefined) return undefined;
+    const m = typeof v === 'string' ? /^([0-9]+)\.([0-9]+)$/.exec(v) : null;
+    if (m === null)
+      fail(`asset.${key}`, `must be a string "<major>.<minor>", got ${describeValue(v)}`);
+    return [Number(m[1]), Number(m[2])];
+  };
+  const [major, minor] = parse('version')!;
+  if (major !== 2)
+    fail('asset.version', `glTF ${quote(asset.version as string)} is not supported, only 2.x`);
+  const min = parse('minVersion');
+  if (min !== undefined) {
+    if (min[0] > major || (min[0] === major && min[1] > minor))
+      fail(
+        'asset.minVersion',
+        `${quote(asset.minVersion as string)} is greater than the version ${quote(asset.version as string)}`,
+      );
+    if (min[0] !== 2 || min[1] > SUPPORTED_MINOR)
+      fail(
+        'asset.minVersion',
+        `the file needs glTF ${quote(asset.minVersion as string)}, and pathwise reads glTF 2.0 (§3.2: a loader must refuse a minVersion it does not support)`,
+      );
+  }
 }
 
 /**
@@ -212,10 +138,7 @@ export interface GltfSummary {
  */
 export function validateGltfJson(json: unknown): GltfSummary {
   if (!isObject(json)) fail('document', 'the glTF JSON must be an object');
-  const asset = json.asset;
-  if (!isObject(asset) || typeof asset.version !== 'string') fail('asset.version', 'is required');
-  if (!/^2\./.test(asset.version))
-    fail('asset.version', `glTF ${quote(asset.version)} is not supported, only 2.x`);
+  checkAsset(json);
   const req = json.extensionsRequired ?? [];
   if (!Array.isArray(req)) fail('extensionsRequired', 'must be an array');
   for (const name of req) {
@@ -226,6 +149,8 @@ export function validateGltfJson(json: unknown): GltfSummary {
       );
     }
   }
+  const used = Array.isArray(json.extensionsUsed) ? json.extensionsUsed : [];
+  const quantized = used.includes('KHR_mesh_quantization');
   const buffers = list(json, 'buffers');
   const views = list(json, 'bufferViews');
   const accessors = list(json, 'accessors');
@@ -237,6 +162,8 @@ export function validateGltfJson(json: unknown): GltfSummary {
   const nodes = list(json, 'nodes');
   const scenes = list(json, 'scenes');
   const cameras = list(json, 'cameras');
+  const arrays = { accessors, nodes, meshes, cameras };
+  const notes: string[] = [];
 
   let bufferBytes = 0;
   buffers.forEach((b, i) => {
@@ -248,7 +175,7 @@ export function validateGltfJson(json: unknown): GltfSummary {
       );
     }
     if (b.uri !== undefined && typeof b.uri !== 'string')
-      fail(`buffers[${i}].uri`, 'must be a string');
+      fail(`buffers[${i}].uri`, `must be a string, got ${describeValue(b.uri)}`);
   });
   views.forEach((v, i) => {
     const p = `bufferViews[${i}]`;
@@ -270,7 +197,15 @@ export function validateGltfJson(json: unknown): GltfSummary {
     if (typeof a.type !== 'string' || !(a.type in TYPE_SIZE))
       fail(
         `${p}.type`,
-        `${typeof a.type === 'string' ? quote(a.type) : 'missing'} is not a glTF accessor type`,
+        `${typeof a.type === 'string' ? quote(a.type) : describeValue(a.type)} is not a glTF accessor type`,
+      );
+    if (a.normalized !== undefined && typeof a.normalized !== 'boolean')
+      fail(`${p}.normalized`, `must be a boolean, got ${describeValue(a.normalized)}`);
+    // accessor.schema.json: normalized "MUST NOT be set to true" for FLOAT and UNSIGNED_INT.
+    if (a.normalized === true && (ct === 5126 || ct === 5125))
+      fail(
+        `${p}.normalized`,
+        `must not be true for component type ${ct} (only (U)BYTE and (U)SHORT)`,
       );
     const sparse = a.sparse;
     if (sparse !== undefined) {
@@ -294,20 +229,16 @@ export function validateGltfJson(json: unknown): GltfSummary {
     if (view === undefined && typeof im.uri !== 'string')
       fail(p, 'has neither a uri nor a bufferView');
   });
-  samplers.forEach((s, i) => {
-    for (const k of ['wrapS', 'wrapT']) {
-      const w = s[k];
-      if (w !== undefined && w !== 33071 && w !== 33648 && w !== 10497)
-        fail(`samplers[${i}].${k}`, `${String(w)} is not a glTF wrap mode`);
-    }
-  });
+  checkSamplers(samplers);
+  const sourceless: number[] = [];
   textures.forEach((t, i) => {
-    index(t, 'source', `textures[${i}]`, images.length, 'images');
+    if (index(t, 'source', `textures[${i}]`, images.length, 'images') === undefined)
+      sourceless.push(i);
     index(t, 'sampler', `textures[${i}]`, samplers.length, 'samplers');
   });
   const textureInfo = (o: unknown, p: string): void => {
     if (o === undefined) return;
-    if (!isObject(o)) fail(p, 'must be an object');
+    if (!isObject(o)) fail(p, `must be an object, got ${describeValue(o)}`);
     if (index(o, 'index', p, textures.length, 'textures') === undefined)
       fail(`${p}.index`, 'is required');
     integer(o, 'texCoord', p, 0, 1 << 16);
@@ -315,46 +246,16 @@ export function validateGltfJson(json: unknown): GltfSummary {
   materials.forEach((m, i) => {
     const p = `materials[${i}]`;
     checkMaterialNumbers(m, p);
-    const pbr = m.pbrMetallicRoughness;
-    if (isObject(pbr)) {
-      textureInfo(pbr.baseColorTexture, `${p}.pbrMetallicRoughness.baseColorTexture`);
-      textureInfo(
-        pbr.metallicRoughnessTexture,
-        `${p}.pbrMetallicRoughness.metallicRoughnessTexture`,
-      );
-    }
-    for (const k of ['normalTexture', 'emissiveTexture', 'occlusionTexture'])
-      textureInfo(m[k], `${p}.${k}`);
-    const ext = isObject(m.extensions) ? m.extensions : {};
-    const tr = ext.KHR_materials_transmission;
-    if (isObject(tr))
-      textureInfo(
-        tr.transmissionTexture,
-        `${p}.extensions.KHR_materials_transmission.transmissionTexture`,
-      );
-    const sp = ext.KHR_materials_specular;
-    if (isObject(sp)) {
-      textureInfo(sp.specularTexture, `${p}.extensions.KHR_materials_specular.specularTexture`);
-      textureInfo(
-        sp.specularColorTexture,
-        `${p}.extensions.KHR_materials_specular.specularColorTexture`,
-      );
-    }
+    const alpha = alphaModeNote(m, p);
+    if (alpha !== undefined && notes.length < 10) notes.push(alpha);
+    for (const b of textureBindings(m, p)) textureInfo(b.info, b.path);
   });
   meshes.forEach((mesh, i) => {
     const prims = list(mesh, 'primitives', `meshes[${i}].primitives`);
     if (prims.length === 0) fail(`meshes[${i}].primitives`, 'must not be empty');
     prims.forEach((pr, j) => {
       const p = `meshes[${i}].primitives[${j}]`;
-      if (!isObject(pr.attributes)) fail(`${p}.attributes`, 'is required');
-      for (const [name, a] of Object.entries(pr.attributes)) {
-        if (typeof a !== 'number' || !Number.isInteger(a) || a < 0 || a >= accessors.length) {
-          fail(
-            `${p}.attributes.${name}`,
-            `refers to accessors[${String(a)}], but the file has ${accessors.length}`,
-          );
-        }
-      }
+      checkPrimitiveAttributes(pr, p, accessors, quantized);
       const ind = index(pr, 'indices', p, accessors.length, 'accessors');
       if (ind !== undefined) {
         const a = accessors[ind];
@@ -362,10 +263,31 @@ export function validateGltfJson(json: unknown): GltfSummary {
           fail(`${p}.indices`, `accessors[${ind}] must be SCALAR of an unsigned integer type`);
         }
       }
-      index(pr, 'material', p, materials.length, 'materials');
+      const mat = index(pr, 'material', p, materials.length, 'materials');
+      if (mat !== undefined) {
+        const attributes = pr.attributes as Json;
+        for (const b of textureBindings(materials[mat], `materials[${mat}]`)) {
+          const t = isObject(b.info) ? textures[b.info.index as number] : undefined;
+          if (t === undefined || t.source === undefined) continue;
+          if (attributes[`TEXCOORD_${b.set}`] === undefined)
+            fail(
+              `${p}.attributes`,
+              `has no TEXCOORD_${b.set}, which its material's ${b.path.slice(b.path.indexOf('.') + 1)} reads`,
+            );
+          if (b.set > 1 && notes.length < 10)
+            notes.push(
+              `${b.path}: reads TEXCOORD_${b.set}; pathwise reads only sets 0 and 1, so the texture is ignored`,
+            );
+        }
+      }
       integer(pr, 'mode', p, 0, 6);
     });
+    checkMorphTargets(mesh, `meshes[${i}]`);
   });
+  checkSharedVertexViews(json);
+  checkCameras(cameras);
+  const skins = checkSkins(json, arrays);
+  checkAnimations(json, arrays);
   const parent = new Int32Array(nodes.length).fill(-1);
   nodes.forEach((n, i) => {
     const p = `nodes[${i}]`;
@@ -375,11 +297,8 @@ export function validateGltfJson(json: unknown): GltfSummary {
     finiteArray(n, 'translation', p, 3);
     finiteArray(n, 'rotation', p, 4);
     finiteArray(n, 'scale', p, 3);
-    const children = n.children ?? [];
-    if (!Array.isArray(children)) fail(`${p}.children`, 'must be an array');
-    for (const c of children) {
-      if (typeof c !== 'number' || !Number.isInteger(c) || c < 0 || c >= nodes.length)
-        fail(`${p}.children`, `refers to nodes[${String(c)}], but the file has ${nodes.length}`);
+    checkNodeFeatures(n, p, arrays, skins);
+    for (const c of indexArray(n, 'children', p, nodes.length, 'nodes')) {
       if (c === i) fail(`${p}.children`, 'contains the node itself');
       if (parent[c] !== -1)
         fail(
@@ -402,14 +321,7 @@ export function validateGltfJson(json: unknown): GltfSummary {
     for (k = i; k !== -1 && state[k] === 1; k = parent[k]) state[k] = 2;
   }
   scenes.forEach((s, i) => {
-    const roots = s.nodes ?? [];
-    if (!Array.isArray(roots)) fail(`scenes[${i}].nodes`, 'must be an array');
-    for (const r of roots) {
-      if (typeof r !== 'number' || !Number.isInteger(r) || r < 0 || r >= nodes.length)
-        fail(
-          `scenes[${i}].nodes`,
-          `refers to nodes[${String(r)}], but the file has ${nodes.length}`,
-        );
+    for (const r of indexArray(s, 'nodes', `scenes[${i}]`, nodes.length, 'nodes')) {
       if (parent[r] !== -1)
         fail(
           `scenes[${i}].nodes`,
@@ -422,6 +334,8 @@ export function validateGltfJson(json: unknown): GltfSummary {
   return {
     scene,
     triangles: scene < 0 ? 0 : countTriangles(json, scenes[scene], nodes, meshes, accessors),
+    sourceless,
+    notes,
   };
 }
 
