@@ -1,6 +1,7 @@
 /**
  * Property: a scene at any magnitude of the double range either renders 1 spp to a
- * finite image with no sample rejected, or is refused at load with one line, and its
+ * finite image with no sample rejected, in which the shape the camera looks at is met by
+ * some path, or is refused at load with one line, and its
  * BVH is as deep as an O(n log n) build allows. Seeded (fast-check seed below) with a
  * fixed budget; a hang fails by the test's timeout. The two scenes of the issue that
  * hung (2,000 spheres at x = 2^k; a sphere whose bounds overflow) are checked here and,
@@ -92,6 +93,11 @@ describe('scenes at every magnitude of the double range', () => {
           expect(outcome.message.length).toBeGreaterThan(0);
         } else {
           expect(outcome.rejected).toBe(0);
+          // The camera looks at the first shape from three sizes away: a shape that
+          // renders must be met by some path. (Triangles beyond 2^±340 from the ray
+          // origin, and spheres of radius beyond 2^±511, were silently missed or left
+          // with a NaN normal, a black shape, until both were rescaled.)
+          expect(outcome.hit, JSON.stringify(c)).toBe(true);
         }
       }),
       { seed: SEED_USED, numRuns: RUNS, endOnFailure: true },

@@ -13,7 +13,13 @@
  * match the named layout.
  */
 import type { SceneGeometry } from './scene-geometry.ts';
-import { hitQuad, hitSphere } from '../geometry/intersect.ts';
+import {
+  hitQuad,
+  hitSphere,
+  intersectSphereScaled,
+  SPHERE_HUGE,
+  SPHERE_TINY,
+} from '../geometry/intersect.ts';
 import {
   loadRay,
   SHAPE_QUAD,
@@ -173,6 +179,15 @@ export function intersectBvh(scene: SceneGeometry, r: Float64Array, hit: Hit): b
             const dx = r[3],
               dy = r[4],
               dz = r[5];
+            if (!(rad < SPHERE_HUGE && rad > SPHERE_TINY)) {
+              // Radii beyond 2^±400, out of line (intersect.ts).
+              const t = intersectSphereScaled(spheres, i, ox, oy, oz, dx, dy, dz, r[6]);
+              if (!(t < r[6])) break;
+              r[6] = t;
+              kind = SHAPE_SPHERE;
+              index = i;
+              break;
+            }
             const fx = ox - spheres[o];
             const fy = oy - spheres[o + 1];
             const fz = oz - spheres[o + 2];

@@ -52,3 +52,9 @@ export function exactDiffOfProducts(a: number, b: number, c: number, d: number):
   if (x1 !== 0) return x1;
   return x0;
 }
+
+/** x · 2^n, exact but for underflow, for any n in [-2098, 2098] (two steps: 2^n alone may not exist). */
+export function mulPow2(x: number, n: number): number {
+  const half = Math.trunc(n / 2);
+  return x * 2 ** half * 2 ** (n - half);
+}

@@ -21,6 +21,7 @@ import {
   Q_TAXIS,
   SPHERE_STRIDE,
 } from './shapes.ts';
+import { mulPow2 } from './exact.ts';
 
 /** Distance to the nearest hit of sphere i in (0, tMax), or Infinity. */
 export function intersectSphere(
@@ -36,6 +37,9 @@ export function intersectSphere(
 ): number {
   const o = i * SPHERE_STRIDE;
   const r = spheres[o + 3];
+  if (!(r < SPHERE_HUGE && r > SPHERE_TINY)) {
+    return intersectSphereScaled(spheres, i, ox, oy, oz, dx, dy, dz, tMax);
+  }
   const fx = ox - spheres[o];
   const fy = oy - spheres[o + 1];
   const fz = oz - spheres[o + 2];
@@ -49,6 +53,62 @@ export function intersectSphere(
   const q = b > 0 ? -b - Math.sqrt(disc) : -b + Math.sqrt(disc);
   let t0 = c / q;
   let t1 = q;
+  if (t0 > t1) {
+    const tmp = t0;
+    t0 = t1;
+    t1 = tmp;
+  }
+  if (t0 > 0 && t0 < tMax) return t0;
+  if (t1 > 0 && t1 < tMax) return t1;
+  return Infinity;
+}
+
+/**
+ * Radii outside [2^-400, 2^400] take intersectSphereScaled: r² and |f|² would over- or
+ * underflow (a sphere of radius 2^1000 was missed by every ray, one of 2^-600 hit by
+ * every ray that came near).
+ */
+export const SPHERE_HUGE = 2 ** 400;
+export const SPHERE_TINY = 2 ** -400;
+
+/**
+ * intersectSphere for a radius beyond 2^±400: the same quadratic on the origin offset
+ * and radius scaled by a power of two (exact) to a largest magnitude near 1, and the
+ * roots scaled back. A tiny sphere far from the origin is left unscaled: it is below
+ * the offset's rounding, and misses as it should.
+ */
+export function intersectSphereScaled(
+  spheres: Float64Array,
+  i: number,
+  ox: number,
+  oy: number,
+  oz: number,
+  dx: number,
+  dy: number,
+  dz: number,
+  tMax: number,
+): number {
+  const o = i * SPHERE_STRIDE;
+  let r = spheres[o + 3];
+  let fx = ox - spheres[o];
+  let fy = oy - spheres[o + 1];
+  let fz = oz - spheres[o + 2];
+  const m = Math.max(r, Math.abs(fx), Math.abs(fy), Math.abs(fz));
+  const e = m > SPHERE_HUGE || m < SPHERE_TINY ? Math.floor(Math.log2(m)) : 0;
+  r = mulPow2(r, -e);
+  fx = mulPow2(fx, -e);
+  fy = mulPow2(fy, -e);
+  fz = mulPow2(fz, -e);
+  const b = fx * dx + fy * dy + fz * dz;
+  const lx = fx - b * dx;
+  const ly = fy - b * dy;
+  const lz = fz - b * dz;
+  const disc = r * r - (lx * lx + ly * ly + lz * lz);
+  if (disc < 0) return Infinity;
+  const c = fx * fx + fy * fy + fz * fz - r * r;
+  const q = b > 0 ? -b - Math.sqrt(disc) : -b + Math.sqrt(disc);
+  let t0 = mulPow2(c / q, e);
+  let t1 = mulPow2(q, e);
   if (t0 > t1) {
     const tmp = t0;
     t0 = t1;

@@ -14,11 +14,12 @@
  *   equivalent to moving the point an infinitesimal step along (1, −δ) in the sheared
  *   plane (the "top-left" rule of rasterisers), so there are no double hits either.
  *
- * Coordinates relative to the ray origin stay exact for magnitudes of about 1e-90 to
- * 1e90 (the distance is a cubic in them); the scene's relative ray offsets keep every
- * scale in that range alike.
+ * The distance is a cubic in the coordinates relative to the ray origin, so beyond about
+ * 2^±340 it would over- or underflow: the careful path then scales the triangle's nine
+ * coordinates by a power of two (exact: the same signs, the same hits) and the distance
+ * back, so triangles at any finite magnitude are hit.
  */
-import { DIFF_OF_PRODUCTS_ERROR, exactDiffOfProducts } from './exact.ts';
+import { DIFF_OF_PRODUCTS_ERROR, exactDiffOfProducts, mulPow2 } from './exact.ts';
 
 /**
  * Per-ray constants: the permutation that makes the largest direction component z (kx,
@@ -157,6 +158,11 @@ export function hitTriangle(
   const tScaled = tr.sz * (u * az + v * bz + w * cz);
   const tMax = record[R_T];
   if (det > 0 ? tScaled <= 0 || tScaled >= tMax * det : tScaled >= 0 || tScaled <= tMax * det) {
+    // The distance is a cubic in the coordinates: one that overflowed (coordinates
+    // beyond ~2^340 from the origin) or vanished is no miss; the careful path rescales.
+    if (tScaled === 0 || tScaled - tScaled !== 0) {
+      return hitTriangleCareful(positions, indices, tri, tr, record);
+    }
     return false;
   }
   const t = tScaled / det;
@@ -203,17 +209,44 @@ export function intersectTriangleBary(
     o1 = r.o1,
     o2 = r.o2;
   // Vertices relative to the origin, permuted so the ray runs along the third axis.
-  const az = positions[ia + kz] - o2,
+  let az = positions[ia + kz] - o2,
     bz = positions[ib + kz] - o2,
     cz = positions[ic + kz] - o2;
   const sx = r.sx,
     sy = r.sy;
-  const ax = positions[ia + kx] - o0 - sx * az,
+  let ax = positions[ia + kx] - o0 - sx * az,
     ay = positions[ia + ky] - o1 - sy * az;
-  const bx = positions[ib + kx] - o0 - sx * bz,
+  let bx = positions[ib + kx] - o0 - sx * bz,
     by = positions[ib + ky] - o1 - sy * bz;
-  const cx = positions[ic + kx] - o0 - sx * cz,
+  let cx = positions[ic + kx] - o0 - sx * cz,
     cy = positions[ic + ky] - o1 - sy * cz;
+  // Beyond 2^±300 from the ray origin the cubic of the distance would over- or
+  // underflow: scale the nine coordinates by a power of two (exact, so every sign below
+  // is the same as unscaled, and shared edges stay watertight) and the distance back.
+  const m = Math.max(
+    Math.abs(ax),
+    Math.abs(ay),
+    Math.abs(az),
+    Math.abs(bx),
+    Math.abs(by),
+    Math.abs(bz),
+    Math.abs(cx),
+    Math.abs(cy),
+    Math.abs(cz),
+  );
+  let exp = 0;
+  if (m > SCALE_ABOVE || (m < SCALE_BELOW && m > 0)) {
+    exp = Math.floor(Math.log2(m));
+    ax = mulPow2(ax, -exp);
+    ay = mulPow2(ay, -exp);
+    az = mulPow2(az, -exp);
+    bx = mulPow2(bx, -exp);
+    by = mulPow2(by, -exp);
+    bz = mulPow2(bz, -exp);
+    cx = mulPow2(cx, -exp);
+    cy = mulPow2(cy, -exp);
+    cz = mulPow2(cz, -exp);
+  }
 
   let u = cx * by - cy * bx;
   let v = ax * cy - ay * cx;
@@ -241,11 +274,17 @@ export function intersectTriangleBary(
   }
   const szz = r.sz;
   const tScaled = szz * (u * az + v * bz + w * cz);
-  // 0 < t = tScaled / det < tMax, without dividing on the way.
-  if (det > 0 ? tScaled <= 0 || tScaled >= tMax * det : tScaled >= 0 || tScaled <= tMax * det) {
-    return Infinity;
+  let t: number;
+  if (exp === 0) {
+    // 0 < t = tScaled / det < tMax, without dividing on the way.
+    if (det > 0 ? tScaled <= 0 || tScaled >= tMax * det : tScaled >= 0 || tScaled <= tMax * det) {
+      return Infinity;
+    }
+    t = tScaled / det;
+  } else {
+    if (det > 0 ? tScaled <= 0 : tScaled >= 0) return Infinity;
+    t = mulPow2(tScaled / det, exp);
   }
-  const t = tScaled / det;
   if (!(t > 0 && t < tMax)) return Infinity; // underflow of a vanishing distance
   if (hit !== null) {
     const inv = 1 / det;
@@ -255,6 +294,10 @@ export function intersectTriangleBary(
   }
   return t;
 }
+
+/** Coordinates relative to the ray origin outside [2^-300, 2^300] are rescaled (see above). */
+const SCALE_ABOVE = 2 ** 300;
+const SCALE_BELOW = 2 ** -300;
 
 function ownsEdge(ex: number, ey: number): boolean {
   return ey > 0 || (ey === 0 && ex > 0);

@@ -49,6 +49,7 @@ import {
   SPHERE_STRIDE,
 } from '../geometry/shapes.ts';
 import { intersectScene, occluded } from '../accel/trace.ts';
+import { SPHERE_HUGE, SPHERE_TINY } from '../geometry/intersect.ts';
 import { environmentLightPdf, lightPdf, sampleLight } from '../lights/lights.ts';
 import { completeTriangleHit } from './triangle-surface.ts';
 import {
@@ -187,6 +188,12 @@ export function trace(
       nx = x - cx;
       ny = y - cy;
       nz = z - cz;
+      if (!(r < SPHERE_HUGE && r > SPHERE_TINY)) {
+        // Beyond 2^±400 the squares below would over- or underflow: to unit scale first.
+        nx /= r;
+        ny /= r;
+        nz /= r;
+      }
       const inv = 1 / Math.sqrt(nx * nx + ny * ny + nz * nz);
       nx *= inv;
       ny *= inv;

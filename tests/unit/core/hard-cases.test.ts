@@ -80,6 +80,20 @@ describe('ray–shape intersection edge cases', () => {
     expect(intersectQuad(quad, 0, 0.5, 0, 0.5, 0, 1, 0, Infinity)).toBe(Infinity);
   });
 
+  it('hits spheres of radius 2^1000 and 2^-1000 at the right distance (r² over- or underflows)', () => {
+    for (const e of [1000, 600, 450, -450, -600, -1000]) {
+      const s = 2 ** e;
+      const sphere = new Float64Array([s, -s, 0, s]);
+      // From 4 radii away along x, straight at the centre, and past its edge.
+      expect(intersectSphere(sphere, 0, -3 * s, -s, 0, 1, 0, 0, Infinity) / s, `2^${e}`).toBe(3);
+      expect(intersectSphere(sphere, 0, -3 * s, 0.99 * -s + s, 0, 1, 0, 0, Infinity)).toBe(
+        Infinity,
+      );
+      // From inside: the far side.
+      expect(intersectSphere(sphere, 0, s, -s, 0, 0, 1, 0, Infinity) / s).toBe(1);
+    }
+  });
+
   it('keeps precision for a sphere of radius 1e5', () => {
     const ground = compileSpheres([
       { type: 'sphere', center: [0, -1e5, 0], radius: 1e5, material: 'm' },

@@ -156,6 +156,13 @@ describe('watertight: exactly one hit where a ray crosses the surface', () => {
       [1, 1e7],
       [1e80, 0],
       [1e-80, 0],
+      // Beyond ~2^±340 the distance's cubic over- or underflows: the careful path rescales.
+      [1e120, 0],
+      [1e150, 1e151],
+      [1e300, 0],
+      [1e-120, 0],
+      [1e-200, 0],
+      [1e-300, 1e-299],
     ] as const) {
       const m = scaledMesh(base, scale, [offset, -offset, offset / 3]);
       const p = m.positions;
