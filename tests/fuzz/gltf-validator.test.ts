@@ -616,6 +616,10 @@ const PATHWISE_ONLY: { message: RegExp; why: string }[] = [
     message: /yfov: is out of range/,
     why: 'a perspective projection of 180° or more frames nothing',
   },
+  {
+    message: /: (not a PNG or JPEG image|cannot decode (PNG|JPEG))/,
+    why: 'an image a material uses must decode (else the texture would render as garbage or nothing); the validator reports bytes it cannot recognise only as a warning (IMAGE_UNRECOGNIZED_FORMAT)',
+  },
 ];
 
 describe('seeded mutations: pathwise and the validator agree, or the difference is a listed one', () => {
