@@ -22,7 +22,10 @@ await build({
 });
 copyFileSync(`${root}/tests/fuzz/spec/rss-probe.mjs`, `${root}/dist/fuzz/rss-probe.mjs`);
 try {
-  execFileSync(process.execPath, ['dist/fuzz/spec-fuzz.mjs', ...process.argv.slice(2)], { cwd: root, stdio: 'inherit' });
+  execFileSync(process.execPath, ['dist/fuzz/spec-fuzz.mjs', ...process.argv.slice(2)], {
+    cwd: root,
+    stdio: 'inherit',
+  });
 } catch (e) {
   process.exit(e.status ?? 1);
 }

@@ -53,13 +53,25 @@ async function pool<T, R>(items: T[], jobs: number, f: (t: T) => Promise<R>): Pr
 }
 
 /** Judges a result against its format's baseline: slow or heavy, if a good outcome was costly. */
-export function judge(r: CaseResult, b: Baseline | undefined, o: Pick<CampaignOptions, 'slowSeconds' | 'heavyMiB'>): CaseResult {
+export function judge(
+  r: CaseResult,
+  b: Baseline | undefined,
+  o: Pick<CampaignOptions, 'slowSeconds' | 'heavyMiB'>,
+): CaseResult {
   if (!b || isFailure(r.outcome)) return r;
   if (r.seconds > b.seconds + o.slowSeconds) {
-    return { ...r, outcome: 'slow', why: `${r.seconds.toFixed(2)} s, baseline ${b.seconds.toFixed(2)} s (was ${r.outcome})` };
+    return {
+      ...r,
+      outcome: 'slow',
+      why: `${r.seconds.toFixed(2)} s, baseline ${b.seconds.toFixed(2)} s (was ${r.outcome})`,
+    };
   }
   if (r.rssMiB > b.rssMiB + o.heavyMiB) {
-    return { ...r, outcome: 'heavy', why: `${r.rssMiB.toFixed(0)} MiB, baseline ${b.rssMiB.toFixed(0)} MiB (was ${r.outcome})` };
+    return {
+      ...r,
+      outcome: 'heavy',
+      why: `${r.rssMiB.toFixed(0)} MiB, baseline ${b.rssMiB.toFixed(0)} MiB (was ${r.outcome})`,
+    };
   }
   return r;
 }
@@ -67,14 +79,18 @@ export function judge(r: CaseResult, b: Baseline | undefined, o: Pick<CampaignOp
 export async function baselines(o: CampaignOptions): Promise<Record<string, Baseline>> {
   const n = FORMAT_NAMES.length;
   const cases: FuzzCase[] = [];
-  for (let k = 0; k < o.baselineRuns; k++) for (let f = 0; f < n; f++) cases.push(makeCase(o.seed, k * n + f, true));
+  for (let k = 0; k < o.baselineRuns; k++)
+    for (let f = 0; f < n; f++) cases.push(makeCase(o.seed, k * n + f, true));
   const rs = await pool(cases, o.jobs, (c) => runCase(c, o));
   const out: Record<string, Baseline> = {};
   for (const format of FORMAT_NAMES) {
     const mine = rs.filter((r) => r.format === format);
     const good = mine.filter((r) => r.outcome === 'image' || r.outcome === 'note');
     const use = good.length > 0 ? good : mine;
-    out[format] = { seconds: median(use.map((r) => r.seconds)), rssMiB: median(use.map((r) => r.rssMiB)) };
+    out[format] = {
+      seconds: median(use.map((r) => r.seconds)),
+      rssMiB: median(use.map((r) => r.rssMiB)),
+    };
   }
   return out;
 }
@@ -90,7 +106,8 @@ export function saveCase(dir: string, c: FuzzCase, r: CaseResult): string {
 export async function runCampaign(o: CampaignOptions): Promise<CampaignReport> {
   const log = o.log ?? (() => undefined);
   const base = await baselines(o);
-  for (const [f, b] of Object.entries(base)) log(`baseline ${f}: ${b.seconds.toFixed(2)} s, ${b.rssMiB.toFixed(0)} MiB`);
+  for (const [f, b] of Object.entries(base))
+    log(`baseline ${f}: ${b.seconds.toFixed(2)} s, ${b.rssMiB.toFixed(0)} MiB`);
   const indices = Array.from({ length: o.cases }, (_, i) => i);
   let done = 0;
   const results = await pool(indices, o.jobs, async (i) => {
@@ -117,7 +134,8 @@ export function loadSaved(dir: string): FuzzCase[] {
         for (const name of readdirSync(x)) {
           const p = join(x, name);
           if (statSync(p).isDirectory()) collect(p);
-          else if (x !== d || !['case.json', 'result.json'].includes(name)) files[relative(d, p)] = readFileSync(p);
+          else if (x !== d || !['case.json', 'result.json'].includes(name))
+            files[relative(d, p)] = readFileSync(p);
         }
       };
       collect(d);
@@ -125,7 +143,8 @@ export function loadSaved(dir: string): FuzzCase[] {
       out.push({ ...meta, seed, index, files });
       return;
     }
-    for (const name of readdirSync(d)) if (statSync(join(d, name)).isDirectory()) walk(join(d, name));
+    for (const name of readdirSync(d))
+      if (statSync(join(d, name)).isDirectory()) walk(join(d, name));
   };
   walk(dir);
   return out;
@@ -133,16 +152,29 @@ export function loadSaved(dir: string): FuzzCase[] {
 
 /** The table of issue 27's acceptance: counts per format and outcome, worst time and RSS. */
 export function table(rep: CampaignReport): string {
-  const outcomes = [...GOOD, ...FAILURES].filter((o) => rep.results.some((r) => r.outcome === o)) as Outcome[];
+  const outcomes = [...GOOD, ...FAILURES].filter((o) =>
+    rep.results.some((r) => r.outcome === o),
+  ) as Outcome[];
   const formats = [...new Set(rep.results.map((r) => r.format))];
   const w = Math.max(8, ...outcomes.map((o) => o.length));
-  const row = (name: string, cells: (string | number)[]) => `${name.padEnd(8)}${cells.map((c) => String(c).padStart(w + 1)).join('')}`;
+  const row = (name: string, cells: (string | number)[]) =>
+    `${name.padEnd(8)}${cells.map((c) => String(c).padStart(w + 1)).join('')}`;
   const lines = [row('format', [...outcomes, 'total'])];
   for (const f of formats) {
     const mine = rep.results.filter((r) => r.format === f);
-    lines.push(row(f, [...outcomes.map((o) => mine.filter((r) => r.outcome === o).length || '.'), mine.length]));
+    lines.push(
+      row(f, [
+        ...outcomes.map((o) => mine.filter((r) => r.outcome === o).length || '.'),
+        mine.length,
+      ]),
+    );
   }
-  lines.push(row('all', [...outcomes.map((o) => rep.results.filter((r) => r.outcome === o).length), rep.results.length]));
+  lines.push(
+    row('all', [
+      ...outcomes.map((o) => rep.results.filter((r) => r.outcome === o).length),
+      rep.results.length,
+    ]),
+  );
   const worst = (key: 'seconds' | 'rssMiB', above: boolean) =>
     rep.results.reduce<CaseResult | undefined>((best, r) => {
       const v = (x: CaseResult) => x[key] - (above ? (rep.baselines[x.format]?.[key] ?? 0) : 0);
@@ -159,7 +191,10 @@ export function table(rep: CampaignReport): string {
   lines.push(`worst RSS above base:   ${say(worst('rssMiB', true), 'rssMiB', 'MiB')}`);
   const refused = rep.results.filter((r) => r.mutation === 'valid' && r.outcome === 'error');
   if (refused.length > 0) {
-    lines.push('', `valid files refused (${refused.length}; not failures, but each is a reader's limit or bug):`);
+    lines.push(
+      '',
+      `valid files refused (${refused.length}; not failures, but each is a reader's limit or bug):`,
+    );
     const seen = new Map<string, number>();
     for (const r of refused) {
       const k = `${r.format} [${r.variant}]: ${r.stderr.split('\n')[0].slice(0, 160)}`;
@@ -173,7 +208,10 @@ export function table(rep: CampaignReport): string {
 /** One line per failure, grouped by outcome, for a test's message. */
 export function listing(failures: CaseResult[]): string {
   return failures
-    .map((r) => `${r.outcome.padEnd(16)} case ${r.id} ${r.format} [${r.variant}] ${r.mutation}: ${r.why} ${r.outcome === 'internals' || r.outcome === 'crash' ? '' : ''}`)
+    .map(
+      (r) =>
+        `${r.outcome.padEnd(16)} case ${r.id} ${r.format} [${r.variant}] ${r.mutation}: ${r.why} ${r.outcome === 'internals' || r.outcome === 'crash' ? '' : ''}`,
+    )
     .sort()
     .join('\n');
 }

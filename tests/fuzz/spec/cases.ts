@@ -31,7 +31,15 @@ export function makeCase(seed: number, index: number, valid = false): FuzzCase {
   const rng = new Rng(caseSeed(seed, index));
   const gen = GENERATORS[index % GENERATORS.length];
   const sample = gen.generate(rng);
-  const base = { id: `${seed}:${index}`, seed, index, format: gen.format, variant: sample.variant, lit: sample.lit, args: sample.args };
+  const base = {
+    id: `${seed}:${index}`,
+    seed,
+    index,
+    format: gen.format,
+    variant: sample.variant,
+    lit: sample.lit,
+    args: sample.args,
+  };
   const r = rng.next();
   if (valid || r < 0.1) {
     return { ...base, mutation: 'valid', invalid: false, files: sample.files };
@@ -49,8 +57,18 @@ export function makeCase(seed: number, index: number, valid = false): FuzzCase {
   }
   if (sample.blind) {
     const { bytes, name } = blindMutate(sample.blind.bytes, rng);
-    return { ...base, mutation: name, invalid: false, files: { ...sample.files, ...sample.blind.rebuild(bytes) } };
+    return {
+      ...base,
+      mutation: name,
+      invalid: false,
+      files: { ...sample.files, ...sample.blind.rebuild(bytes) },
+    };
   }
   const { bytes, name } = blindMutate(sample.files[sample.target], rng);
-  return { ...base, mutation: name, invalid: false, files: { ...sample.files, [sample.target]: bytes } };
+  return {
+    ...base,
+    mutation: name,
+    invalid: false,
+    files: { ...sample.files, [sample.target]: bytes },
+  };
 }

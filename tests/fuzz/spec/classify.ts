@@ -70,10 +70,11 @@ export function classify(f: RunFacts): { outcome: Outcome; why: string } {
   if (f.image.every((v) => v === 0) && (f.lit || dropped)) {
     return { outcome: 'silent-empty', why: firstLine(f.stderr) || 'all-zero image, no message' };
   }
-  if (said.length > 0) return { outcome: 'note', why: '' };
-  // Exit 0 without a word for a file its specification forbids.
-  if (f.invalid) return { outcome: 'accepted-invalid', why: 'exit 0, no message' };
-  return { outcome: 'image', why: '' };
+  // Exit 0 for a file its specification forbids: a note that something was ignored is not
+  // enough (a bad index in an ignored animation still means a corrupt file, issue 27 item 7).
+  if (f.invalid)
+    return { outcome: 'accepted-invalid', why: firstLine(f.stderr) || 'exit 0, no message' };
+  return { outcome: said.length > 0 ? 'note' : 'image', why: '' };
 }
 
 function firstLine(s: string): string {
@@ -87,13 +88,15 @@ export function readPfm(b: Uint8Array): Float32Array | null {
   while (fields.length < 4 && at < b.length && at < 200) {
     let s = '';
     while (at < b.length && /\s/.test(String.fromCharCode(b[at]))) at++;
-    while (at < b.length && !/\s/.test(String.fromCharCode(b[at]))) s += String.fromCharCode(b[at++]);
+    while (at < b.length && !/\s/.test(String.fromCharCode(b[at])))
+      s += String.fromCharCode(b[at++]);
     fields.push(s);
   }
   at++; // the one whitespace byte after the scale
   const [tag, w, h, scale] = fields;
   const n = Number(w) * Number(h) * (tag === 'PF' ? 3 : 1);
-  if ((tag !== 'PF' && tag !== 'Pf') || !Number.isInteger(n) || b.length - at !== n * 4) return null;
+  if ((tag !== 'PF' && tag !== 'Pf') || !Number.isInteger(n) || b.length - at !== n * 4)
+    return null;
   const view = new DataView(b.buffer, b.byteOffset + at, n * 4);
   const le = Number(scale) < 0;
   const out = new Float32Array(n);

@@ -59,7 +59,13 @@ function part(common: Record<string, unknown>, w: number, h: number, a: number, 
     }
   }
   return {
-    header: { ...common, ranges: [[a, b]], stats: { paths: n * (b - a), segments: 3 * n * (b - a), rejected: 0 } },
+    // A copy of its own: structuredClone keeps shared objects shared, so a mutation of one
+    // part's settings would otherwise change every part's.
+    header: structuredClone({
+      ...common,
+      ranges: [[a, b]],
+      stats: { paths: n * (b - a), segments: 3 * n * (b - a), rejected: 0 },
+    }),
     count,
     hi,
     lo,
@@ -70,23 +76,50 @@ function build(rng: Rng) {
   const width = rng.range(1, 12);
   const height = rng.range(1, 12);
   const spp = rng.range(2, 6);
-  const settings = { width, height, maxBounces: rng.range(0, 8), seed: rng.int(1000), sampler: rng.pick(['sobol', 'independent']), estimator: rng.pick(['nee-mis', 'bsdf']) };
+  const settings = {
+    width,
+    height,
+    maxBounces: rng.range(0, 8),
+    seed: rng.int(1000),
+    sampler: rng.pick(['sobol', 'independent']),
+    estimator: rng.pick(['nee-mis', 'bsdf']),
+  };
   const renderer = 'pathwise 0.1.0';
-  const scene_sha256 = createHash('sha256').update(`scene ${rng.int(1e9)}`).digest('hex');
-  const key = createHash('sha256').update(JSON.stringify({ renderer, scene_sha256, settings })).digest('hex');
-  const common = { format: 'pathwise-film/1', renderer, scene_sha256, settings, key, scale_bits: 40, spp };
-  const cuts = [0, ...new Set(Array.from({ length: rng.range(0, 2) }, () => rng.range(1, spp - 1)))].sort((x, y) => x - y);
+  const scene_sha256 = createHash('sha256')
+    .update(`scene ${rng.int(1e9)}`)
+    .digest('hex');
+  const key = createHash('sha256')
+    .update(JSON.stringify({ renderer, scene_sha256, settings }))
+    .digest('hex');
+  const common = {
+    format: 'pathwise-film/1',
+    renderer,
+    scene_sha256,
+    settings,
+    key,
+    scale_bits: 40,
+    spp,
+  };
+  const cuts = [
+    0,
+    ...new Set(Array.from({ length: rng.range(0, 2) }, () => rng.range(1, spp - 1))),
+  ].sort((x, y) => x - y);
   cuts.push(spp);
   const parts = cuts.slice(0, -1).map((a, i) => part(common, width, height, a, cuts[i + 1]));
   return { parts };
 }
 
 const names = (n: number) => Array.from({ length: n }, (_, i) => `p${i}.film`);
-const filesOf = (parts: Part[]): Files => Object.fromEntries(parts.map((p, i) => [`p${i}.film`, encodeFilm(p)]));
+const filesOf = (parts: Part[]): Files =>
+  Object.fromEntries(parts.map((p, i) => [`p${i}.film`, encodeFilm(p)]));
 
 function mutations(parts: Part[]): Mutation[] {
   const many = parts.length > 1;
-  const m = (name: string, f: (ps: Part[], rng: Rng) => void | Files, o: { invalid?: boolean; expect?: RegExp; args?: string[] } = {}): Mutation => ({
+  const m = (
+    name: string,
+    f: (ps: Part[], rng: Rng) => void | Files,
+    o: { invalid?: boolean; expect?: RegExp; args?: string[] } = {},
+  ): Mutation => ({
     name: `film:${name}`,
     ...o,
     apply: (rng) => {
@@ -100,74 +133,146 @@ function mutations(parts: Part[]): Mutation[] {
       const p = pick(ps, r);
       p.header = mutateJson(p.header, r).json as Record<string, unknown>;
     }),
-    m('header-key-twice', (ps, r) => {
-      const p = pick(ps, r);
-      p.headerText = JSON.stringify(p.header).replace('"spp":', `"spp":${p.header.spp},"spp":`);
-    }, { invalid: true }),
-    m('header-not-json', (ps, r) => void (pick(ps, r).headerText = '{"format": "pathwise-film/1",')),
+    m(
+      'header-key-twice',
+      (ps, r) => {
+        const p = pick(ps, r);
+        p.headerText = JSON.stringify(p.header).replace('"spp":', `"spp":${p.header.spp},"spp":`);
+      },
+      { invalid: true },
+    ),
+    m(
+      'header-not-json',
+      (ps, r) => void (pick(ps, r).headerText = '{"format": "pathwise-film/1",'),
+    ),
     m('header-not-ascii', (ps, r) => {
       const p = pick(ps, r);
       p.headerText = JSON.stringify(p.header).replace('pathwise 0.1.0', 'pathwise 0.1.0\u00e9');
     }),
-    m('pixels-flipped-stale-crc', (ps, r) => {
-      const p = pick(ps, r);
-      const b = encodeFilm(p);
-      for (let k = 0; k < 3; k++) b[r.range(b.length - 64 * p.count.length - 4, b.length - 5)] ^= 1 << r.int(8);
-      return { ...filesOf(ps), [`p${ps.indexOf(p)}.film`]: b };
-    }, { expect: /checksum|crc|damaged|corrupt/i }),
-    m('header-flipped-stale-crc', (ps, r) => {
-      const p = pick(ps, r);
-      const b = encodeFilm(p);
-      const at = b.indexOf(0x36, 100); // a '6' in a hash, most likely
-      b[at > 0 ? at : 40] = 0x37;
-      return { ...filesOf(ps), [`p${ps.indexOf(p)}.film`]: b };
-    }, { expect: /checksum|crc|damaged|corrupt/i }),
-    m('crc-wrong', (ps, r) => void (pick(ps, r).crcLie = true), { invalid: true, expect: /checksum|crc|damaged|corrupt/i }),
-    m('size-lie', (ps, r) => {
-      const p = pick(ps, r);
-      (p.header.settings as { width: number }).width = r.pick([4096, 1 << 20, (p.header.settings as { width: number }).width + 1]);
-    }, { invalid: true }),
-    m('truncated', (ps, r) => {
-      const k = r.int(ps.length);
-      const b = encodeFilm(ps[k]);
-      return { ...filesOf(ps), [`p${k}.film`]: b.subarray(0, r.int(b.length)) };
-    }, { invalid: true }),
-    m('header-length-huge', (ps, r) => {
-      const k = r.int(ps.length);
-      const b = encodeFilm(ps[k]);
-      new DataView(b.buffer).setUint32(16, r.pick([0, 0xffffffff, 1048577, 1048576]), true);
-      return { ...filesOf(ps), [`p${k}.film`]: b };
-    }, { invalid: true }),
-    m('nan-in-sums', (ps, r) => {
-      const p = pick(ps, r);
-      p.lo[r.int(p.lo.length)] = r.pick([NaN, Infinity, 0.5, 2 ** 52, -1]);
-    }, { invalid: true }),
-    m('hi-beyond-count', (ps, r) => {
-      const p = pick(ps, r);
-      p.hi[r.int(p.hi.length)] = 2 ** 40;
-    }, { invalid: true }),
-    m('count-above-ranges', (ps, r) => {
-      const p = pick(ps, r);
-      p.count[r.int(p.count.length)] += 1;
-    }, { invalid: true }),
-    m('stats-do-not-add-up', (ps, r) => {
-      const st = pick(ps, r).header.stats as { paths: number };
-      st.paths += 1;
-    }, { invalid: true }),
+    m(
+      'pixels-flipped-stale-crc',
+      (ps, r) => {
+        const p = pick(ps, r);
+        const b = encodeFilm(p);
+        for (let k = 0; k < 3; k++)
+          b[r.range(b.length - 64 * p.count.length - 4, b.length - 5)] ^= 1 << r.int(8);
+        return { ...filesOf(ps), [`p${ps.indexOf(p)}.film`]: b };
+      },
+      { expect: /checksum|crc|damaged|corrupt/i },
+    ),
+    m(
+      'header-flipped-stale-crc',
+      (ps, r) => {
+        const p = pick(ps, r);
+        const b = encodeFilm(p);
+        const at = b.indexOf(0x36, 100); // a '6' in a hash, most likely
+        b[at > 0 ? at : 40] = 0x37;
+        return { ...filesOf(ps), [`p${ps.indexOf(p)}.film`]: b };
+      },
+      { expect: /checksum|crc|damaged|corrupt/i },
+    ),
+    m('crc-wrong', (ps, r) => void (pick(ps, r).crcLie = true), {
+      invalid: true,
+      expect: /checksum|crc|damaged|corrupt/i,
+    }),
+    m(
+      'size-lie',
+      (ps, r) => {
+        const p = pick(ps, r);
+        (p.header.settings as { width: number }).width = r.pick([
+          4096,
+          1 << 20,
+          (p.header.settings as { width: number }).width + 1,
+        ]);
+      },
+      { invalid: true },
+    ),
+    m(
+      'truncated',
+      (ps, r) => {
+        const k = r.int(ps.length);
+        const b = encodeFilm(ps[k]);
+        return { ...filesOf(ps), [`p${k}.film`]: b.subarray(0, r.int(b.length)) };
+      },
+      { invalid: true },
+    ),
+    m(
+      'header-length-huge',
+      (ps, r) => {
+        const k = r.int(ps.length);
+        const b = encodeFilm(ps[k]);
+        new DataView(b.buffer).setUint32(16, r.pick([0, 0xffffffff, 1048577, 1048576]), true);
+        return { ...filesOf(ps), [`p${k}.film`]: b };
+      },
+      { invalid: true },
+    ),
+    m(
+      'nan-in-sums',
+      (ps, r) => {
+        const p = pick(ps, r);
+        p.lo[r.int(p.lo.length)] = r.pick([NaN, Infinity, 0.5, 2 ** 52, -1]);
+      },
+      { invalid: true },
+    ),
+    m(
+      'hi-beyond-count',
+      (ps, r) => {
+        const p = pick(ps, r);
+        p.hi[r.int(p.hi.length)] = 2 ** 40;
+      },
+      { invalid: true },
+    ),
+    m(
+      'count-above-ranges',
+      (ps, r) => {
+        const p = pick(ps, r);
+        p.count[r.int(p.count.length)] += 1;
+      },
+      { invalid: true },
+    ),
+    m(
+      'stats-do-not-add-up',
+      (ps, r) => {
+        const st = pick(ps, r).header.stats as { paths: number };
+        st.paths += 1;
+      },
+      { invalid: true },
+    ),
     m('ranges-empty', (ps, r) => void (pick(ps, r).header.ranges = []), { invalid: true }),
-    m('ranges-past-spp', (ps, r) => void (pick(ps, r).header.ranges = [[0, 1e6]]), { invalid: true }),
-    m('ranges-unsorted', (ps, r) => void (pick(ps, r).header.ranges = [[1, 2], [0, 1]]), { invalid: true }),
-    m('renderer-differs', (ps) => void (ps[0].header.renderer = 'pathwise 9.9.9'), { invalid: many }),
+    m('ranges-past-spp', (ps, r) => void (pick(ps, r).header.ranges = [[0, 1e6]]), {
+      invalid: true,
+    }),
+    m(
+      'ranges-unsorted',
+      (ps, r) =>
+        void (pick(ps, r).header.ranges = [
+          [1, 2],
+          [0, 1],
+        ]),
+      { invalid: true },
+    ),
+    m('renderer-differs', (ps) => void (ps[0].header.renderer = 'pathwise 9.9.9'), {
+      invalid: many,
+    }),
     m('key-differs', (ps) => void (ps[0].header.key = 'f'.repeat(64)), { invalid: many }),
-    m('seed-differs', (ps) => {
-      (ps[0].header.settings as { seed: number }).seed += 1;
-    }, { invalid: many }),
+    m(
+      'seed-differs',
+      (ps) => {
+        (ps[0].header.settings as { seed: number }).seed += 1;
+      },
+      { invalid: many },
+    ),
     m('same-part-twice', (ps) => ({ ...filesOf(ps), [`p${ps.length}.film`]: encodeFilm(ps[0]) }), {
       invalid: true,
       args: ['merge', ...names(parts.length + 1)],
     }),
-    m('part-missing', (ps) => filesOf(ps.slice(1)), { invalid: many, args: ['merge', ...names(Math.max(1, parts.length - 1))] }),
-    m('not-a-film', () => ({ 'p0.film': ascii('{"format":"pathwise-scene/1"}') }), { invalid: true }),
+    m('part-missing', (ps) => filesOf(ps.slice(1)), {
+      invalid: many,
+      args: ['merge', ...names(Math.max(1, parts.length - 1))],
+    }),
+    m('not-a-film', () => ({ 'p0.film': ascii('{"format":"pathwise-scene/1"}') }), {
+      invalid: true,
+    }),
   ];
 }
 

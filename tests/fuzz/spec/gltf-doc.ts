@@ -66,7 +66,12 @@ export function buildModel(rng: Rng, image?: { bytes: Uint8Array; mime: string }
     while (w.length % 4) w.u8(0);
     const byteOffset = w.length;
     write();
-    views.push({ buffer: 0, byteOffset, byteLength: w.length - byteOffset, ...(target ? { target } : {}) });
+    views.push({
+      buffer: 0,
+      byteOffset,
+      byteLength: w.length - byteOffset,
+      ...(target ? { target } : {}),
+    });
     return views.length - 1;
   };
   const vPos = view(() => pos.flat().forEach((v) => w.f32(v, true)), 34962);
@@ -83,14 +88,25 @@ export function buildModel(rng: Rng, image?: { bytes: Uint8Array; mime: string }
   while (w.length % 4) w.u8(0);
   const bin = w.done();
   const accessors: Json[] = [
-    { bufferView: vPos, componentType: FLOAT, count: 24, type: 'VEC3', min: [-0.5, -0.5, -0.5], max: [0.5, 0.5, 0.5] },
+    {
+      bufferView: vPos,
+      componentType: FLOAT,
+      count: 24,
+      type: 'VEC3',
+      min: [-0.5, -0.5, -0.5],
+      max: [0.5, 0.5, 0.5],
+    },
     { bufferView: vNrm, componentType: FLOAT, count: 24, type: 'VEC3' },
     { bufferView: vUv, componentType: FLOAT, count: 24, type: 'VEC2' },
     { bufferView: vIdx, componentType: indexType, count: 36, type: 'SCALAR' },
   ];
   const material: Json = {
     name: 'painted',
-    pbrMetallicRoughness: { baseColorFactor: [0.9, 0.8, 0.7, 1], metallicFactor: 0, roughnessFactor: 0.7 },
+    pbrMetallicRoughness: {
+      baseColorFactor: [0.9, 0.8, 0.7, 1],
+      metallicFactor: 0,
+      roughnessFactor: 0.7,
+    },
     doubleSided: rng.chance(0.5),
   };
   const json: Json = {
@@ -99,9 +115,25 @@ export function buildModel(rng: Rng, image?: { bytes: Uint8Array; mime: string }
     scenes: [{ nodes: [0] }],
     nodes: [
       { name: 'root', children: [1], rotation: [0, Math.sin(0.3), 0, Math.cos(0.3)] },
-      { name: 'box', mesh: 0, translation: [rng.float(-0.2, 0.2), 0, 0], scale: [1, rng.float(0.5, 1.5), 1] },
+      {
+        name: 'box',
+        mesh: 0,
+        translation: [rng.float(-0.2, 0.2), 0, 0],
+        scale: [1, rng.float(0.5, 1.5), 1],
+      },
     ],
-    meshes: [{ primitives: [{ attributes: { POSITION: 0, NORMAL: 1, TEXCOORD_0: 2 }, indices: 3, material: 0, mode: 4 }] }],
+    meshes: [
+      {
+        primitives: [
+          {
+            attributes: { POSITION: 0, NORMAL: 1, TEXCOORD_0: 2 },
+            indices: 3,
+            material: 0,
+            mode: 4,
+          },
+        ],
+      },
+    ],
     materials: [material],
     accessors,
     bufferViews: views,
@@ -109,7 +141,9 @@ export function buildModel(rng: Rng, image?: { bytes: Uint8Array; mime: string }
   };
   if (rng.chance(0.3)) {
     // A camera 3 units back along +z looking down −z (§3.10.1: cameras look along −z).
-    json.cameras = [{ type: 'perspective', perspective: { yfov: 0.8, znear: 0.05, zfar: 100, aspectRatio: 1 } }];
+    json.cameras = [
+      { type: 'perspective', perspective: { yfov: 0.8, znear: 0.05, zfar: 100, aspectRatio: 1 } },
+    ];
     json.nodes.push({ name: 'eye', camera: 0, translation: [0, 0, 3] });
     json.scenes[0].nodes.push(2);
   }

@@ -20,12 +20,17 @@ const j = (name: string, f: (json: J, rng: Rng) => void, invalid = false): Model
   edit: (m, rng) => void f(m.json, rng),
 });
 const prim = (json: J) => json.meshes[0].primitives[0];
-const acc = (json: J, attr: string) => json.accessors[attr === 'indices' ? prim(json).indices : prim(json).attributes[attr]];
+const acc = (json: J, attr: string) =>
+  json.accessors[attr === 'indices' ? prim(json).indices : prim(json).attributes[attr]];
 
 /** A float written into the geometry buffer at accessor `a`'s element `i`, component `c`. */
 function poke(m: Model, a: number, i: number, c: number, v: number): void {
   const view = m.json.bufferViews[m.json.accessors[a].bufferView];
-  new DataView(m.bin.buffer, m.bin.byteOffset).setFloat32(view.byteOffset + (i * 3 + c) * 4, v, true);
+  new DataView(m.bin.buffer, m.bin.byteOffset).setFloat32(
+    view.byteOffset + (i * 3 + c) * 4,
+    v,
+    true,
+  );
 }
 
 /**
@@ -75,18 +80,53 @@ function camera(name: string, values: number[], invalid: boolean): ModelEdit {
 
 export const GLTF_EDITS: ModelEdit[] = [
   // §3.7.2.1: POSITION is VEC3 float (or, with KHR_mesh_quantization, which is not used here, normalized ints).
-  j('position-vec2', (g) => void (acc(g, 'POSITION').type = 'VEC2'), true),
-  j('position-uint', (g) => void (acc(g, 'POSITION').componentType = UNSIGNED_INT), true),
-  j('normal-vec4', (g) => void (acc(g, 'NORMAL').type = 'VEC4'), true),
-  j('texcoord-vec3', (g) => void (acc(g, 'TEXCOORD_0').type = 'VEC3'), true),
-  j('tangent-vec3', (g) => void (prim(g).attributes.TANGENT = prim(g).attributes.NORMAL), true),
+  {
+    ...j('position-vec2', (g) => void (acc(g, 'POSITION').type = 'VEC2'), true),
+    expect: /VEC|type|component/,
+  },
+  {
+    ...j('position-uint', (g) => void (acc(g, 'POSITION').componentType = UNSIGNED_INT), true),
+    expect: /VEC|type|component/,
+  },
+  {
+    ...j('normal-vec4', (g) => void (acc(g, 'NORMAL').type = 'VEC4'), true),
+    expect: /VEC|type|component/,
+  },
+  {
+    ...j('texcoord-vec3', (g) => void (acc(g, 'TEXCOORD_0').type = 'VEC3'), true),
+    expect: /VEC|type|component/,
+  },
+  {
+    ...j(
+      'tangent-vec3',
+      (g) => void (prim(g).attributes.TANGENT = prim(g).attributes.NORMAL),
+      true,
+    ),
+    expect: /VEC|type|component/,
+  },
   j('indices-float', (g) => void (acc(g, 'indices').componentType = FLOAT), true),
   j('indices-vec3', (g) => void (acc(g, 'indices').type = 'VEC3'), true),
-  j('attribute-counts-differ', (g) => void (acc(g, 'NORMAL').count = 23), true),
-  j('count-huge', (g, r) => void (acc(g, r.pick(['POSITION', 'NORMAL', 'indices'])).count = r.pick([1e9, 2 ** 31, 2 ** 53])), true),
+  {
+    ...j('attribute-counts-differ', (g) => void (acc(g, 'NORMAL').count = 23), true),
+    expect: /count/,
+  },
+  j(
+    'count-huge',
+    (g, r) =>
+      void (acc(g, r.pick(['POSITION', 'NORMAL', 'indices'])).count = r.pick([
+        1e9,
+        2 ** 31,
+        2 ** 53,
+      ])),
+    true,
+  ),
   j('count-zero', (g) => void (acc(g, 'POSITION').count = 0), true),
   j('accessor-offset-past-view', (g) => void (acc(g, 'POSITION').byteOffset = 4096), true),
-  j('view-past-buffer', (g, r) => void (g.bufferViews[r.int(4)].byteLength = r.pick([1e9, 2 ** 32, 100000])), true),
+  j(
+    'view-past-buffer',
+    (g, r) => void (g.bufferViews[r.int(4)].byteLength = r.pick([1e9, 2 ** 32, 100000])),
+    true,
+  ),
   j('view-offset-huge', (g) => void (g.bufferViews[0].byteOffset = 2 ** 40), true),
   j('buffer-length-lie', (g) => void (g.buffers[0].byteLength = 2 ** 31), true),
   j('stride-too-small', (g) => void (g.bufferViews[0].byteStride = 4), true),
@@ -97,53 +137,100 @@ export const GLTF_EDITS: ModelEdit[] = [
   j('node-camera-out-of-range', (g) => void (g.nodes[1].camera = 4), true),
   j('child-out-of-range', (g) => void g.nodes[0].children.push(99), true),
   j('child-cycle', (g) => void (g.nodes[1].children = [0]), true),
-  j('node-two-parents', (g) => {
-    g.nodes.push({ children: [1] });
-    g.scenes[0].nodes.push(g.nodes.length - 1);
-  }, true),
+  j(
+    'node-two-parents',
+    (g) => {
+      g.nodes.push({ children: [1] });
+      g.scenes[0].nodes.push(g.nodes.length - 1);
+    },
+    true,
+  ),
   j('scene-root-twice', (g) => void g.scenes[0].nodes.push(0), true),
   j('scene-out-of-range', (g) => void (g.scene = 5), true),
   { ...j('scene-index-string', (g) => void (g.scene = '0'), true), expect: /string|integer/ },
-  { ...j('bufferview-array', (g) => void (acc(g, 'POSITION').bufferView = [0]), true), expect: /array|integer/ },
+  {
+    ...j('bufferview-array', (g) => void (acc(g, 'POSITION').bufferView = [0]), true),
+    expect: /array|integer/,
+  },
   j('material-out-of-range', (g) => void (prim(g).material = 9), true),
-  j('texture-source-out-of-range', (g) => {
-    g.textures ??= [{}];
-    g.materials[0].pbrMetallicRoughness.baseColorTexture ??= { index: 0 };
-    g.textures[0].source = 12;
-  }, true),
+  j(
+    'texture-source-out-of-range',
+    (g) => {
+      g.textures ??= [{}];
+      g.materials[0].pbrMetallicRoughness.baseColorTexture ??= { index: 0 };
+      g.textures[0].source = 12;
+    },
+    true,
+  ),
   j('texture-without-source', (g) => {
     g.textures = [{ sampler: 0 }];
     g.samplers ??= [{}];
     g.materials[0].pbrMetallicRoughness.baseColorTexture = { index: 0 };
   }),
-  j('sampler-out-of-range', (g) => {
-    g.textures ??= [{}];
-    g.materials[0].pbrMetallicRoughness.baseColorTexture ??= { index: 0 };
-    g.textures[0].sampler = 5;
-  }, true),
-  j('texcoord-set-missing', (g, r) => {
-    g.textures ??= [{}];
-    g.materials[0].pbrMetallicRoughness.baseColorTexture = { index: 0, texCoord: r.pick([1, 7, 9]) };
-  }, true),
-  j('skin-joint-out-of-range', (g) => {
-    g.skins = [{ joints: [42] }];
-    g.nodes[1].skin = 0;
-  }, true),
-  j('animation-out-of-range', (g, r) => {
-    g.animations = [{ channels: [{ sampler: r.pick([0, 3]), target: { node: r.pick([1, 40]), path: 'translation' } }], samplers: [{ input: r.pick([2, 77]), output: 0 }] }];
-  }, true),
+  j(
+    'sampler-out-of-range',
+    (g) => {
+      g.textures ??= [{}];
+      g.materials[0].pbrMetallicRoughness.baseColorTexture ??= { index: 0 };
+      g.textures[0].sampler = 5;
+    },
+    true,
+  ),
+  j(
+    'texcoord-set-missing',
+    (g, r) => {
+      g.textures ??= [{}];
+      g.materials[0].pbrMetallicRoughness.baseColorTexture = {
+        index: 0,
+        texCoord: r.pick([1, 7, 9]),
+      };
+    },
+    true,
+  ),
+  j(
+    'skin-joint-out-of-range',
+    (g) => {
+      g.skins = [{ joints: [42] }];
+      g.nodes[1].skin = 0;
+    },
+    true,
+  ),
+  j(
+    'animation-out-of-range',
+    (g, r) => {
+      g.animations = [
+        {
+          channels: [
+            { sampler: r.pick([0, 3]), target: { node: r.pick([1, 40]), path: 'translation' } },
+          ],
+          samplers: [{ input: r.pick([2, 77]), output: 0 }],
+        },
+      ];
+    },
+    true,
+  ),
   j('morph-target-out-of-range', (g) => void (prim(g).targets = [{ POSITION: 50 }]), true),
   sparse('sparse-valid', [1, 3], false),
   sparse('sparse-not-increasing', [3, 1], true),
   sparse('sparse-index-past-count', [2, 30], true),
   // §3.5.3: matrix or TRS, not both; §5.12: camera ranges.
-  j('matrix-and-trs', (g) => void (g.nodes[1].matrix = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]), true),
-  j('matrix-diag-1e308', (g) => {
-    delete g.nodes[1].translation;
-    delete g.nodes[1].scale;
-    g.nodes[1].matrix = [1e308, 0, 0, 0, 0, 1e308, 0, 0, 0, 0, 1e308, 0, 0, 0, 0, 1];
-  }),
-  j('translation-1e308', (g, r) => void (g.nodes[r.int(2)].translation = [1e308, r.pick([0, -1e308]), 0])),
+  j(
+    'matrix-and-trs',
+    (g) => void (g.nodes[1].matrix = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]),
+    true,
+  ),
+  {
+    ...j('matrix-diag-1e308', (g) => {
+      delete g.nodes[1].translation;
+      delete g.nodes[1].scale;
+      g.nodes[1].matrix = [1e308, 0, 0, 0, 0, 1e308, 0, 0, 0, 0, 1e308, 0, 0, 0, 0, 1];
+    }),
+    expect: /finite|range|overflow|matrix/,
+  },
+  j(
+    'translation-1e308',
+    (g, r) => void (g.nodes[r.int(2)].translation = [1e308, r.pick([0, -1e308]), 0]),
+  ),
   j('translation-overflow-under-scale', (g) => {
     g.nodes[0].scale = [10, 10, 10];
     g.nodes[1].translation = [1.7e308, 0, 0];
@@ -157,11 +244,15 @@ export const GLTF_EDITS: ModelEdit[] = [
   }),
   camera('camera-bad-value', [0, -1], true),
   camera('camera-huge-value', [1e308], false),
-  j('camera-without-perspective', (g) => {
-    g.cameras = [{ type: 'perspective' }];
-    g.nodes.push({ camera: 0, translation: [0, 0, 3] });
-    g.scenes[0].nodes.push(g.nodes.length - 1);
-  }, true),
+  j(
+    'camera-without-perspective',
+    (g) => {
+      g.cameras = [{ type: 'perspective' }];
+      g.nodes.push({ camera: 0, translation: [0, 0, 3] });
+      g.scenes[0].nodes.push(g.nodes.length - 1);
+    },
+    true,
+  ),
   j('version-3', (g) => void (g.asset.version = '3.0'), true),
   j('min-version-2.1', (g) => void (g.asset.minVersion = '2.1'), true),
   j('no-asset', (g) => void delete g.asset, true),
@@ -170,21 +261,46 @@ export const GLTF_EDITS: ModelEdit[] = [
     g.extensionsUsed = ['EXT_spec_fuzz'];
     g.extensionsRequired = ['EXT_spec_fuzz'];
   }),
-  j('extension-required-not-used', (g) => void (g.extensionsRequired = ['KHR_materials_unlit']), true),
+  j(
+    'extension-required-not-used',
+    (g) => void (g.extensionsRequired = ['KHR_materials_unlit']),
+    true,
+  ),
   j('mode-points', (g) => void (prim(g).mode = 0)),
   j('mode-invalid', (g) => void (prim(g).mode = 9), true),
   // URIs (§3.6.1.1: relative paths resolve against the .gltf; the project keeps them inside).
-  j('uri-escapes-folder', (g) => void (g.buffers[0].uri = '../../outside.bin'), true),
-  j('uri-etc-passwd', (g) => void (g.buffers[0].uri = '../../../../../../../../../../etc/passwd'), true),
+  {
+    ...j('uri-escapes-folder', (g) => void (g.buffers[0].uri = '../../outside.bin'), true),
+    expect: /beside|outside|folder|\.\./,
+  },
+  {
+    ...j(
+      'uri-etc-passwd',
+      (g) => void (g.buffers[0].uri = '../../../../../../../../../../etc/passwd'),
+      true,
+    ),
+    expect: /beside|outside|folder|\.\./,
+  },
   j('uri-absolute', (g) => void (g.buffers[0].uri = '/etc/passwd'), true),
   j('uri-url', (g) => void (g.buffers[0].uri = 'https://example.invalid/model.bin'), true),
   j('uri-missing-file', (g) => void (g.buffers[0].uri = 'nowhere.bin'), true),
-  j('uri-bad-data', (g) => void (g.buffers[0].uri = 'data:application/octet-stream;base64,@@@not base64'), true),
-  j('image-escapes-folder', (g) => {
-    g.textures = [{ source: 0 }];
-    g.images = [{ uri: '../../outside.png' }];
-    g.materials[0].pbrMetallicRoughness.baseColorTexture = { index: 0 };
-  }, true),
+  j(
+    'uri-bad-data',
+    (g) => void (g.buffers[0].uri = 'data:application/octet-stream;base64,@@@not base64'),
+    true,
+  ),
+  {
+    ...j(
+      'image-escapes-folder',
+      (g) => {
+        g.textures = [{ source: 0 }];
+        g.images = [{ uri: '../../outside.png' }];
+        g.materials[0].pbrMetallicRoughness.baseColorTexture = { index: 0 };
+      },
+      true,
+    ),
+    expect: /beside|outside|folder|\.\./,
+  },
   j('image-not-an-image', (g) => {
     g.textures = [{ source: 0 }];
     g.images = [{ uri: 'data:image/png;base64,aGVsbG8gd29ybGQ=' }];
@@ -216,7 +332,10 @@ export const GLTF_EDITS: ModelEdit[] = [
     },
   },
   { name: 'gltf:json-random', edit: (m, rng) => void (m.json = mutateJson(m.json, rng).json as J) },
-  { name: 'gltf:json-random-2', edit: (m, rng) => void (m.json = mutateJson(mutateJson(m.json, rng).json, rng).json as J) },
+  {
+    name: 'gltf:json-random-2',
+    edit: (m, rng) => void (m.json = mutateJson(mutateJson(m.json, rng).json, rng).json as J),
+  },
 ];
 
 /** GLB-level lies (§4.4): applied only when the sample is a .glb. */
@@ -257,7 +376,14 @@ function glbEdits(): ModelEdit[] {
       const w = new ByteWriter().bytes([0xef, 0xbb, 0xbf]).text(text);
       while (w.length % 4) w.u8(0x20);
       const json = w.done();
-      return new ByteWriter().u32(0x46546c67, true).u32(2, true).u32(12 + 8 + json.length, true).u32(json.length, true).u32(0x4e4f534a, true).bytes(json).done();
+      return new ByteWriter()
+        .u32(0x46546c67, true)
+        .u32(2, true)
+        .u32(12 + 8 + json.length, true)
+        .u32(json.length, true)
+        .u32(0x4e4f534a, true)
+        .bytes(json)
+        .done();
     }),
   ];
 }

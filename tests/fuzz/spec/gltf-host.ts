@@ -26,22 +26,34 @@ export interface ModelEdit {
   edit(m: Model, rng: Rng, c: Container): void | Files;
 }
 
-export function modelSample(rng: Rng, model: Model, edits: ModelEdit[], variant: string, container?: Container): Sample {
+export function modelSample(
+  rng: Rng,
+  model: Model,
+  edits: ModelEdit[],
+  variant: string,
+  container?: Container,
+): Sample {
   const c = container ?? rng.pick<Container>(['gltf', 'glb', 'data']);
   const bare = rng.chance(0.5);
   const files: Files = { ...OUTSIDE, ...pack(model, c) };
   const path = modelPath(c);
   if (!bare) files['s/scene.json'] = wrapScene({ shapes: [{ type: 'gltf', file: path.slice(2) }] });
-  const mutations: Mutation[] = edits.filter((e) => !e.only || e.only === c).map((e) => ({
-    name: e.name,
-    invalid: e.invalid,
-    expect: e.expect,
-    apply: (r: Rng) => {
-      const m: Model = { json: structuredClone(model.json), bin: model.bin.slice(), image: model.image };
-      const raw = e.edit(m, r, c);
-      return raw ?? pack(m, c);
-    },
-  }));
+  const mutations: Mutation[] = edits
+    .filter((e) => !e.only || e.only === c)
+    .map((e) => ({
+      name: e.name,
+      invalid: e.invalid,
+      expect: e.expect,
+      apply: (r: Rng) => {
+        const m: Model = {
+          json: structuredClone(model.json),
+          bin: model.bin.slice(),
+          image: model.image,
+        };
+        const raw = e.edit(m, r, c);
+        return raw ?? pack(m, c);
+      },
+    }));
   return {
     variant: `${variant}${variant ? ' ' : ''}${c}${bare ? ' bare' : ' in scene'}`,
     files,

@@ -40,7 +40,9 @@ export function glb(json: Json, bin: Uint8Array | null, lies: GlbLies = {}): Uin
     .bytes(j);
   for (let i = j.length; i < jLen; i++) w.u8(0x20);
   if (bin) {
-    w.u32(lies.binLength ?? bLen, true).u32(0x004e4942, true).bytes(bin);
+    w.u32(lies.binLength ?? bLen, true)
+      .u32(0x004e4942, true)
+      .bytes(bin);
     for (let i = bin.length; i < bLen; i++) w.u8(0);
   }
   return w.done();
@@ -73,7 +75,8 @@ export function pack(m: Model, container: Container): Files {
   if (container === 'gltf') {
     json.buffers[0].uri ??= 'model.bin';
     files[`${dir}/model.bin`] = bin;
-    if (m.image) files[`${dir}/${m.image.mime === 'image/jpeg' ? 'tex.jpg' : 'tex.png'}`] = m.image.bytes;
+    if (m.image)
+      files[`${dir}/${m.image.mime === 'image/jpeg' ? 'tex.jpg' : 'tex.png'}`] = m.image.bytes;
   } else {
     json.buffers[0].uri ??= `data:application/octet-stream;base64,${base64(bin)}`;
   }

@@ -62,7 +62,13 @@ function encodePlane(w: ByteWriter, plane: number[]): void {
     let lit = 1;
     while (i + lit < plane.length && lit < 128) {
       const j = i + lit;
-      if (j + 3 < plane.length && plane[j] === plane[j + 1] && plane[j] === plane[j + 2] && plane[j] === plane[j + 3]) break;
+      if (
+        j + 3 < plane.length &&
+        plane[j] === plane[j + 1] &&
+        plane[j] === plane[j + 2] &&
+        plane[j] === plane[j + 3]
+      )
+        break;
       lit++;
     }
     w.u8(lit);
@@ -73,7 +79,9 @@ function encodePlane(w: ByteWriter, plane: number[]): void {
 
 export function encodeHdr(img: HdrImage, o: HdrOptions): Uint8Array {
   const head = o.headerLines ?? ['#?RADIANCE', '# spec-fuzz', 'FORMAT=32-bit_rle_rgbe'];
-  const header = ascii(`${head.join('\n')}\n\n${o.resolution ?? `-Y ${img.height} +X ${img.width}`}\n`);
+  const header = ascii(
+    `${head.join('\n')}\n\n${o.resolution ?? `-Y ${img.height} +X ${img.width}`}\n`,
+  );
   const w = new ByteWriter();
   const { width, height, rgbe } = img;
   for (let y = 0; y < height; y++) {
@@ -83,7 +91,10 @@ export function encodeHdr(img: HdrImage, o: HdrOptions): Uint8Array {
       continue;
     }
     const declared = o.badRun === 'short-width' && y === 0 ? width - 1 : width;
-    w.u8(2).u8(2).u8(declared >> 8).u8(declared & 0xff);
+    w.u8(2)
+      .u8(2)
+      .u8(declared >> 8)
+      .u8(declared & 0xff);
     for (let c = 0; c < 4; c++) {
       const plane = Array.from({ length: width }, (_, x) => row[x * 4 + c]);
       if (y === 0 && c === 0 && o.badRun === 'overflow') {

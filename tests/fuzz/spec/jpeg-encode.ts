@@ -48,12 +48,24 @@ export function segment(marker: number, bytes: number[] | Uint8Array): Segment {
   return { marker, payload: Uint8Array.from(bytes) };
 }
 
-export function dht(tc: number, th: number, counts = tc ? AC_COUNTS : DC_COUNTS, symbols = tc ? AC_SYMBOLS : DC_SYMBOLS): Segment {
+export function dht(
+  tc: number,
+  th: number,
+  counts = tc ? AC_COUNTS : DC_COUNTS,
+  symbols = tc ? AC_SYMBOLS : DC_SYMBOLS,
+): Segment {
   return segment(0xc4, [(tc << 4) | th, ...counts, ...symbols]);
 }
 
 export function sof(marker: number, img: JpegImage, precision = 8): Segment {
-  const b = [precision, img.height >> 8, img.height & 255, img.width >> 8, img.width & 255, img.comps.length];
+  const b = [
+    precision,
+    img.height >> 8,
+    img.height & 255,
+    img.width >> 8,
+    img.width & 255,
+    img.comps.length,
+  ];
   for (const c of img.comps) b.push(c.id, (c.h << 4) | c.v, c.tq);
   return segment(marker, b);
 }
@@ -123,7 +135,10 @@ export function scanData(img: JpegImage): Uint8Array {
 export function serializeJpeg(segs: readonly Segment[], scan: Uint8Array, eoi = true): Uint8Array {
   const w = new ByteWriter().u8(0xff).u8(0xd8);
   for (const s of segs) {
-    w.u8(0xff).u8(s.marker).u16(s.length ?? s.payload.length + 2, false).bytes(s.payload);
+    w.u8(0xff)
+      .u8(s.marker)
+      .u16(s.length ?? s.payload.length + 2, false)
+      .bytes(s.payload);
     if (s.marker === 0xda) w.bytes(scan);
   }
   if (eoi) w.u8(0xff).u8(0xd9);

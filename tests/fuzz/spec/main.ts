@@ -40,15 +40,20 @@ async function main(argv: string[]): Promise<number> {
     for (const c of loadSaved(resolve(replay))) {
       const r = judge(await runCase(c, options), undefined, options);
       if (isFailure(r.outcome)) failed++;
-      process.stdout.write(`${r.outcome.padEnd(16)} ${r.seconds.toFixed(2)} s ${r.rssMiB.toFixed(0)} MiB  case ${r.id} ${r.format} [${r.variant}] ${r.mutation}\n  ${r.stderr.trim().split('\n').join('\n  ') || '(no message)'}\n`);
+      process.stdout.write(
+        `${r.outcome.padEnd(16)} ${r.seconds.toFixed(2)} s ${r.rssMiB.toFixed(0)} MiB  case ${r.id} ${r.format} [${r.variant}] ${r.mutation}\n  ${r.stderr.trim().split('\n').join('\n  ') || '(no message)'}\n`,
+      );
     }
     return failed > 0 ? 1 : 0;
   }
   const start = performance.now();
-  process.stderr.write(`spec fuzz: seed ${options.seed}, ${options.cases} cases, ${options.jobs} at a time, failures to ${options.failDir}\n`);
+  process.stderr.write(
+    `spec fuzz: seed ${options.seed}, ${options.cases} cases, ${options.jobs} at a time, failures to ${options.failDir}\n`,
+  );
   const rep = await runCampaign(options);
   process.stdout.write(`\n${table(rep)}\n`);
-  if (rep.failures.length > 0) process.stdout.write(`\n${rep.failures.length} failing cases:\n${listing(rep.failures)}\n`);
+  if (rep.failures.length > 0)
+    process.stdout.write(`\n${rep.failures.length} failing cases:\n${listing(rep.failures)}\n`);
   process.stdout.write(`\n${((performance.now() - start) / 1000).toFixed(0)} s wall\n`);
   const json = flag(argv, '--json');
   if (json) writeFileSync(json, JSON.stringify(rep, null, 1));

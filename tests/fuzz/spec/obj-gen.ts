@@ -56,7 +56,11 @@ const encode = (ls: string[], crlf = false): Uint8Array =>
   ascii(ls.join(crlf ? '\r\n' : '\n') + '\n');
 
 function mutations(o: Obj): Mutation[] {
-  const edit = (name: string, f: (ls: string[], rng: Rng) => string[], invalid = false): Mutation => ({
+  const edit = (
+    name: string,
+    f: (ls: string[], rng: Rng) => string[],
+    invalid = false,
+  ): Mutation => ({
     name,
     invalid,
     apply: (rng) => ({ 'mesh.obj': encode(f(lines(o), rng)) }),
@@ -119,10 +123,14 @@ function mutations(o: Obj): Mutation[] {
       ls[faceAt(ls, r)] = `f ${r.pick(['1/2/3/4 2 3', '1// 2 3', 'a b c', '1/x 2 3', '/1 2 3'])}`;
       return ls;
     }),
-    edit('obj:missing-normal', (ls, r) => {
-      ls[faceAt(ls, r)] = 'f 1//99 2//99 3//99';
-      return ls;
-    }, true),
+    edit(
+      'obj:missing-normal',
+      (ls, r) => {
+        ls[faceAt(ls, r)] = 'f 1//99 2//99 3//99';
+        return ls;
+      },
+      true,
+    ),
     edit('obj:zero-normal', (ls) => {
       ls.push('vn 0 0 0', 'f 1//-1 2//-1 3//-1');
       return ls;

@@ -57,12 +57,30 @@ function mutations(p: Pfm): Mutation[] {
     m('pfm:size-negative', (q) => void (q.header = `${tag}\n-${p.width} ${p.height}\n${s}\n`)),
     m('pfm:size-larger', (q) => void (q.header = `${tag}\n${p.width} ${p.height + 1}\n${s}\n`)),
     m('pfm:scale-zero', (q) => void (q.header = `${tag}\n${p.width} ${p.height}\n0.0\n`)),
-    m('pfm:scale-nan', (q, r) => void (q.header = `${tag}\n${p.width} ${p.height}\n${r.pick(['nan', 'inf', '-inf', 'x'])}\n`)),
-    m('pfm:wrong-magic', (q, r) => void (q.header = `${r.pick(['P6', 'PG', 'pf', 'PF4'])}\n${p.width} ${p.height}\n${s}\n`)),
-    m('pfm:size-garbage', (q, r) => void (q.header = `${tag}\n${r.pick(['1e3 2', '0x10 4', '3.5 2', '+4 4', '4'])}\n${s}\n`)),
-    m('pfm:header-comment', (q) => void (q.header = `${tag}\n# a comment\n${p.width} ${p.height}\n${s}\n`)),
+    m(
+      'pfm:scale-nan',
+      (q, r) =>
+        void (q.header = `${tag}\n${p.width} ${p.height}\n${r.pick(['nan', 'inf', '-inf', 'x'])}\n`),
+    ),
+    m(
+      'pfm:wrong-magic',
+      (q, r) =>
+        void (q.header = `${r.pick(['P6', 'PG', 'pf', 'PF4'])}\n${p.width} ${p.height}\n${s}\n`),
+    ),
+    m(
+      'pfm:size-garbage',
+      (q, r) =>
+        void (q.header = `${tag}\n${r.pick(['1e3 2', '0x10 4', '3.5 2', '+4 4', '4'])}\n${s}\n`),
+    ),
+    m(
+      'pfm:header-comment',
+      (q) => void (q.header = `${tag}\n# a comment\n${p.width} ${p.height}\n${s}\n`),
+    ),
     m('pfm:crlf', (q) => void (q.header = `${tag}\r\n${p.width} ${p.height}\r\n${s}\r\n`)),
-    m('pfm:long-header-line', (q) => void (q.header = `${tag}\n${' '.repeat(100_000)}${p.width} ${p.height}\n${s}\n`)),
+    m(
+      'pfm:long-header-line',
+      (q) => void (q.header = `${tag}\n${' '.repeat(100_000)}${p.width} ${p.height}\n${s}\n`),
+    ),
     {
       name: 'pfm:truncated',
       apply: (rng) => {

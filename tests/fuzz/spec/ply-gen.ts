@@ -121,7 +121,8 @@ function buildPly(rng: Rng): Ply {
   if (withColour) vprops.push(...['red', 'green', 'blue'].map((name) => ({ name, type: 'uchar' })));
   const vrows = mesh.positions.map((p, i) => {
     const row = p.map((c) => [ft === 'double' ? c : Math.fround(c)]);
-    if (withNormals) row.push(...mesh.normals[i].map((c) => [ft === 'double' ? c : Math.fround(c)]));
+    if (withNormals)
+      row.push(...mesh.normals[i].map((c) => [ft === 'double' ? c : Math.fround(c)]));
     if (withColour) row.push([200], [100], [50]);
     return row;
   });

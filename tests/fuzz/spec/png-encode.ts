@@ -11,7 +11,13 @@ import type { Rng } from './rng.ts';
 export const SIGNATURE = new Uint8Array([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a]);
 
 /** Allowed bit depths per colour type (§11.2.2, table 11.1). */
-export const DEPTHS: Record<number, number[]> = { 0: [1, 2, 4, 8, 16], 2: [8, 16], 3: [1, 2, 4, 8], 4: [8, 16], 6: [8, 16] };
+export const DEPTHS: Record<number, number[]> = {
+  0: [1, 2, 4, 8, 16],
+  2: [8, 16],
+  3: [1, 2, 4, 8],
+  4: [8, 16],
+  6: [8, 16],
+};
 const CHANNELS: Record<number, number> = { 0: 1, 2: 3, 3: 1, 4: 2, 6: 4 };
 
 export interface Chunk {
@@ -34,8 +40,22 @@ export interface PngImage {
   palette?: number[][];
 }
 
-export function ihdr(w: number, h: number, depth: number, ct: number, interlace: number, method = [0, 0]): Chunk {
-  const b = new ByteWriter().u32(w, false).u32(h, false).u8(depth).u8(ct).u8(method[0]).u8(method[1]).u8(interlace);
+export function ihdr(
+  w: number,
+  h: number,
+  depth: number,
+  ct: number,
+  interlace: number,
+  method = [0, 0],
+): Chunk {
+  const b = new ByteWriter()
+    .u32(w, false)
+    .u32(h, false)
+    .u8(depth)
+    .u8(ct)
+    .u8(method[0])
+    .u8(method[1])
+    .u8(interlace);
   return { type: 'IHDR', data: b.done() };
 }
 
@@ -43,7 +63,9 @@ export function serializeChunks(chunks: readonly Chunk[]): Uint8Array {
   const w = new ByteWriter().bytes(SIGNATURE);
   for (const c of chunks) {
     const body = concat([ascii(c.type), c.data]);
-    w.u32(c.length ?? c.data.length, false).bytes(body).u32(c.crc ?? crc32(body), false);
+    w.u32(c.length ?? c.data.length, false)
+      .bytes(body)
+      .u32(c.crc ?? crc32(body), false);
   }
   return w.done();
 }
@@ -77,7 +99,7 @@ function packRow(samples: number[], depth: number): Uint8Array {
 /** Filtered scanlines of one (sub)image, filter types chosen by `rng` (§9.2). */
 function filterRows(rows: Uint8Array[], bpp: number, rng: Rng, filters?: number[]): Uint8Array {
   const w = new ByteWriter();
-  let prior = new Uint8Array(rows[0]?.length ?? 0);
+  let prior: Uint8Array = new Uint8Array(rows[0]?.length ?? 0);
   for (const row of rows) {
     const type = filters ? filters[rng.int(filters.length)] : rng.int(5);
     w.u8(type);
@@ -108,7 +130,10 @@ export function rawData(img: PngImage, rng: Rng): Uint8Array {
   const ch = CHANNELS[img.colourType];
   const bpp = Math.max(1, (ch * img.depth) >> 3);
   const rowOf = (y: number, xs: number[]) =>
-    packRow(xs.flatMap((x) => img.samples.slice((y * img.width + x) * ch, (y * img.width + x + 1) * ch)), img.depth);
+    packRow(
+      xs.flatMap((x) => img.samples.slice((y * img.width + x) * ch, (y * img.width + x + 1) * ch)),
+      img.depth,
+    );
   const passes = img.interlace ? ADAM7 : [[0, 0, 1, 1]];
   const parts: Uint8Array[] = [];
   for (const [x0, y0, dx, dy] of passes) {
@@ -134,13 +159,21 @@ export function randomImage(rng: Rng): PngImage {
   for (let y = 0; y < height; y++) {
     for (let x = 0; x < width; x++) {
       for (let c = 0; c < ch; c++) {
-        samples.push(colourType === 3 ? (x + y) % paletteSize : Math.round((((x * 3 + y * 5 + c * 7) % 17) / 16) * max));
+        samples.push(
+          colourType === 3
+            ? (x + y) % paletteSize
+            : Math.round((((x * 3 + y * 5 + c * 7) % 17) / 16) * max),
+        );
       }
     }
   }
   const palette =
     colourType === 3 || (colourType === 2 && rng.chance(0.3))
-      ? Array.from({ length: Math.max(paletteSize, 1) }, (_, i) => [(i * 37) & 255, (i * 91) & 255, (i * 13) & 255])
+      ? Array.from({ length: Math.max(paletteSize, 1) }, (_, i) => [
+          (i * 37) & 255,
+          (i * 91) & 255,
+          (i * 13) & 255,
+        ])
       : undefined;
   return { width, height, depth, colourType, interlace: rng.chance(0.4) ? 1 : 0, samples, palette };
 }
@@ -148,15 +181,23 @@ export function randomImage(rng: Rng): PngImage {
 /** A valid file's chunks: IHDR, maybe gAMA/tEXt, PLTE, tRNS, IDAT split at random, IEND. */
 export function pngChunks(img: PngImage, rng: Rng): Chunk[] {
   const chunks: Chunk[] = [ihdr(img.width, img.height, img.depth, img.colourType, img.interlace)];
-  if (rng.chance(0.3)) chunks.push({ type: 'gAMA', data: new ByteWriter().u32(45455, false).done() });
+  if (rng.chance(0.3))
+    chunks.push({ type: 'gAMA', data: new ByteWriter().u32(45455, false).done() });
   if (rng.chance(0.3)) chunks.push({ type: 'tEXt', data: ascii('Comment\0spec-fuzz') });
   if (img.palette) chunks.push({ type: 'PLTE', data: new Uint8Array(img.palette.flat()) });
-  if (img.colourType === 3 && rng.chance(0.4)) chunks.push({ type: 'tRNS', data: new Uint8Array([128]) });
-  if (img.colourType === 0 && rng.chance(0.3)) chunks.push({ type: 'tRNS', data: new Uint8Array([0, 0]) });
+  if (img.colourType === 3 && rng.chance(0.4))
+    chunks.push({ type: 'tRNS', data: new Uint8Array([128]) });
+  if (img.colourType === 0 && rng.chance(0.3))
+    chunks.push({ type: 'tRNS', data: new Uint8Array([0, 0]) });
   const z = deflateSync(rawData(img, rng), { level: rng.pick([0, 1, 6, 9]) });
-  const cuts = [0, ...Array.from({ length: rng.int(3) }, () => rng.int(z.length)).sort((a, b) => a - b), z.length];
+  const cuts = [
+    0,
+    ...Array.from({ length: rng.int(3) }, () => rng.int(z.length)).sort((a, b) => a - b),
+    z.length,
+  ];
   for (let i = 0; i + 1 < cuts.length; i++) {
-    if (cuts[i + 1] > cuts[i] || i === 0) chunks.push({ type: 'IDAT', data: z.subarray(cuts[i], cuts[i + 1]) });
+    if (cuts[i + 1] > cuts[i] || i === 0)
+      chunks.push({ type: 'IDAT', data: z.subarray(cuts[i], cuts[i + 1]) });
   }
   chunks.push({ type: 'IEND', data: new Uint8Array(0) });
   return chunks;

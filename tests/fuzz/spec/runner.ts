@@ -52,7 +52,20 @@ export function writeCase(dir: string, c: FuzzCase): void {
   }
   writeFileSync(
     join(dir, 'case.json'),
-    JSON.stringify({ id: c.id, format: c.format, variant: c.variant, mutation: c.mutation, invalid: c.invalid, expect: c.expect, lit: c.lit, args: c.args }, null, 2) + '\n',
+    JSON.stringify(
+      {
+        id: c.id,
+        format: c.format,
+        variant: c.variant,
+        mutation: c.mutation,
+        invalid: c.invalid,
+        expect: c.expect,
+        lit: c.lit,
+        args: c.args,
+      },
+      null,
+      2,
+    ) + '\n',
   );
 }
 
@@ -72,11 +85,15 @@ export function runCase(c: FuzzCase, o: RunOptions): Promise<CaseResult> {
   writeCase(dir, c);
   const rssFile = join(dir, '.rss');
   const start = performance.now();
-  const child = spawn(process.execPath, ['--import', `file://${o.probe ?? DEFAULT_PROBE}`, o.bin, ...fullArgs(c.args)], {
-    cwd: dir,
-    stdio: ['ignore', 'ignore', 'pipe'],
-    env: { ...process.env, SPECFUZZ_RSS_OUT: rssFile, NODE_OPTIONS: '' },
-  });
+  const child = spawn(
+    process.execPath,
+    ['--import', `file://${o.probe ?? DEFAULT_PROBE}`, o.bin, ...fullArgs(c.args)],
+    {
+      cwd: dir,
+      stdio: ['ignore', 'ignore', 'pipe'],
+      env: { ...process.env, SPECFUZZ_RSS_OUT: rssFile, NODE_OPTIONS: '' },
+    },
+  );
   let stderr = '';
   child.stderr.setEncoding('utf8').on('data', (d: string) => {
     if (stderr.length < 20_000) stderr += d;

@@ -9,11 +9,15 @@ import { ascii } from './bytes.ts';
 export const CAMERA = { position: [0, 0.3, -4], target: [0, 0, 0], up: [0, 1, 0], fovY: 40 };
 
 /** Faces −z, toward the camera: cross(u, v) = (0, 0, −0.36). */
-const LAMP = { type: 'quad', corner: [0.8, -1.2, 1], u: [0, 0.6, 0], v: [0.6, 0, 0], material: 'lamp' };
+const LAMP = {
+  type: 'quad',
+  corner: [0.8, -1.2, 1],
+  u: [0, 0.6, 0],
+  v: [0.6, 0, 0],
+  material: 'lamp',
+};
 
-export function wrapScene(
-  extra: { shapes?: unknown[]; environment?: unknown },
-): Uint8Array {
+export function wrapScene(extra: { shapes?: unknown[]; environment?: unknown }): Uint8Array {
   const scene = {
     format: 'pathwise-scene/1',
     camera: CAMERA,
