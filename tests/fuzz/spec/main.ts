@@ -3,6 +3,7 @@
  *
  *   FUZZ_SEED=1 FUZZ_CASES=3000 npm run fuzz [-- --jobs N --failures DIR (default dist/fuzz/failures) --json FILE]
  *   npm run fuzz -- --replay DIR      re-runs the cases saved under DIR
+ *   npm run fuzz -- --case 1:473,1:418 [--save DIR]   runs (and saves) single cases
  *
  * Exit status 1 when any case failed, 0 otherwise.
  */
@@ -10,8 +11,17 @@ import { availableParallelism } from 'node:os';
 import { writeFileSync } from 'node:fs';
 import { resolve } from 'node:path';
 import { isFailure } from './classify.ts';
-import { judge, listing, loadSaved, runCampaign, table, type CampaignOptions } from './campaign.ts';
-import { runCase } from './runner.ts';
+import {
+  baselines,
+  judge,
+  listing,
+  loadSaved,
+  runCampaign,
+  table,
+  type CampaignOptions,
+} from './campaign.ts';
+import { makeCase } from './cases.ts';
+import { runCase, writeCase } from './runner.ts';
 
 function flag(argv: string[], name: string): string | undefined {
   const i = argv.indexOf(name);
@@ -35,10 +45,21 @@ async function main(argv: string[]): Promise<number> {
     log: (line) => process.stderr.write(`${line}\n`),
   };
   const replay = flag(argv, '--replay');
-  if (replay) {
+  const single = flag(argv, '--case');
+  if (replay || single) {
     let failed = 0;
-    for (const c of loadSaved(resolve(replay))) {
-      const r = judge(await runCase(c, options), undefined, options);
+    const save = flag(argv, '--save');
+    const cases = replay
+      ? loadSaved(resolve(replay))
+      : single!.split(',').map((id) => {
+          const [seed, index] = id.split(':').map(Number);
+          return makeCase(seed, index);
+        });
+    // One valid run per format, so that a replayed case is judged slow or heavy as in a campaign.
+    const base = await baselines({ ...options, baselineRuns: 1 });
+    for (const c of cases) {
+      if (save) writeCase(resolve(save, `${c.format}-${c.seed}-${c.index}`), c);
+      const r = judge(await runCase(c, options), base[c.format], options);
       if (isFailure(r.outcome)) failed++;
       process.stdout.write(
         `${r.outcome.padEnd(16)} ${r.seconds.toFixed(2)} s ${r.rssMiB.toFixed(0)} MiB  case ${r.id} ${r.format} [${r.variant}] ${r.mutation}\n  ${r.stderr.trim().split('\n').join('\n  ') || '(no message)'}\n`,

@@ -234,6 +234,8 @@ function mutations(p: Ply): Mutation[] {
       // An ASCII face line with one index more than its count (issue 27, item 7).
       name: 'ply:ascii-extra-token',
       invalid: true,
+      // The error must name the face whose line is too long, not a later one the shift broke.
+      expect: /face 0\b/,
       apply: () => {
         const q = structuredClone(p);
         q.encoding = 'ascii';

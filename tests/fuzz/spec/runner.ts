@@ -46,6 +46,7 @@ export function fullArgs(args: string[]): string[] {
 }
 
 export function writeCase(dir: string, c: FuzzCase): void {
+  mkdirSync(dir, { recursive: true });
   for (const [name, bytes] of Object.entries(c.files)) {
     mkdirSync(dirname(join(dir, name)), { recursive: true });
     writeFileSync(join(dir, name), bytes);

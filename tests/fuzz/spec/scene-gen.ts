@@ -5,11 +5,19 @@
  * of its text (duplicate keys, comments, a BOM, deep nesting) and the magnitudes the format
  * allows but arithmetic may not (rotationY 1e308: issue 27 item 2).
  */
-import { ascii } from './bytes.ts';
+import { ByteWriter, ascii } from './bytes.ts';
 import { mutateJson } from './mutate.ts';
 import type { Rng } from './rng.ts';
 import { CAMERA } from './scene-wrap.ts';
 import type { Generator, Mutation, Sample } from './types.ts';
+
+/** A 1 × 1 white PFM (little-endian) for the environment-map mutations to name. */
+const WHITE_PFM = new ByteWriter()
+  .text('PF\n1 1\n-1.0\n')
+  .f32(1, true)
+  .f32(1, true)
+  .f32(1, true)
+  .done();
 
 type Scene = Record<string, any>; // eslint-disable-line @typescript-eslint/no-explicit-any
 
@@ -182,7 +190,7 @@ export const sceneGenerator: Generator = {
       variant: `${scene.shapes.length - 1} shapes`,
       files: {
         'scene.json': ascii(JSON.stringify(scene, null, 1)),
-        'sky.pfm': ascii('PF\n1 1\n-1\n\0\0\x80\x3f\0\0\x80\x3f\0\0\x80\x3f'),
+        'sky.pfm': WHITE_PFM,
       },
       target: 'scene.json',
       args: ['render', 'scene.json'],
