@@ -178,8 +178,11 @@ export function decodeFilmHeader(
   const n = header.settings.width * header.settings.height;
   const samples = rangeSamples(header.ranges);
   if (paths !== n * samples || rejected > paths) {
+    // Empty ranges with paths traced: samples no range accounts for (issue 27, item 5).
     throw new FilmHeaderError(
-      `stats do not add up: ${paths} paths and ${rejected} rejected for ${n} pixels × ${samples} samples of its ranges (inconsistent)`,
+      samples === 0
+        ? `stats do not add up: ${paths} paths and ${rejected} rejected, but its ranges are empty (inconsistent)`
+        : `stats do not add up: ${paths} paths and ${rejected} rejected for ${n} pixels × ${samples} samples of its ranges (inconsistent)`,
     );
   }
   return { header, byteLength };

@@ -44,6 +44,7 @@ import { fromRowMajor } from './transforms.ts';
 import { validateGltfBuffers } from './validate-buffers.ts';
 import { checkPrimitiveCounts } from './validate-attributes.ts';
 import { validateSparseIndices } from './validate-sparse.ts';
+import { positionBoundsNotes } from './validate-bounds.ts';
 import { validateGltfJson } from './validate.ts';
 import { dropSourcelessTextures } from './sourceless.ts';
 
@@ -188,6 +189,7 @@ export async function loadGltf(
   );
   checkPrimitiveCounts(json);
   validateSparseIndices(json, data);
+  for (const note of positionBoundsNotes(json, data)) warn(note);
   const images = (json.images as Record<string, unknown>[] | undefined) ?? [];
   for (let i = 0; i < images.length; i++) {
     const uri = images[i].uri;

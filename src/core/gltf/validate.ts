@@ -268,12 +268,15 @@ export function validateGltfJson(json: unknown): GltfSummary {
         const attributes = pr.attributes as Json;
         for (const b of textureBindings(materials[mat], `materials[${mat}]`)) {
           const t = isObject(b.info) ? textures[b.info.index as number] : undefined;
-          if (t === undefined || t.source === undefined) continue;
+          if (t === undefined) continue;
+          // A set the primitive lacks is a broken file even when the texture has no
+          // source (and is then ignored): the binding itself is invalid (§3.9.2).
           if (attributes[`TEXCOORD_${b.set}`] === undefined)
             fail(
               `${p}.attributes`,
               `has no TEXCOORD_${b.set}, which its material's ${b.path.slice(b.path.indexOf('.') + 1)} reads`,
             );
+          if (t.source === undefined) continue;
           if (b.set > 1 && notes.length < 10)
             notes.push(
               `${b.path}: reads TEXCOORD_${b.set}; pathwise reads only sets 0 and 1, so the texture is ignored`,

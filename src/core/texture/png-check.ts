@@ -132,6 +132,11 @@ export function readPngChunks(bytes: Uint8Array, maxTexels: number): PngChunks {
     if (length > 0x7fffffff || at + 12 + length > bytes.length) {
       fail(`${where}: its length ${length} runs past the end of the file (${bytes.length} bytes)`);
     }
+    // §5.3: a chunk type is four ASCII letters; anything else is a damaged file.
+    for (let k = at + 4; k < at + 8; k++) {
+      const c = bytes[k] | 0x20;
+      if (c < 0x61 || c > 0x7a) fail(`${where}: a chunk type must be four ASCII letters (§5.3)`);
+    }
     const data = bytes.subarray(at + 8, at + 8 + length);
     const critical = (bytes[at + 4] & 0x20) === 0;
     if (

@@ -74,6 +74,9 @@ export function classify(f: RunFacts): { outcome: Outcome; why: string } {
   // enough (a bad index in an ignored animation still means a corrupt file, issue 27 item 7).
   if (f.invalid)
     return { outcome: 'accepted-invalid', why: firstLine(f.stderr) || 'exit 0, no message' };
+  // Something honestly ignored must be said: the note it needs (Mutation.expect).
+  if (f.expect && !said.some((l) => new RegExp(f.expect!, 'i').test(l)))
+    return { outcome: 'accepted-invalid', why: `exit 0 without a note matching /${f.expect}/` };
   return { outcome: said.length > 0 ? 'note' : 'image', why: '' };
 }
 

@@ -15,7 +15,9 @@ export interface Mutation {
   invalid?: boolean;
   /**
    * What an error for it must say (a film damaged is reported as damaged, issue 27 item 5):
-   * one clear line that does not match is `misleading`.
+   * one clear line that does not match is `misleading`. For a case that is not `invalid`
+   * (something pathwise honestly ignores), the note it must print: exit 0 without a
+   * matching line is `accepted-invalid`.
    */
   expect?: RegExp;
   /** The command line, when the mutation changes it (a part given twice). */

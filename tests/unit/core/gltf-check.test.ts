@@ -317,3 +317,30 @@ describe('found by the seeded differential fuzz (tests/fuzz/gltf-validator.test.
       true,
     ));
 });
+
+describe('found by the spec fuzzer', () => {
+  it('a texCoord set the primitive lacks is refused even when the texture has no source', async () => {
+    await refused((j) => {
+      j.textures = [{}];
+      j.materials ??= [{}];
+      prim(j).material = 0;
+      j.materials[0].pbrMetallicRoughness = { baseColorTexture: { index: 0, texCoord: 7 } };
+    }, /attributes: has no TEXCOORD_7, which its material's pbrMetallicRoughness\.baseColorTexture reads$/);
+  });
+
+  it('POSITION bounds that are missing or do not hold the data: a note, bounds from the vertices', async () => {
+    const wrong = await load((j) => {
+      j.accessors[0].max = [0.1, 0.1, 0.1];
+    });
+    expect(wrong.warnings.join('\n')).toMatch(
+      /accessors\[0\] \(POSITION\): vertex \d+ has [xyz] = .*, outside the declared min .* and max 0\.1; the bounds are taken from the vertices/,
+    );
+    const none = await load((j) => {
+      delete j.accessors[0].min;
+      delete j.accessors[0].max;
+    });
+    expect(none.warnings.join('\n')).toMatch(/accessors\[0\] \(POSITION\): has no min and max/);
+    const right = await load(() => {});
+    expect(right.warnings.join('\n')).not.toMatch(/POSITION/);
+  });
+});

@@ -87,6 +87,24 @@ describe('PNG image data against what IHDR needs', () => {
   });
 });
 
+describe('PNG checksums and chunk names (found by the spec fuzzer)', () => {
+  it('image data whose Adler-32 does not match (was "Unsupported filter: undefined")', () => {
+    const data = zlib(rawRows(2, 2, 4, (i) => 10 * i));
+    data[data.length - 1] ^= 0x01;
+    expect(pngError(pngFile(ihdr(2, 2), pngChunk('IDAT', data), IEND))).toMatch(
+      /^PNG: the image data's Adler-32 checksum is [0-9a-f]{8}, but the data gives [0-9a-f]{8} \(the file is damaged\)$/,
+    );
+  });
+
+  it('a chunk type that is not four letters (was skipped as an ancillary chunk)', () => {
+    const good = pngImage(2, 2);
+    const bad = concatBytes(good.subarray(0, 33), pngChunk('t1ME', [0, 0]), good.subarray(33));
+    expect(pngError(bad)).toMatch(
+      /^PNG: chunk .* at byte 33: a chunk type must be four ASCII letters/,
+    );
+  });
+});
+
 describe('PNG declared size against the bytes present and the budget', () => {
   it('a header claiming 10000 × 10000 over a few bytes of IDAT', () => {
     const lying = pngFile(ihdr(10000, 10000, 8, 0), pngChunk('IDAT', zlib([0, 0, 0])), IEND);
