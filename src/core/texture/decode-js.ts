@@ -45,6 +45,14 @@ function unpackLowDepth(
  */
 export function decodePngBytes(bytes: Uint8Array, maxTexels = DEFAULT_MAX_TEXELS): DecodedImage {
   const checked = checkPng(bytes, maxTexels);
+  // fast-png 8 de-interlaces Adam7 assuming whole bytes per pixel, so a valid interlaced
+  // image of 1, 2 or 4 bits per sample fails inside it: say so, not "corrupt".
+  if (checked.interlaced && checked.depth < 8) {
+    throw new FormatError(
+      'PNG',
+      `interlaced (Adam7) images of ${checked.depth} bits per sample are not supported; save it non-interlaced or at 8 bits`,
+    );
+  }
   let png;
   try {
     png = decodePng(checked.clean);

@@ -96,6 +96,27 @@ describe('PNG checksums and chunk names (found by the spec fuzzer)', () => {
     );
   });
 
+  it('an interlaced image of 4 bits per sample: a limit of the decoder, not "corrupt"', () => {
+    // 8×8 at 4 bits, Adam7: each pass's rows are a filter byte and ceil(w·4/8) bytes.
+    const raw: number[] = [];
+    for (const [xs, ys, dx, dy] of [
+      [0, 0, 8, 8],
+      [4, 0, 8, 8],
+      [0, 4, 4, 8],
+      [2, 0, 4, 4],
+      [0, 2, 2, 4],
+      [1, 0, 2, 2],
+      [0, 1, 1, 2],
+    ]) {
+      const w = Math.ceil((8 - xs) / dx);
+      for (let y = ys; y < 8; y += dy) raw.push(0, ...new Array(Math.ceil((w * 4) / 8)).fill(0x5a));
+    }
+    const png = pngFile(ihdr(8, 8, 4, 0, 1), pngChunk('IDAT', zlib(raw)), IEND);
+    expect(pngError(png)).toBe(
+      'PNG: interlaced (Adam7) images of 4 bits per sample are not supported; save it non-interlaced or at 8 bits',
+    );
+  });
+
   it('a chunk type that is not four letters (was skipped as an ancillary chunk)', () => {
     const good = pngImage(2, 2);
     const bad = concatBytes(good.subarray(0, 33), pngChunk('t1ME', [0, 0]), good.subarray(33));
