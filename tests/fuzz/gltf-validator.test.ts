@@ -58,6 +58,24 @@ const edit =
   () =>
     quadGlb({ texture, edit: f });
 
+/** An animation of one channel, `sampler` and target `node` as given, on a SCALAR time accessor. */
+function animate(j: Json, sampler: number, node: number): void {
+  j.accessors.push({
+    bufferView: 0,
+    componentType: 5126,
+    count: 4,
+    type: 'SCALAR',
+    min: [0],
+    max: [1],
+  });
+  j.animations = [
+    {
+      samplers: [{ input: 4, output: 0 }],
+      channels: [{ sampler, target: { node, path: 'translation' } }],
+    },
+  ];
+}
+
 const camera =
   (perspective: Json, translation = [0, 0, 3]) =>
   (j: Json): void => {
@@ -202,42 +220,12 @@ const mutations: Case[] = [
   },
   {
     name: 'animation channel target out of range',
-    bytes: edit((j) => {
-      j.accessors.push({
-        bufferView: 0,
-        componentType: 5126,
-        count: 4,
-        type: 'SCALAR',
-        min: [0],
-        max: [1],
-      });
-      j.animations = [
-        {
-          samplers: [{ input: 4, output: 0 }],
-          channels: [{ sampler: 0, target: { node: 3, path: 'translation' } }],
-        },
-      ];
-    }),
+    bytes: edit((j) => animate(j, 0, 3)),
     code: 'UNRESOLVED_REFERENCE',
   },
   {
     name: 'animation channel sampler out of range',
-    bytes: edit((j) => {
-      j.accessors.push({
-        bufferView: 0,
-        componentType: 5126,
-        count: 4,
-        type: 'SCALAR',
-        min: [0],
-        max: [1],
-      });
-      j.animations = [
-        {
-          samplers: [{ input: 4, output: 0 }],
-          channels: [{ sampler: 2, target: { node: 0, path: 'translation' } }],
-        },
-      ];
-    }),
+    bytes: edit((j) => animate(j, 2, 0)),
     code: 'UNRESOLVED_REFERENCE',
   },
   {

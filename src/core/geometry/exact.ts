@@ -53,7 +53,7 @@ export function exactDiffOfProducts(a: number, b: number, c: number, d: number):
   return x0;
 }
 
-/** x · 2^n, exact but for underflow, for any n in [-2098, 2098] (two steps: 2^n alone may not exist). */
+/** x · 2^n, exact but for underflow, for any n in [-2046, 2046] (two steps: 2^n alone may not exist). */
 export function mulPow2(x: number, n: number): number {
   const half = Math.trunc(n / 2);
   return x * 2 ** half * 2 ** (n - half);

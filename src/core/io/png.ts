@@ -5,32 +5,8 @@
  * CompressionStream; without one, stored (uncompressed) deflate blocks are
  * written, which every decoder accepts.
  */
-
-const CRC_TABLE = (() => {
-  const t = new Uint32Array(256);
-  for (let n = 0; n < 256; n++) {
-    let c = n;
-    for (let k = 0; k < 8; k++) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1;
-    t[n] = c >>> 0;
-  }
-  return t;
-})();
-
-function crc32(bytes: Uint8Array, start: number, end: number): number {
-  let c = 0xffffffff;
-  for (let i = start; i < end; i++) c = CRC_TABLE[(c ^ bytes[i]) & 0xff] ^ (c >>> 8);
-  return (c ^ 0xffffffff) >>> 0;
-}
-
-function adler32(bytes: Uint8Array): number {
-  let a = 1;
-  let b = 0;
-  for (let i = 0; i < bytes.length; i++) {
-    a = (a + bytes[i]) % 65521;
-    b = (b + a) % 65521;
-  }
-  return ((b << 16) | a) >>> 0;
-}
+import { adler32 } from '../util/adler32.ts';
+import { crc32 } from '../util/crc32.ts';
 
 /** zlib stream of stored blocks (RFC 1950/1951, BTYPE 00). */
 export function zlibStored(data: Uint8Array): Uint8Array {
@@ -84,7 +60,7 @@ export function encodePng(
     view.setUint32(o, data.length);
     for (let i = 0; i < 4; i++) out[o + 4 + i] = type.charCodeAt(i);
     out.set(data, o + 8);
-    view.setUint32(o + 8 + data.length, crc32(out, o + 4, o + 8 + data.length));
+    view.setUint32(o + 8 + data.length, crc32(out.subarray(o + 4, o + 8 + data.length)));
     o += 12 + data.length;
   }
   return out;

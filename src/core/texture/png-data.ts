@@ -8,6 +8,7 @@
  * headers), which bounds what a header may claim for the compressed bytes it has.
  */
 import { Unzlib } from 'fflate';
+import { adler32 } from '../util/adler32.ts';
 import { FormatError } from '../util/format-error.ts';
 import { sanitize } from '../util/message.ts';
 
@@ -76,8 +77,7 @@ export function inflateChecked(idat: Uint8Array[], idatBytes: number, h: PngHead
   let total = 0;
   // Adler-32 of the inflated bytes (RFC 1950 §8.2): fflate does not check the
   // stream's trailer, and a damaged stream can inflate to the right size.
-  let adlerA = 1;
-  let adlerB = 0;
+  let adler = 1;
   const inflater = new Unzlib((chunk) => {
     if (total + chunk.length > need) {
       fail(
@@ -94,16 +94,7 @@ export function inflateChecked(idat: Uint8Array[], idatBytes: number, h: PngHead
       if (pass === passes.length) nextFilter = Infinity;
     }
     total += chunk.length;
-    // Reduced every 5552 bytes at most (zlib's NMAX), so the sums stay exact doubles.
-    for (let i = 0; i < chunk.length;) {
-      const end = Math.min(chunk.length, i + 5552);
-      for (; i < end; i++) {
-        adlerA += chunk[i];
-        adlerB += adlerA;
-      }
-      adlerA %= 65521;
-      adlerB %= 65521;
-    }
+    adler = adler32(chunk, adler);
   });
   try {
     let pushed = 0;
@@ -126,13 +117,12 @@ export function inflateChecked(idat: Uint8Array[], idatBytes: number, h: PngHead
       `the image data inflates to ${total} bytes, but the ${h.width}×${h.height} header needs ${need}`,
     );
   }
-  const last = idat[idat.length - 1];
-  const tail = [...idat.flatMap((d) => [...d.subarray(Math.max(0, d.length - 4))])].slice(-4);
+  // The stream's last four bytes, which may span IDAT chunks.
+  const tail = idat.flatMap((d) => [...d.subarray(Math.max(0, d.length - 4))]).slice(-4);
   const stored = ((tail[0] << 24) | (tail[1] << 16) | (tail[2] << 8) | tail[3]) >>> 0;
-  const computed = ((adlerB << 16) | adlerA) >>> 0;
-  if (last !== undefined && stored !== computed) {
+  if (stored !== adler) {
     fail(
-      `the image data's Adler-32 checksum is ${hex(stored)}, but the data gives ${hex(computed)} (the file is damaged)`,
+      `the image data's Adler-32 checksum is ${hex(stored)}, but the data gives ${hex(adler)} (the file is damaged)`,
     );
   }
 }
