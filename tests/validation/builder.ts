@@ -13,6 +13,7 @@
  *   `EnvironmentJson` variant and an `ENVIRONMENT_MAKERS` entry in
  *   archetypes.ts.
  */
+import type { GltfObject } from './gltf-files.ts';
 import type { Rng } from './rng.ts';
 import { cross, length, type Vec3 } from './vec.ts';
 
@@ -81,7 +82,19 @@ export const MESH_FEATURES = [
   'env-map-pfm',
   'env-map-only',
 ] as const;
-export type Feature = (typeof FEATURES)[number] | (typeof MESH_FEATURES)[number];
+/** What the glTF family (archetypes-gltf.ts) covers; checked over its consistency scenes. */
+export const GLTF_FEATURES = [
+  'gltf',
+  'gltf-metal',
+  'gltf-dielectric',
+  'gltf-smooth',
+  'gltf-rough',
+  'gltf-transmission',
+  'gltf-specular',
+  'gltf-ior',
+] as const;
+export type GltfFeature = (typeof GLTF_FEATURES)[number];
+export type Feature = (typeof FEATURES)[number] | (typeof MESH_FEATURES)[number] | GltfFeature;
 
 export type MaterialJson =
   | { type: 'diffuse'; albedo: Vec3; emission?: Vec3 }
@@ -91,7 +104,16 @@ export type MaterialJson =
 export type ShapeJson =
   | { type: 'sphere'; center: Vec3; radius: number; material: string }
   | { type: 'quad'; corner: Vec3; u: Vec3; v: Vec3; material: string }
-  | MeshJson;
+  | MeshJson
+  | GltfShapeJson;
+
+/** A glTF model (generate.ts writes its `.glb` beside the scene and fills in `file`). */
+export interface GltfShapeJson {
+  type: 'gltf';
+  file: string;
+  /** Row-major 4×4, last row 0 0 0 1. */
+  transform?: number[];
+}
 
 /**
  * A mesh as the scene file has it: inline arrays, or a file written beside the
@@ -166,6 +188,8 @@ export class SceneBuilder {
   /** Storage of each mesh shape, by its index in `shapes` (inline when absent). */
   readonly meshStorage = new Map<number, MeshStorage>();
   environment: EnvironmentJson = null;
+  /** The glTF model of each gltf shape, by its index in `shapes`. */
+  readonly gltfObjects = new Map<number, GltfObject>();
   private count = 0;
 
   constructor(readonly rng: Rng) {}
@@ -231,6 +255,12 @@ export class SceneBuilder {
       return name;
     }
     return this.material(kind, emission);
+  }
+
+  /** A glTF model; its material is its own (not in `materials`). */
+  gltf(o: GltfObject): void {
+    this.gltfObjects.set(this.shapes.length, o);
+    this.shapes.push({ type: 'gltf', file: '', transform: o.transform });
   }
 
   sphere(center: Vec3, radius: number, material: string): void {

@@ -1,17 +1,18 @@
 /**
  * The generated-scene consistency suite (issue 8, deliverable 3; issue 11
- * §5 for meshes and maps), shared by consistency-*.test.ts so vitest can run
+ * §5 for meshes and maps; issue 25 for glTF materials), shared by consistency-*.test.ts so vitest can run
  * its parts on both cores.
  *
- * For each of SCENE_COUNT classic generated scenes (seeds 1…SCENE_COUNT)
- * and MESH_SCENE_COUNT of the mesh family (seeds MESH_FIRST_SEED…), at
+ * For each of SCENE_COUNT classic generated scenes (seeds 1…SCENE_COUNT),
+ * MESH_SCENE_COUNT of the mesh family (seeds MESH_FIRST_SEED…) and
+ * GLTF_SCENE_COUNT of the glTF family (seeds GLTF_FIRST_SEED…), at
  * 32×24 pixels and SEEDS independent seeds per configuration,
  * NEE+MIS must agree with BSDF-only and Sobol with independent sampling
  * (consistency.ts) in every region and channel: 2 pairs × 17 regions × 3
  * channels = 102 two-sided Welch tests per scene.
  *
  * False alarms: each test rejects at p < ALPHA_SUITE / ((SCENE_COUNT +
- * MESH_SCENE_COUNT) · 102) (Bonferroni), so a correct renderer fails the whole suite, over a fresh
+ * MESH_SCENE_COUNT + GLTF_SCENE_COUNT) · 102) (Bonferroni), so a correct renderer fails the whole suite, over a fresh
  * draw of seeds, with probability at most ALPHA_SUITE = 1e-3. The seeds
  * are fixed, so the suite itself cannot flake: it either passes on every
  * run or fails on every run.
@@ -25,9 +26,15 @@ import {
   checkConsistency,
   type PairTest,
 } from './consistency.ts';
-import { generateScene, type Family } from './generate.ts';
+import { generateScene, loadGltfModels, type Family } from './generate.ts';
 
-export { MESH_FIRST_SEED, MESH_SCENE_COUNT, SCENE_COUNT } from './consistency.ts';
+export {
+  GLTF_FIRST_SEED,
+  GLTF_SCENE_COUNT,
+  MESH_FIRST_SEED,
+  MESH_SCENE_COUNT,
+  SCENE_COUNT,
+} from './consistency.ts';
 
 function explain(t: PairTest): string {
   return (
@@ -38,13 +45,19 @@ function explain(t: PairTest): string {
 
 /** Registers one test per scene for seeds first…last of a family. */
 export function consistencySuite(first: number, last: number, family: Family = 'classic'): void {
-  const what = family === 'mesh' ? 'generated mesh and map scenes' : 'generated scenes';
+  const what =
+    family === 'mesh'
+      ? 'generated mesh and map scenes'
+      : family === 'gltf'
+        ? 'generated glTF-material scenes'
+        : 'generated scenes';
   describe(`${what} ${first}–${last}: NEE+MIS = BSDF-only, Sobol = independent`, () => {
     for (let seed = first; seed <= last; seed++) {
       const generated = generateScene(seed, { family });
-      it(`scene ${seed} (${generated.archetype}, ${generated.features.join(' ')})`, () => {
-        const options = family === 'mesh' ? MESH_OPTIONS : OPTIONS;
-        const r = checkConsistency(generated.scene, options, 100_003 * seed);
+      it(`scene ${seed} (${generated.archetype}, ${generated.features.join(' ')})`, async () => {
+        const options = family === 'classic' ? OPTIONS : MESH_OPTIONS;
+        const scene = family === 'gltf' ? await loadGltfModels(generated) : generated.scene;
+        const r = checkConsistency(scene, options, 100_003 * seed);
         expect(r.tests.length).toBe(TESTS_PER_SCENE);
         expect(r.rejected, 'non-finite samples').toBe(0);
         // The premise of the BSDF-only variance floor (consistency.ts).

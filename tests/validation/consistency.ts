@@ -32,6 +32,12 @@ import {
   type SamplerKind,
 } from '../../src/core/index.ts';
 import {
+  GM_EMISSIVE,
+  GM_IOR,
+  GM_STRIDE,
+  GM_TRANSMISSION,
+} from '../../src/core/gltf-material/material-table.ts';
+import {
   imageRegions,
   pilotSegments,
   renderReplicas,
@@ -102,7 +108,8 @@ const CONFIGS: Record<'A' | 'B' | 'C', { estimator: Estimator; sampler: SamplerK
  * roulette's 1/(1−q) with q = max(0.05, 1 − max β·etaScale), which can
  * lift the largest channel by at most 1/0.95 per bounce from the third.
  * With a = the largest diffuse albedo (1 as soon as any conductor or
- * dielectric is present): V = (Le·Σₖ aᵏ + Lenv) · ηfactor · 0.95^−(B−2),
+ * dielectric is present, GLTF_WEIGHT_BOUND with a glTF model):
+ * V = (Le·Σₖ aᵏ + Lenv·max(1, a)^B) · ηfactor · 0.95^−(B−2),
  * Lenv the constant environment or the brightest texel of the map times its
  * scale.
  */
@@ -116,12 +123,37 @@ export function bsdfSampleBound(scene: Scene): number {
     else a = 1;
     if (m.type === 'dielectric') eta *= Math.max(1, m.ior * m.ior);
   }
+  for (const s of scene.shapes) {
+    if (s.type !== 'gltf' || s.data === null) continue;
+    const table = s.data.materials;
+    for (let o = 0; o < table.length; o += GM_STRIDE) {
+      le = Math.max(
+        le,
+        table[o + GM_EMISSIVE],
+        table[o + GM_EMISSIVE + 1],
+        table[o + GM_EMISSIVE + 2],
+      );
+      if (table[o + GM_TRANSMISSION] > 0) eta *= Math.max(1, table[o + GM_IOR] ** 2);
+    }
+    a = Math.max(a, GLTF_WEIGHT_BOUND);
+  }
   const B = scene.settings.maxBounces;
   let sum = 0;
   for (let k = 0; k <= B; k++) sum += a ** k;
   const env = Math.max(...scene.environment, environmentMapMaximum(scene));
-  return (le * sum + env) * eta * Math.pow(1 / 0.95, Math.max(0, B - 2));
+  // The environment is reached after at most B scattering events, each weighing ≤ a when a > 1.
+  return (le * sum + env * Math.max(1, a) ** B) * eta * Math.pow(1 / 0.95, Math.max(0, B - 2));
 }
+
+/**
+ * A bound on one channel of a glTF BSDF sample's weight f·cos/pdf. The glTF BSDF picks
+ * its lobe with probabilities from the *mean* over channels of each lobe's albedo
+ * estimate, so one channel of a saturated colour can carry up to 3× the mean; and the
+ * estimate is taken at wo only, so a rough lobe's weight may exceed it somewhat. 4 covers
+ * both; the suite checks the premise on every scene (the largest sample seen ≤ the bound),
+ * so a lobe that breaks it fails loudly rather than weakening the test in silence.
+ */
+export const GLTF_WEIGHT_BOUND = 4;
 
 /** The brightest radiance an environment map sends: largest texel times scale (0 without one). */
 export function environmentMapMaximum(scene: Scene): number {
@@ -240,6 +272,9 @@ export const SCENE_COUNT = 120;
 /** Mesh-family scenes (generateScene(seed, { family: 'mesh' })), seeds MESH_FIRST_SEED…. */
 export const MESH_SCENE_COUNT = 40;
 export const MESH_FIRST_SEED = 3001;
+/** glTF-family scenes (generateScene(seed, { family: 'gltf' })), seeds GLTF_FIRST_SEED…. */
+export const GLTF_SCENE_COUNT = 16;
+export const GLTF_FIRST_SEED = 5001;
 export const ALPHA_SUITE = 1e-3;
 export const OPTIONS: ConsistencyOptions = {
   width: 32,
@@ -254,6 +289,7 @@ export const OPTIONS: ConsistencyOptions = {
  */
 export const MESH_OPTIONS: ConsistencyOptions = { ...OPTIONS, budget: 1_350_000 };
 export const TESTS_PER_SCENE = 2 * imageRegions(OPTIONS.width, OPTIONS.height).length * 3;
-/** Bonferroni over every test of both families: the whole suite fails by chance with p ≤ ALPHA_SUITE. */
-export const ALPHA_PER_TEST = ALPHA_SUITE / ((SCENE_COUNT + MESH_SCENE_COUNT) * TESTS_PER_SCENE);
+/** Bonferroni over every test of the three families: the whole suite fails by chance with p ≤ ALPHA_SUITE. */
+export const ALPHA_PER_TEST =
+  ALPHA_SUITE / ((SCENE_COUNT + MESH_SCENE_COUNT + GLTF_SCENE_COUNT) * TESTS_PER_SCENE);
 const Z_PER_TEST = normalQuantileTwoSided(ALPHA_PER_TEST);

@@ -15,6 +15,10 @@
  * their bytes come in `files`, and `scene` has them read and decoded already,
  * by the core's own decoders.
  *
+ * The 'gltf' family (archetypes-gltf.ts) writes glTF models as `.glb` files in
+ * `files`; loading them is asynchronous, so its `scene` keeps them unread until
+ * `loadGltfModels` reads them through the core's loader.
+ *
  * Use: `generateScene(seed)`; `node scripts/run-ts.mjs
  * tests/validation/export-references.ts` writes the reference set as files.
  */
@@ -22,10 +26,12 @@ import { BVH_THRESHOLD, parseScene, type MeshDesc, type Scene } from '../../src/
 import { buildMeshData } from '../../src/core/geometry/mesh-data.ts';
 import { parseObj } from '../../src/core/io/obj.ts';
 import { parsePly } from '../../src/core/io/ply.ts';
-import { decodeEnvironmentImage } from '../../src/core/scene/load/load.ts';
+import { decodeEnvironmentImage, resolveSceneFiles } from '../../src/core/scene/load/load.ts';
 import { compose, similarityMatrix, transformPositions } from './affine.ts';
 import { ARCHETYPES } from './archetypes.ts';
 import { MESH_ARCHETYPES } from './archetypes-mesh.ts';
+import { GLTF_ARCHETYPES } from './archetypes-gltf.ts';
+import { encodeGlb } from './gltf-files.ts';
 import {
   SceneBuilder,
   type Feature,
@@ -38,7 +44,7 @@ import { encodeMeshFile } from './mesh-files.ts';
 import { Rng } from './rng.ts';
 import { Similarity, normalize, type Vec3 } from './vec.ts';
 
-export type Family = 'classic' | 'mesh';
+export type Family = 'classic' | 'mesh' | 'gltf';
 
 export interface GeneratedScene {
   seed: number;
@@ -70,7 +76,8 @@ export function generateScene(seed: number, options: GenerateOptions = {}): Gene
   const rng = new Rng(seed);
   const b = new SceneBuilder(rng);
   const family = options.family ?? 'classic';
-  const all = family === 'mesh' ? MESH_ARCHETYPES : ARCHETYPES;
+  const all =
+    family === 'mesh' ? MESH_ARCHETYPES : family === 'gltf' ? GLTF_ARCHETYPES : ARCHETYPES;
   const candidates = options.archetype ? all.filter((a) => a.name === options.archetype) : all;
   if (candidates.length === 0) throw new Error(`unknown archetype ${options.archetype}`);
   const archetype = rng.weighted(candidates.map((a) => [a, a.weight] as const));
@@ -98,6 +105,12 @@ export function generateScene(seed: number, options: GenerateOptions = {}): Gene
   const files: Record<string, Uint8Array> = {};
   const shapes = b.shapes.map((s, i) => {
     const t = transformShape(s, sim);
+    const model = b.gltfObjects.get(i);
+    if (t.type === 'gltf' && model !== undefined) {
+      const file = `${prefix}-${i}.glb`;
+      files[file] = encodeGlb(model.mesh, model.material);
+      return { ...t, file };
+    }
     const storage = b.meshStorage.get(i);
     return t.type === 'mesh' && storage && storage !== 'inline'
       ? meshFile(t, storage, `${prefix}-${i}`, files)
@@ -204,6 +217,8 @@ function transformShape(s: ShapeJson, sim: Similarity): ShapeJson {
       return { ...s, center: sim.point(s.center), radius: s.radius * sim.scale };
     case 'quad':
       return { ...s, corner: sim.point(s.corner), u: sim.vector(s.u), v: sim.vector(s.v) };
+    case 'gltf':
+      return { ...s, transform: compose(similarityMatrix(sim), s.transform!) };
     case 'mesh': {
       // A transform takes the similarity on the left; positions without one are mapped
       // (and their normals rotated: a similarity keeps unit normals unit).
@@ -220,4 +235,19 @@ function transformShape(s: ShapeJson, sim: Similarity): ShapeJson {
       return out;
     }
   }
+}
+
+/**
+ * The glTF family's scene with its models loaded by the core's own glTF loader
+ * (resolveSceneFiles, reading `files`), as the CLI would load the scene.
+ */
+export async function loadGltfModels(g: GeneratedScene): Promise<Scene> {
+  const reader = {
+    async read(path: string): Promise<Uint8Array> {
+      const bytes = g.files[path];
+      if (bytes === undefined) throw new Error(`no such generated file ${path}`);
+      return bytes;
+    },
+  };
+  return resolveSceneFiles(g.scene, reader);
 }

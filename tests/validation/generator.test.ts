@@ -20,9 +20,12 @@ import {
 } from '../../src/core/index.ts';
 import { ARCHETYPES } from './archetypes.ts';
 import { MESH_ARCHETYPES } from './archetypes-mesh.ts';
-import { FEATURES, MESH_FEATURES } from './builder.ts';
+import { GLTF_ARCHETYPES, GLTF_MATERIALS } from './archetypes-gltf.ts';
+import { FEATURES, GLTF_FEATURES, MESH_FEATURES } from './builder.ts';
 import {
   ALPHA_PER_TEST,
+  GLTF_FIRST_SEED,
+  GLTF_SCENE_COUNT,
   MESH_FIRST_SEED,
   MESH_OPTIONS,
   MESH_SCENE_COUNT,
@@ -30,7 +33,7 @@ import {
   SCENE_COUNT,
   checkConsistency,
 } from './consistency.ts';
-import { generateScene, type GeneratedScene } from './generate.ts';
+import { generateScene, loadGltfModels, type GeneratedScene } from './generate.ts';
 import { cross, normalize } from './vec.ts';
 
 const normal = (q: QuadDesc) => normalize(cross(q.u, q.v));
@@ -209,6 +212,42 @@ describe('scene generator, mesh family', () => {
     const scales = scenes.map((g) => g.scale);
     expect(Math.min(...scales)).toBeLessThanOrEqual(1e-4);
     expect(Math.max(...scales)).toBeGreaterThanOrEqual(1e4);
+  });
+});
+
+describe('scene generator, glTF family', () => {
+  const scenes = Array.from({ length: GLTF_SCENE_COUNT }, (_, i) =>
+    generateScene(GLTF_FIRST_SEED + i, { family: 'gltf' }),
+  );
+
+  it('makes scenes whose .glb models load through the core loader, with no warning', async () => {
+    for (const g of scenes) {
+      const scene = await loadGltfModels(g);
+      const models = scene.shapes.filter((s) => s.type === 'gltf');
+      expect(models.length, `seed ${g.seed}`).toBeGreaterThan(0);
+      for (const m of models) {
+        expect(m.data, `seed ${g.seed}`).not.toBeNull();
+        // An ignored extension would test nothing: every drawn material must be honoured.
+        expect(m.data!.warnings, `seed ${g.seed}`).toEqual([]);
+      }
+    }
+  });
+
+  it('is deterministic, and apart from the other families', () => {
+    for (const g of scenes.slice(0, 4)) {
+      const again = generateScene(g.seed, { family: 'gltf' });
+      expect(JSON.stringify(again.json)).toBe(JSON.stringify(g.json));
+      for (const [k, v] of Object.entries(g.files)) expect(again.files[k]).toEqual(v);
+    }
+  });
+
+  it('covers every glTF feature, material drawer and archetype over the consistency suite’s seeds', () => {
+    const seen = new Set(scenes.flatMap((g) => g.features));
+    for (const f of GLTF_FEATURES) expect(seen.has(f), f).toBe(true);
+    const archetypes = new Set(scenes.map((g) => g.archetype));
+    for (const a of GLTF_ARCHETYPES) expect(archetypes.has(a.name), a.name).toBe(true);
+    // Each drawer tags at least one feature of its own, so covering features covers drawers.
+    expect(GLTF_MATERIALS.length).toBeGreaterThan(0);
   });
 });
 

@@ -1,0 +1,160 @@
+/**
+ * The generator's glTF family (issue 25): scenes with glTF models whose materials use
+ * the metallic–roughness model and its extensions, drawn with
+ * `generateScene(seed, { family: 'gltf' })`. A family of its own so the classic and
+ * mesh families keep their random streams, seeds and committed references.
+ *
+ * Each scene: a floor, sphere and quad lights (archetypes.ts), a constant environment
+ * now and then, and one to three closed meshes (icosphere, box, torus) written as
+ * `.glb` files (gltf-files.ts), each with one material drawn from GLTF_MATERIALS.
+ * The estimator-consistency suite (consistency-d.test.ts) renders them: NEE+MIS must
+ * agree with BSDF-only sampling, and Sobol with independent samples, so every lobe's
+ * eval, pdf and sample must agree with each other inside a whole renderer (the χ²
+ * tests check them one lobe at a time). There are no Mitsuba references for these
+ * materials: Mitsuba 3 has no glTF material.
+ *
+ * A new lobe or material extension joins by adding a drawer to GLTF_MATERIALS with the
+ * features it covers; the generator test checks each feature occurs in the suite.
+ */
+import { trs } from './affine.ts';
+import {
+  bounces,
+  environment,
+  extent,
+  lens,
+  lights,
+  pointIn,
+  type Archetype,
+  type Region,
+} from './archetypes.ts';
+import type { GltfFeature, SceneBuilder } from './builder.ts';
+import type { GltfMaterialJson, GltfObject } from './gltf-files.ts';
+import { box, icosphere, torus, type LocalMesh } from './meshes.ts';
+import type { Rng } from './rng.ts';
+import { add, length, sub, type Vec3 } from './vec.ts';
+
+export interface DrawnMaterial {
+  material: GltfMaterialJson;
+  features: GltfFeature[];
+}
+
+/** A way to draw a glTF material, by weight. */
+export interface GltfMaterialDrawer {
+  name: string;
+  weight: number;
+  draw(g: Rng): DrawnMaterial;
+}
+
+const color = (g: Rng, lo: number, hi: number): Vec3 => [
+  g.uniform(lo, hi),
+  g.uniform(lo, hi),
+  g.uniform(lo, hi),
+];
+
+/**
+ * The core model: metallic 0, 1 or between; roughness 0 (Dirac lobes) or 0.05…1;
+ * KHR_materials_transmission, _ior and _specular now and then.
+ */
+function drawPlain(g: Rng): DrawnMaterial {
+  const features: GltfFeature[] = [];
+  const metallic = g.weighted([
+    [0, 0.45],
+    [1, 0.25],
+    [g.uniform(0, 1), 0.3],
+  ] as const);
+  features.push(metallic > 0.5 ? 'gltf-metal' : 'gltf-dielectric');
+  const roughness = g.chance(0.25) ? 0 : g.uniform(0.05, 1);
+  features.push(roughness === 0 ? 'gltf-smooth' : 'gltf-rough');
+  const extensions: Record<string, unknown> = {};
+  if (g.chance(0.35)) {
+    extensions.KHR_materials_transmission = { transmissionFactor: g.uniform(0.3, 1) };
+    features.push('gltf-transmission');
+  }
+  if (g.chance(0.4)) {
+    extensions.KHR_materials_ior = { ior: g.uniform(1.1, 2.4) };
+    features.push('gltf-ior');
+  }
+  if (g.chance(0.3)) {
+    extensions.KHR_materials_specular = {
+      specularFactor: g.uniform(0, 1),
+      specularColorFactor: color(g, 0.2, 1),
+    };
+    features.push('gltf-specular');
+  }
+  return {
+    material: {
+      pbrMetallicRoughness: {
+        baseColorFactor: [...color(g, 0.05, 0.95), 1],
+        metallicFactor: metallic,
+        roughnessFactor: roughness,
+      },
+      ...(Object.keys(extensions).length > 0 ? { extensions } : {}),
+    },
+    features,
+  };
+}
+
+/** Every drawer; a material extension's lobes join here (see the file comment). */
+export const GLTF_MATERIALS: GltfMaterialDrawer[] = [
+  { name: 'metallic-roughness', weight: 1, draw: drawPlain },
+];
+
+/** The meshes a glTF object may be: closed, so transmissive ones bound a volume. */
+function drawMesh(g: Rng): LocalMesh {
+  return g.weighted([
+    [icosphere(2), 0.5],
+    [box(), 0.25],
+    [torus(0.35, 24, 12), 0.25],
+  ] as const);
+}
+
+function buildGltfObjects(b: SceneBuilder): ReturnType<Archetype['build']> {
+  const g = b.rng;
+  const floor = b.material(g.chance(0.8) ? 'diffuse' : 'conductor');
+  const S = 40;
+  b.quad([-S / 2, 0, -S / 2], [0, 0, S], [S, 0, 0], floor);
+  environment(b, 0.5);
+  const region: Region = { lo: [-2, 0, -2], hi: [2, 2, 2] };
+  const elevation = g.uniform(5, 50) * (Math.PI / 180);
+  const azimuth = g.uniform(0, 2 * Math.PI);
+  const dist = g.uniform(5, 10);
+  const eye: Vec3 = [
+    dist * Math.cos(elevation) * Math.sin(azimuth),
+    dist * Math.sin(elevation) + 0.2,
+    dist * Math.cos(elevation) * Math.cos(azimuth),
+  ];
+  const hasEnv = b.environment !== null;
+  lights(b, { lo: [-3, 0.5, -3], hi: [3, 4, 3] }, 0, g.int(hasEnv ? 0 : 1, 2), eye);
+  const count = g.int(1, 3);
+  let placed = 0;
+  for (let i = 0; i < count || placed === 0; i++) {
+    const size = extent(region) * g.uniform(0.08, 0.18);
+    // After `count` tries, the middle of the region (the eye is at least 5 away).
+    const c: Vec3 = i < count ? pointIn(b, region) : [0, 0, 0];
+    c[1] = Math.max(c[1], size * 1.2);
+    if (length(sub(c, eye)) < size * 3) continue;
+    placed++;
+    const drawer = g.weighted(GLTF_MATERIALS.map((d) => [d, d.weight] as const));
+    const drawn = drawer.draw(g);
+    b.tag('gltf', ...drawn.features);
+    b.gltf({
+      mesh: drawMesh(g),
+      material: drawn.material,
+      transform: trs(c, g.direction(), g.uniform(0, 2 * Math.PI), [size, size, size]),
+    });
+  }
+  b.tag('camera-outside');
+  return {
+    camera: lens(b, {
+      position: eye,
+      target: add([0, 0.8, 0], [g.uniform(-0.5, 0.5), g.uniform(-0.3, 0.3), g.uniform(-0.5, 0.5)]),
+      up: [0, 1, 0],
+      fovY: g.uniform(25, 60),
+    }),
+    maxBounces: bounces(b, 1, 6),
+  };
+}
+
+export const GLTF_ARCHETYPES: Archetype[] = [
+  { name: 'gltf-objects', weight: 1, build: buildGltfObjects },
+];
