@@ -12,7 +12,7 @@
  * uses was ignored or is not supported. Notes that the model is shown in its rest pose
  * (animations, skins, morph targets: a still image has no time) are listed, not failed.
  *
- *   node scripts/corpus.mjs [--width 128] [--height 96] [--spp 16] [--threads 2]
+ *   node scripts/corpus.mjs [--width 160] [--height 120] [--spp 16] [--threads 2]
  *                           [--only A,B] [--no-browser] [--write] [--json FILE]
  *
  * --write also writes docs/gallery.md and a PNG thumbnail per model under docs/gallery/
@@ -43,8 +43,8 @@ const cli = join(root, 'bin/pathwise.js');
 
 function parseArgs(argv) {
   const o = {
-    width: 128,
-    height: 96,
+    width: 160,
+    height: 120,
     spp: 16,
     threads: 2,
     only: null,
@@ -561,7 +561,8 @@ async function main() {
       const json = gltfJson(m.path);
       const info = { extensions: extensionsCell(json), triangles: triangleCount(json) };
       const { result, image } = await renderCli(m, o, work);
-      if (o.write && image) {
+      // Thumbnails only of committed models: the others' licences are unclear or unchecked.
+      if (o.write && image && m.committed) {
         const png = encodePng(image);
         writeFileSync(join(thumbs, `${m.name}.png`), png);
         m.thumb = `gallery/${m.name}.png`;
@@ -633,8 +634,10 @@ function writeGallery(rows, absent, manifest, o, settings, messages) {
       '❌ *n* ignored counts such messages (listed below the table); ❌ fails means the file was ' +
       'refused. **load s** is the wall time of the CLI process minus its render time: Node start ' +
       '(about 0.3 s), reading, decoding, and building the BVH. **peak MB** is the peak resident ' +
-      'set of the CLI process, workers included. **M paths/s** is the render alone, on a shared ' +
-      'machine: a rough figure. Triangles count every node instance (GPU instancing included) ' +
+      'set of the CLI process, workers included. **M paths/s** is what the CLI reports ' +
+      '(`mpaths_per_s` of `--json`: paths over the render’s seconds, which at this small size ' +
+      'include the workers’ start) on a machine shared with other jobs: a rough figure, not a ' +
+      'benchmark (see BENCHMARKS.md). Triangles count every node instance (GPU instancing included) ' +
       'from the file’s accessor counts.',
   );
   out.push('');
