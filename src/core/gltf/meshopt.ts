@@ -184,13 +184,16 @@ function checkStream(
   const count = required(e, 'count', p, 1);
   const mode = e.mode;
   if (typeof mode !== 'string' || !MODES.includes(mode))
-    fail(`${p}.mode`, `must be one of ${MODES.map(quote).join(', ')}, got ${describeValue(mode)}`);
+    fail(
+      `${p}.mode`,
+      `must be one of ${MODES.map((m) => quote(m)).join(', ')}, got ${describeValue(mode)}`,
+    );
   const filters = name === 'KHR_meshopt_compression' ? KHR_FILTERS : EXT_FILTERS;
   const filter = e.filter ?? 'NONE';
   if (typeof filter !== 'string' || !filters.includes(filter))
     fail(
       `${p}.filter`,
-      `must be one of ${filters.map(quote).join(', ')} for ${name}, got ${describeValue(filter)}`,
+      `must be one of ${filters.map((m) => quote(m)).join(', ')} for ${name}, got ${describeValue(filter)}`,
     );
   const end = byteOffset + byteLength;
   if (end > data[b].length)
