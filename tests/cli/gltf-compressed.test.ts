@@ -53,6 +53,8 @@ describe('pathwise render of compressed models', () => {
         '32',
         '--spp',
         '2',
+        '--threads',
+        '1',
         '--out',
         out,
       ]);
