@@ -27,13 +27,12 @@ export function decodableExtensions(decoders: GltfDecoders | undefined): Set<str
 }
 
 /**
- * Whether buffers[i] is left unread: a meshopt fallback buffer of a file whose
- * compressed views will be decoded (its bytes, if it has a URI, are never used).
+ * The buffers left unread: the meshopt fallback buffers of a file whose compressed views
+ * will be decoded (their bytes, if they have a URI, are never used).
  */
-export function skipsBuffer(json: Json, i: number, decodable: ReadonlySet<string>): boolean {
-  return (
-    decodable.has(MESHOPT_EXTENSIONS[0]) && usesMeshopt(json) && meshoptFallbackBuffers(json).has(i)
-  );
+export function skippedBuffers(json: Json, decodable: ReadonlySet<string>): Set<number> {
+  if (!decodable.has(MESHOPT_EXTENSIONS[0]) || !usesMeshopt(json)) return new Set();
+  return meshoptFallbackBuffers(json);
 }
 
 /** A getter's decoder; its failure to load is one GltfError naming the extension. */
@@ -56,20 +55,34 @@ export async function decodeCompressed(
   data: Uint8Array[],
   resources: Record<string, Uint8Array>,
   fileBytes: number,
+  skipped: ReadonlySet<number>,
   decoders: GltfDecoders | undefined,
 ): Promise<number[]> {
-  const buffers = list(json, 'buffers');
-  const declared = buffers.map((b) => b.byteLength as number);
-  const skipped = new Set<number>();
-  const decodable = decodableExtensions(decoders);
-  for (let i = 0; i < buffers.length; i++) if (skipsBuffer(json, i, decodable)) skipped.add(i);
+  const declared = list(json, 'buffers').map((b) => b.byteLength as number);
   if (decoders?.meshopt !== undefined && usesMeshopt(json)) {
-    const decoder = await load('EXT_meshopt_compression', decoders.meshopt);
+    const decoder = await load(MESHOPT_EXTENSIONS[0], decoders.meshopt);
     const input = data.reduce((s, d) => s + d.length, fileBytes);
-    await decodeMeshoptViews(json, data, resources, decoder, meshoptBudget(input, GLTF_FILE_BYTES));
+    const budget = meshoptBudget(input, GLTF_FILE_BYTES);
+    await guarded(MESHOPT_EXTENSIONS[0], () =>
+      decodeMeshoptViews(json, data, resources, decoder, budget),
+    );
   }
   if (decoders?.draco !== undefined && usesDraco(json)) {
-    decodeDracoPrimitives(json, data, resources, await load(DRACO_EXTENSION, decoders.draco));
+    const draco = await load(DRACO_EXTENSION, decoders.draco);
+    await guarded(DRACO_EXTENSION, async () => decodeDracoPrimitives(json, data, resources, draco));
   }
   return data.map((d, i) => (skipped.has(i) ? declared[i] : d.length));
+}
+
+/**
+ * Runs a pre-pass; what escapes its checks (a WebAssembly trap, the decoder's heap
+ * exhausted) is still one GltfError naming the extension, never a RuntimeError.
+ */
+async function guarded(name: string, pass: () => Promise<void>): Promise<void> {
+  try {
+    await pass();
+  } catch (e) {
+    if (e instanceof GltfError) throw e;
+    throw new GltfError(`${name}: decoding failed (${messageOf(e)})`);
+  }
 }

@@ -84,6 +84,8 @@ export function decodeDracoPrimitives(
           fail(`${p}`, `a Draco primitive must have mode 4 (TRIANGLES), got ${pr.mode as number}`);
         if (pr.indices === undefined) fail(p, 'the primitive has no indices, which Draco decodes');
         const ind = pr.indices as number;
+        if (attributes.POSITION === undefined)
+          fail(`meshes[${i}].primitives[${j}].attributes`, 'a Draco primitive needs POSITION');
         const indexCount = accessors[ind].count as number;
         const pointCount = accessors[attributes.POSITION as number].count as number;
 

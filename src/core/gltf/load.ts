@@ -40,7 +40,7 @@ import type {
   GltfModel,
   TangentGenerator,
 } from '../scene/format/gltf-model.ts';
-import { decodableExtensions, decodeCompressed, skipsBuffer } from './decode-compressed.ts';
+import { decodableExtensions, decodeCompressed, skippedBuffers } from './decode-compressed.ts';
 import { decodeGltfTextures } from './textures.ts';
 import { fromRowMajor } from './transforms.ts';
 import { validateGltfBuffers } from './validate-buffers.ts';
@@ -167,11 +167,12 @@ export async function loadGltf(
   const resources: Record<string, Uint8Array> = {};
   const buffers = (json.buffers as Record<string, unknown>[] | undefined) ?? [];
   const data: Uint8Array[] = [];
+  const skipped = skippedBuffers(json, decodable);
   for (let i = 0; i < buffers.length; i++) {
     const b = buffers[i];
     const where = `buffers[${i}]`;
     let bytes: Uint8Array;
-    if (skipsBuffer(json, i, decodable)) {
+    if (skipped.has(i)) {
       bytes = new Uint8Array(0); // a meshopt fallback buffer: its views are decoded
     } else if (b.uri === undefined) {
       if (i !== 0 || bin === null)
@@ -190,7 +191,14 @@ export async function loadGltf(
     }
     data.push(bytes);
   }
-  const bufferBytes = await decodeCompressed(json, data, resources, bytes.length, options.decoders);
+  const bufferBytes = await decodeCompressed(
+    json,
+    data,
+    resources,
+    bytes.length,
+    skipped,
+    options.decoders,
+  );
   validateGltfBuffers(json, bufferBytes);
   checkPrimitiveCounts(json);
   validateSparseIndices(json, data);

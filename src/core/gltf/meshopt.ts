@@ -145,8 +145,9 @@ export async function decodeMeshoptViews(
     if (Object.keys(ext).length === 0) delete view.extensions;
   }
   out.finish(resources, data);
+  const buffers = list(json, 'buffers');
   for (const i of fallback) {
-    const ext = (list(json, 'buffers')[i].extensions ?? {}) as Json;
+    const ext = (buffers[i].extensions ?? {}) as Json;
     for (const n of MESHOPT_EXTENSIONS) delete ext[n];
   }
   dropExtensionNames(json, MESHOPT_EXTENSIONS);

@@ -83,6 +83,29 @@ describe('meshopt-compressed files', () => {
     }
   });
 
+  it('a fallback buffer with a URI: not read with the decoder, read (and the extension noted) without', async () => {
+    const fallback = new Uint8Array(60);
+    fallback.set(new Uint8Array(QUAD_POSITIONS.buffer), 0);
+    fallback.set(new Uint8Array(QUAD_INDICES.buffer), 48);
+    const bytes = await meshoptQuadGlb({
+      edit: (j) => {
+        j.buffers[1].uri = 'fallback.bin';
+        delete j.extensionsRequired;
+      },
+    });
+    // With the decoder the reader is never asked for the file (it has none to give).
+    const decoded = await load(bytes);
+    expect(Array.from(decoded.positions)).toEqual(Array.from(QUAD_POSITIONS));
+    const plain = await loadGltf(bytes, 'model.glb', {
+      ...(await memoryOptions(new Map([['fallback.bin', fallback]]))),
+      decoders: {},
+    });
+    expect(Array.from(plain.indices)).toEqual(Array.from(QUAD_INDICES));
+    expect(plain.warnings).toEqual([
+      'extension "EXT_meshopt_compression" is not supported; its content is ignored',
+    ]);
+  });
+
   it('a platform without the decoder: the required extension is refused, by name', async () => {
     const bytes = await meshoptQuadGlb({
       edit: (j) => {
