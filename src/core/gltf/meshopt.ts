@@ -238,7 +238,7 @@ function checkStream(
     if ((source[0] & 0xf0) !== 0xa0 || version > 1)
       fail(
         p,
-        `the stream does not start with a meshopt attribute header (0xa0 or 0xa1), got 0x${source[0].toString(16)}`,
+        `the stream does not start with a meshopt attribute header (0xa0 or 0xa1), got 0x${source[0].toString(16).padStart(2, '0')}`,
       );
     ratio = ATTRIBUTE_RATIO[version];
   } else {
