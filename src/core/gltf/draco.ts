@@ -130,6 +130,11 @@ export function decodeDracoPrimitives(
           point(json, accessors[a], out, bytes.bytes, bytes.stride);
           done.set(a, key);
         }
+        if (done.has(ind) && done.get(ind) !== `${v}/indices`)
+          fail(
+            `${p}`,
+            `accessors[${ind}] (the indices) is decoded from two different Draco streams`,
+          );
         if (!done.has(ind)) {
           const bytes = withHeap(
             draco,
