@@ -78,6 +78,13 @@ describe('Draco-compressed files', () => {
       faces: 12,
       points: null,
     });
+    // The sequential method declares its points too (DracoSparseMesh, MorphPrimitivesTest).
+    expect(peekDracoCounts(fixture('DracoSparseMesh.bin'))).toEqual({
+      version: '2.2',
+      method: 0,
+      faces: 102,
+      points: 62,
+    });
     expect(peekDracoCounts(Uint8Array.of(1, 2, 3))).toMatch(/no "DRACO" header/);
     expect(peekDracoCounts(bin.subarray(0, 12))).toMatch(/ends early/);
   });
@@ -98,6 +105,21 @@ describe('hostile Draco streams: one GltfError naming the primitive', () => {
         P + ': the Draco stream declares 12 triangles, more than the 10 of its indices accessor$',
       ),
     ));
+
+  it('a sequential stream that claims more points than the POSITION accessor', async () => {
+    const error = await loadFixture('DracoSparseMesh.gltf', 'DracoSparseMesh.bin', (j) => {
+      for (let a = 1; a <= 6; a++) j.accessors[a].count = 50;
+    }).then(
+      () => null,
+      (e: unknown) => e,
+    );
+    expect(error).toBeInstanceOf(GltfError);
+    expect((error as Error).message).toMatch(
+      new RegExp(
+        P + ': the Draco stream declares 62 points, more than the 50 of its POSITION accessor$',
+      ),
+    );
+  });
 
   it('accessors that claim more than the stream decodes to', async () => {
     await refused(
