@@ -23,6 +23,8 @@ export interface MeshoptQuadOptions {
   version?: 0 | 1;
   /** COLOR_0 through the COLOR filter (KHR). */
   color?: boolean;
+  /** NORMAL (+z) through the OCTAHEDRAL filter, as snorm8 (KHR_mesh_quantization). */
+  normals?: boolean;
   edit?: (json: Json, bin: Uint8Array) => unknown;
 }
 
@@ -51,6 +53,18 @@ export async function meshoptQuadGlb(options: MeshoptQuadOptions = {}): Promise<
       stride: 4,
       mode: 'ATTRIBUTES',
       filter: 'COLOR',
+      target: 34962,
+    });
+  }
+  if (options.normals) {
+    const n = Float32Array.of(0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0);
+    const filtered = MeshoptEncoder.encodeFilterOct(n, 4, 4, 8);
+    streams.push({
+      data: filtered,
+      count: 4,
+      stride: 4,
+      mode: 'ATTRIBUTES',
+      filter: 'OCTAHEDRAL',
       target: 34962,
     });
   }
@@ -112,9 +126,19 @@ export async function meshoptQuadGlb(options: MeshoptQuadOptions = {}): Promise<
       type: 'VEC4',
     });
   }
+  if (options.normals) {
+    attributes.NORMAL = accessors.length;
+    accessors.push({
+      bufferView: accessors.length,
+      componentType: 5120,
+      normalized: true,
+      count: 4,
+      type: 'VEC3',
+    });
+  }
   const json: Json = {
     asset: { version: '2.0' },
-    extensionsUsed: [name],
+    extensionsUsed: options.normals ? [name, 'KHR_mesh_quantization'] : [name],
     extensionsRequired: [name],
     buffers: [
       { byteLength: bin },

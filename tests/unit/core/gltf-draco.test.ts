@@ -85,6 +85,12 @@ describe('Draco-compressed files', () => {
       faces: 102,
       points: 62,
     });
+    // Metadata (flag 0x8000) is skipped: no attribute metadata, one geometry entry a = b.
+    const meta = new Uint8Array(118 + 7);
+    meta.set(bin.subarray(0, 9));
+    meta.set([0x00, 0x80, 0, 1, 1, 0x61, 1, 0x62, 0], 9);
+    meta.set(bin.subarray(11, 118), 18);
+    expect(peekDracoCounts(meta)).toMatchObject({ method: 1, faces: 12 });
     expect(peekDracoCounts(Uint8Array.of(1, 2, 3))).toMatch(/no "DRACO" header/);
     expect(peekDracoCounts(bin.subarray(0, 12))).toMatch(/ends early/);
   });

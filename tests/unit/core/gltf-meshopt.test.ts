@@ -72,6 +72,12 @@ describe('meshopt-compressed files', () => {
     }
   });
 
+  it('the OCTAHEDRAL filter: snorm8 normals decode to +z', async () => {
+    const m = await load(await meshoptQuadGlb({ normals: true }));
+    expect(m.normals).not.toBeNull();
+    expect(Array.from(m.normals!)).toEqual([0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1]);
+  });
+
   it('real gltfpack output (pirate.glb, BoxMeshopt.glb) loads, fallback buffer unread', async () => {
     for (const [file, triangles] of [
       ['pirate.glb', 5010],
