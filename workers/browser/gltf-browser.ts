@@ -1,3 +1,4 @@
+/// <reference path="./draco-glue.d.ts" />
 /**
  * What loading glTF needs in the browser (page or worker): images decoded by
  * the platform's createImageBitmap (no colour-space conversion, no
