@@ -3,7 +3,8 @@
  * and a Draco `.gltf` with its buffer, dropped on the demo, load in the model worker with
  * the browser's decoders (gltf-browser.ts: meshopt's module and Draco's glue as lazy
  * chunks, Draco's WebAssembly as an asset) and render bit for bit what the Node core
- * renders for the same bare model with the Node decoders.
+ * renders for the same bare model with the Node decoders; the Draco one again from the
+ * production build (Vite's CommonJS conversion of the glue, the hashed wasm asset).
  */
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
@@ -19,7 +20,7 @@ import {
 } from '../../src/core/index.ts';
 import { ROOT } from '../helpers/render.ts';
 import { PASSES, SEED, SIZE, fixed, useDemo } from './context.ts';
-import { bitDifferences, openDemo, readLinear, waitForSpp } from './harness.ts';
+import { bitDifferences, openDemo, readLinear, startPreviewServer, waitForSpp } from './harness.ts';
 
 const ctx = useDemo();
 const FIXTURES = join(ROOT, 'tests/fixtures/compressed');
@@ -67,5 +68,26 @@ describe('compressed glTF in the demo (Chromium)', () => {
       expect(bitDifferences((await readLinear(page)).rgb, reference)).toBe(0);
     }
     await page.close();
+  });
+
+  it('the production build: the Draco glue as a CommonJS chunk, its WebAssembly as an asset', async () => {
+    const built = await startPreviewServer();
+    try {
+      const page = await openDemo(ctx.browser, built.url, `${fixed}&spp=${PASSES}`);
+      await waitForSpp(page, 1);
+      await page.setInputFiles(
+        '#file',
+        ['Box.gltf', 'Box.bin'].map((f) => join(FIXTURES, f)),
+      );
+      await page.waitForFunction(
+        () => (window as any).__pathwise.controller.scene.name === 'Box.gltf',
+      );
+      await waitForSpp(page, PASSES);
+      expect(await page.textContent('#error')).toBe('');
+      expect(bitDifferences((await readLinear(page)).rgb, await nodeReference('Box.gltf'))).toBe(0);
+      await page.close();
+    } finally {
+      await built.server.close();
+    }
   });
 });
