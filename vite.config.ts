@@ -18,7 +18,13 @@ export default defineConfig({
   // Vite re-optimise and reload the page under a running render.
   // Only the demo page is scanned: examples/embed imports the published
   // package by name (`pathwise`), which exists only in a consumer's install.
-  optimizeDeps: { include: ['comlink'], entries: ['index.html'] },
+  // The decoders of compressed meshes are imported by the model worker only when a model
+  // needs them (workers/browser/gltf-browser.ts); listed so that they too are pre-bundled
+  // at start-up rather than discovered under a running render.
+  optimizeDeps: {
+    include: ['comlink', 'meshoptimizer/decoder', 'draco3dgltf/draco_decoder_gltf_nodejs.js'],
+    entries: ['index.html'],
+  },
   // dist/cli holds the command line bundle; the web build must not empty it.
   build: { target: 'es2022', outDir: 'dist/web' },
 });

@@ -11,6 +11,11 @@ export {
   type ResolveOptions,
   type SceneFileReader,
 } from './scene/load/load.ts';
+export type {
+  DracoDecoderModule,
+  GltfDecoders,
+  MeshoptDecoderLike,
+} from './scene/format/gltf-model.ts';
 export {
   bareModelScene,
   isGlbBytes,

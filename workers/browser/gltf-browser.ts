@@ -1,3 +1,4 @@
+/// <reference path="./draco-glue.d.ts" />
 /**
  * What loading glTF needs in the browser (page or worker): images decoded by
  * the platform's createImageBitmap (no colour-space conversion, no
@@ -9,7 +10,12 @@ import mikktspaceWasmUrl from 'mikktspace/dist/module/mikktspace_module_bg.wasm?
 // Deep imports: these are the browser host's own tools, not part of the core's public
 // entries (whose published declarations a consumer compiles).
 import { createMikkTSpace } from '../../src/core/gltf/mikktspace-wasm.ts';
-import type { TangentGenerator } from '../../src/core/scene/format/gltf-model.ts';
+import type {
+  DracoDecoderModule,
+  GltfDecoders,
+  MeshoptDecoderLike,
+  TangentGenerator,
+} from '../../src/core/scene/format/gltf-model.ts';
 import { DEFAULT_MAX_TEXELS, type DecodedImage } from '../../src/core/texture/decoded-image.ts';
 import { imageDecodeError, libraryMessage } from '../../src/core/texture/image-error.ts';
 import { notPngOrJpeg, sniffImageType } from '../../src/core/texture/image-header.ts';
@@ -81,6 +87,7 @@ export async function browserGltfPlatform(
     // Without it, normal maps of primitives that have no tangents are ignored with a
     // warning (the loader says so) rather than failing the whole model.
     generateTangents: await browserTangentGenerator().catch(() => null),
+    decoders: browserGltfDecoders(),
     sharedTextures,
     onProgress,
   };
@@ -98,3 +105,43 @@ export function browserTangentGenerator(): Promise<TangentGenerator> {
     .then((b) => createMikkTSpace(new Uint8Array(b)));
   return mikktspace;
 }
+
+let meshopt: Promise<MeshoptDecoderLike> | null = null;
+let draco: Promise<DracoDecoderModule> | null = null;
+
+/**
+ * The decoders of compressed meshes, loaded once per page or worker and only when a
+ * model uses them: meshopt through a dynamic import (a chunk of its own: its module
+ * instantiates its WebAssembly on import, which a static import would do on every
+ * page), Draco's Emscripten glue likewise, with its WebAssembly fetched from the
+ * bundle's assets and handed over (as MikkTSpace's is), so the glue never looks for it.
+ */
+export function browserGltfDecoders(): GltfDecoders {
+  return {
+    meshopt() {
+      meshopt ??= import('meshoptimizer/decoder').then(async ({ MeshoptDecoder }) => {
+        await MeshoptDecoder.ready;
+        return MeshoptDecoder as MeshoptDecoderLike;
+      });
+      return meshopt;
+    },
+    draco() {
+      draco ??= Promise.all([
+        import('draco3dgltf/draco_decoder_gltf_nodejs.js'),
+        import('./draco-wasm.ts')
+          .then(({ default: url }) => fetch(url))
+          .then((r) => {
+            if (!r.ok)
+              throw new Error(`cannot load the Draco decoder (${r.status} ${r.statusText})`);
+            return r.arrayBuffer();
+          }),
+      ]).then(([glue, wasm]) => {
+        const create = (glue.default ?? glue) as DracoFactory;
+        return create({ wasmBinary: new Uint8Array(wasm) });
+      });
+      return draco;
+    },
+  };
+}
+
+type DracoFactory = (options: { wasmBinary: Uint8Array }) => Promise<DracoDecoderModule>;

@@ -35,10 +35,12 @@ import { isGlb, parseGlb } from './glb.ts';
 import { compileGltfMaterials } from './materials.ts';
 import type {
   GltfCamera,
+  GltfDecoders,
   GltfFileReader,
   GltfModel,
   TangentGenerator,
 } from '../scene/format/gltf-model.ts';
+import { decodableExtensions, decodeCompressed, skippedBuffers } from './decode-compressed.ts';
 import { decodeGltfTextures } from './textures.ts';
 import { fromRowMajor } from './transforms.ts';
 import { validateGltfBuffers } from './validate-buffers.ts';
@@ -69,6 +71,8 @@ export interface GltfLoadOptions {
   decodeImage: ImageDecoder;
   /** MikkTSpace, for normal-mapped primitives without TANGENT; null ignores such normal maps. */
   generateTangents?: TangentGenerator | null;
+  /** Decoders of compressed meshes, each called only when the file uses its extension. */
+  decoders?: GltfDecoders;
   /** Row-major affine 4×4 of the scene shape, applied on top of the node transforms. */
   transform?: number[] | null;
   textureLimitBytes?: number;
@@ -83,7 +87,7 @@ export interface GltfLoadOptions {
   onProgress?: (stage: GltfStage, done: number, total: number) => void;
 }
 
-export type { GltfCamera, GltfModel };
+export type { GltfCamera, GltfDecoders, GltfModel };
 
 const EXTENSIONS = [
   KHRMaterialsEmissiveStrength,
@@ -122,7 +126,8 @@ export async function loadGltf(
   } catch (e) {
     throw new GltfError(`JSON: ${messageOf(e)}`);
   }
-  const summary = validateGltfJson(json);
+  const decodable = decodableExtensions(options.decoders);
+  const summary = validateGltfJson(json, decodable);
   if (options.maxTriangles !== undefined && summary.triangles > options.maxTriangles) {
     throw new GltfError(
       `scene: instances ${summary.triangles} triangles, more than the ${options.maxTriangles} ` +
@@ -139,7 +144,7 @@ export async function loadGltf(
   }
   dropSourcelessTextures(json, summary.sourceless, warn);
   for (const name of (json.extensionsUsed as unknown[] | undefined) ?? []) {
-    if (typeof name === 'string' && !HONOURED_EXTENSIONS.has(name)) {
+    if (typeof name === 'string' && !HONOURED_EXTENSIONS.has(name) && !decodable.has(name)) {
       warn(`extension ${quote(name)} is not supported; its content is ignored`);
     }
   }
@@ -162,11 +167,14 @@ export async function loadGltf(
   const resources: Record<string, Uint8Array> = {};
   const buffers = (json.buffers as Record<string, unknown>[] | undefined) ?? [];
   const data: Uint8Array[] = [];
+  const skipped = skippedBuffers(json, decodable);
   for (let i = 0; i < buffers.length; i++) {
     const b = buffers[i];
     const where = `buffers[${i}]`;
     let bytes: Uint8Array;
-    if (b.uri === undefined) {
+    if (skipped.has(i)) {
+      bytes = new Uint8Array(0); // a meshopt fallback buffer: its views are decoded
+    } else if (b.uri === undefined) {
       if (i !== 0 || bin === null)
         throw new GltfError(`${where}: has no uri and the file has no GLB binary chunk`);
       bytes = bin;
@@ -183,10 +191,15 @@ export async function loadGltf(
     }
     data.push(bytes);
   }
-  validateGltfBuffers(
+  const bufferBytes = await decodeCompressed(
     json,
-    data.map((d) => d.length),
+    data,
+    resources,
+    bytes.length,
+    skipped,
+    options.decoders,
   );
+  validateGltfBuffers(json, bufferBytes);
   checkPrimitiveCounts(json);
   validateSparseIndices(json, data);
   for (const note of positionBoundsNotes(json, data)) warn(note);

@@ -134,20 +134,28 @@ function checkAsset(json: Json): void {
 }
 
 /**
- * Checks everything that does not need the buffers' bytes. Throws GltfError.
+ * Checks everything that does not need the buffers' bytes; `decodable` names the
+ * compression extensions this platform can decode (load.ts), which a file may require.
+ * Throws GltfError.
  */
-export function validateGltfJson(json: unknown): GltfSummary {
+export function validateGltfJson(
+  json: unknown,
+  decodable: ReadonlySet<string> = new Set(),
+): GltfSummary {
   if (!isObject(json)) fail('document', 'the glTF JSON must be an object');
   checkAsset(json);
   const req = json.extensionsRequired ?? [];
   if (!Array.isArray(req)) fail('extensionsRequired', 'must be an array');
-  for (const name of req) {
-    if (typeof name !== 'string' || !SUPPORTED_REQUIRED.has(name)) {
-      fail(
-        'extensionsRequired',
-        `the file requires ${typeof name === 'string' ? quote(name) : 'a non-string'}, which pathwise does not support`,
-      );
-    }
+  // All of them in one message: a user who fixes one should not meet the next.
+  const missing = req.filter(
+    (name) => typeof name !== 'string' || !(SUPPORTED_REQUIRED.has(name) || decodable.has(name)),
+  );
+  if (missing.length > 0) {
+    const names = missing.map((n) => (typeof n === 'string' ? quote(n) : 'a non-string'));
+    fail(
+      'extensionsRequired',
+      `the file requires ${names.join(', ')}, which pathwise does not support`,
+    );
   }
   const used = Array.isArray(json.extensionsUsed) ? json.extensionsUsed : [];
   const quantized = used.includes('KHR_mesh_quantization');

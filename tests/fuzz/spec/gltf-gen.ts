@@ -8,6 +8,7 @@
 import { ByteWriter } from './bytes.ts';
 import { FLOAT, UNSIGNED_INT, buildModel, type Json, type Model } from './gltf-doc.ts';
 import { glbEdits } from './glb-edits.ts';
+import { COMPRESSED_EDITS } from './gltf-compressed-gen.ts';
 import { modelSample, type ModelEdit } from './gltf-host.ts';
 import { mutateJson } from './mutate.ts';
 import type { Rng } from './rng.ts';
@@ -79,6 +80,7 @@ function camera(name: string, values: number[], invalid: boolean): ModelEdit {
 }
 
 export const GLTF_EDITS: ModelEdit[] = [
+  ...COMPRESSED_EDITS,
   // §3.7.2.1: POSITION is VEC3 float (or, with KHR_mesh_quantization, which is not used here, normalized ints).
   {
     ...j('position-vec2', (g) => void (acc(g, 'POSITION').type = 'VEC2'), true),

@@ -25,6 +25,59 @@ export type TangentGenerator = (
   uvs: Float32Array,
 ) => Float32Array;
 
+/**
+ * meshoptimizer's decoder (`meshoptimizer/decoder`, MeshoptDecoder), as the loader uses it:
+ * decodes one EXT_/KHR_meshopt_compression stream of `count` elements of `size` bytes
+ * into `target`; throws on a malformed stream. Structural, so that the core does not
+ * import the package.
+ */
+export interface MeshoptDecoderLike {
+  readonly ready: Promise<void>;
+  decodeGltfBuffer(
+    target: Uint8Array,
+    count: number,
+    size: number,
+    source: Uint8Array,
+    mode: string,
+    filter?: string,
+  ): void;
+}
+
+/**
+ * The glTF build of the Draco decoder (`draco3dgltf`'s `createDecoderModule()` once
+ * resolved), as the loader uses it (core/gltf/draco.ts). Structural: the core does not
+ * import the package.
+ */
+export interface DracoDecoderModule {
+  Decoder: new () => object;
+  DecoderBuffer: new () => { Init(data: Uint8Array, length: number): void };
+  Mesh: new () => { ptr: number; num_faces(): number; num_points(): number };
+  TRIANGULAR_MESH: number;
+  DT_FLOAT32: number;
+  DT_INT8: number;
+  DT_UINT8: number;
+  DT_INT16: number;
+  DT_UINT16: number;
+  DT_UINT32: number;
+  HEAPU8: Uint8Array;
+  _malloc(bytes: number): number;
+  _free(ptr: number): void;
+  destroy(object: object): void;
+}
+
+/**
+ * Decoders of compressed glTF data, each a lazy getter: the loader calls one only when
+ * the file uses its extension (a plain file calls none), and a platform caches what it
+ * returns. A missing getter: the extension is not supported on this platform (the
+ * fallback data is read when the file has some, else one error).
+ */
+export interface GltfDecoders {
+  /** EXT_meshopt_compression and KHR_meshopt_compression. */
+  meshopt?(): Promise<MeshoptDecoderLike>;
+  /** KHR_draco_mesh_compression. */
+  draco?(): Promise<DracoDecoderModule>;
+}
+
 /** Reads the file at `path` (relative to the scene), refusing files longer than maxBytes. */
 export interface GltfFileReader {
   read(path: string, maxBytes: number): Promise<Uint8Array>;
