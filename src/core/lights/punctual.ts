@@ -155,7 +155,8 @@ export function samplePunctual(
   let wy = py - out.refY;
   let wz = pz - out.refZ;
   const d2 = wx * wx + wy * wy + wz * wz;
-  if (!(d2 > 0)) return false;
+  // At the light itself, or so far (d > 1e154) that d² overflows and I / d² is 0.
+  if (!(d2 > 0 && d2 < Infinity)) return false;
   const d = Math.sqrt(d2);
   if (d > data[o + P_RANGE]) return false;
   wx /= d;
