@@ -376,6 +376,7 @@ export function flattenGltf(
     skipped,
     bounds,
     cameras,
-    lights,
+    // Only when there are some: a model without lights hashes as before (cli/film-file.ts).
+    ...(lights.length > 0 ? { lights } : {}),
   };
 }

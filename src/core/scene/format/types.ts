@@ -167,7 +167,7 @@ export interface Scene {
    * environment. The loader always sets it.
    */
   environmentMap?: EnvironmentMapDesc | null;
-  /** Punctual lights; absent (in a scene built by code) means none. */
+  /** Punctual lights; absent when there are none. */
   lights?: LightDesc[];
 }
 

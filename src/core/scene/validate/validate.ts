@@ -152,7 +152,9 @@ export function validateScene(value: unknown): Scene {
     shapes: shapes!,
     environment: environment!.constant,
     environmentMap: environment!.map,
-    lights: lights!,
+    // Only when there are some: a scene without lights stays the object (and the film
+    // key, cli/film-file.ts) it was before lights existed.
+    ...(lights!.length > 0 ? { lights } : {}),
   };
   const range = sceneRangeProblem(scene);
   if (range !== undefined) throw new SceneError([range]);
