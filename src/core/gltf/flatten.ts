@@ -20,7 +20,7 @@
 import type { Document, Mesh, Primitive } from '@gltf-transform/core';
 import { readFloats } from './accessors.ts';
 import { readCamera } from './cameras.ts';
-import { nodeLight } from '../lights/punctual-gltf.ts';
+import { nodeLight } from './punctual-lights.ts';
 import type { LightDesc } from '../scene/format/types.ts';
 import type { GltfCamera } from '../scene/format/gltf-model.ts';
 import { triangleList } from './triangles.ts';
@@ -106,7 +106,7 @@ export function flattenGltf(
         if (typeof cam === 'string') warn(`${where}: ${cam}; ignored`);
         else cameras.push(cam);
       }
-      // KHR_lights_punctual (lights/punctual-gltf.ts).
+      // KHR_lights_punctual (punctual-lights.ts).
       const light = nodeLight(json, n, world);
       if (typeof light === 'string')
         warn(`nodes[${node}].extensions.KHR_lights_punctual: ${light}; ignored`);

@@ -48,7 +48,7 @@ import { validateSparseIndices } from './validate-sparse.ts';
 import { positionBoundsNotes } from './validate-bounds.ts';
 import { validateGltfJson } from './validate.ts';
 import { dropSourcelessTextures } from './sourceless.ts';
-import { checkPunctualLights } from '../lights/punctual-gltf.ts';
+import { checkPunctualLights } from './punctual-lights.ts';
 
 /** Extensions whose content is used (everything else is reported as ignored). */
 export const HONOURED_EXTENSIONS = new Set([

@@ -65,7 +65,7 @@ export interface GltfGeometry {
   cameras: GltfCamera[];
   /**
    * KHR_lights_punctual lights of the scene in world space, in traversal order
-   * (lights/punctual-gltf.ts); absent when there are none.
+   * (gltf/punctual-lights.ts); absent when there are none.
    */
   lights?: LightDesc[];
 }

@@ -10,16 +10,9 @@
  *   punctual.ts, handles it); `range` > 0, point and spot only.
  * The colour's schema range is [0, 1]; any finite colour ≥ 0 is accepted.
  */
-import { GltfError } from '../gltf/errors.ts';
-import type { Mat4 } from '../gltf/transforms.ts';
-import {
-  describeValue,
-  fail,
-  indexValue,
-  isObject,
-  list,
-  type Json,
-} from '../gltf/validate-values.ts';
+import { GltfError } from './errors.ts';
+import type { Mat4 } from './transforms.ts';
+import { describeValue, fail, indexValue, isObject, list, type Json } from './validate-values.ts';
 import type { LightDesc, Vec3 } from '../scene/format/types.ts';
 
 const EXTENSION = 'KHR_lights_punctual';
