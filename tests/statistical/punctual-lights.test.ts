@@ -11,7 +11,8 @@
  *    wholly above the horizon, exactly an isotropic source of intensity I (the
  *    sphere-to-element form factor): in direct light its render must match the point
  *    light's closed form, and in a room with several bounces (diffuse walls, a rough
- *    conductor) the two renders must agree region by region (Welch's test);
+ *    conductor) the two renders must agree region by region (Welch's test), and so
+ *    over a glTF metallic–roughness model (its BSDF through bsdfEval, trace-path.ts);
  * 5. a mirror floor receives nothing from a point light (delta BSDF × delta light: no
  *    path), and its image is exactly black and finite.
  *
@@ -21,8 +22,10 @@
  * probability ≤ ALPHA = 1e-3), δ a deterministic bound on how much the answer varies
  * over the pinpoint camera's tiny footprint plus 1e-9 relative for rounding.
  */
+import { Document } from '@gltf-transform/core';
 import { describe, expect, it } from 'vitest';
-import { compileScene, parseScene } from '../../src/core/index.ts';
+import { compileScene, parseScene, type Scene } from '../../src/core/index.ts';
+import { quadPrimitive, sceneWithFiles, toGlb } from '../helpers/gltf.ts';
 import type { SceneJson, ShapeJson } from '../validation/builder.ts';
 import { imageRegions, renderReplicas, replicaMean } from '../validation/replicas.ts';
 import { studentTwoSided, welch } from '../validation/stats.ts';
@@ -251,7 +254,43 @@ function room(emitter: 'point' | 'sphere'): Case['scene'] {
 const ROOM_REGIONS = imageRegions(16, 12, 8);
 const ROOM_TESTS = ROOM_REGIONS.length * 3;
 
-const TESTS = cases.length + ROOM_TESTS;
+/** Two unit quads of glTF metallic–roughness (one rough metal, one glossy plastic) on a floor. */
+async function gltfRoom(emitter: 'point' | 'sphere'): Promise<Scene> {
+  const doc = new Document();
+  const metal = doc
+    .createMaterial()
+    .setBaseColorFactor([0.9, 0.6, 0.3, 1])
+    .setMetallicFactor(1)
+    .setRoughnessFactor(0.4);
+  const plastic = doc
+    .createMaterial()
+    .setBaseColorFactor([0.2, 0.5, 0.8, 1])
+    .setMetallicFactor(0)
+    .setRoughnessFactor(0.2);
+  const scene = doc.createScene();
+  scene.addChild(
+    doc
+      .createNode()
+      .setTranslation([-1.1, 0, 0])
+      .setMesh(doc.createMesh().addPrimitive(quadPrimitive(doc).setMaterial(metal))),
+  );
+  scene.addChild(
+    doc
+      .createNode()
+      .setTranslation([0.1, 0, 0.2])
+      .setMesh(doc.createMesh().addPrimitive(quadPrimitive(doc).setMaterial(plastic))),
+  );
+  doc.getRoot().setDefaultScene(scene);
+  const json = room(emitter);
+  json.shapes = [floor(2), { type: 'gltf', file: 'quads.glb' } as unknown as ShapeJson];
+  if (emitter === 'sphere')
+    json.shapes.push({ type: 'sphere', center: ROOM_POINT, radius: ROOM_R, material: 'lamp' });
+  json.camera = { position: [0, 0.8, 3], target: [0, 0.4, 0], up: [0, 1, 0], fovY: 50 };
+  json.settings = { width: 16, height: 12, maxBounces: 3, spp: 32 };
+  return sceneWithFiles(json, new Map([['quads.glb', await toGlb(doc)]]));
+}
+
+const TESTS = cases.length + 2 * ROOM_TESTS;
 const T_CRIT_8 = tQuantile(ALPHA / TESTS, 7);
 
 describe('punctual lights: known answers', () => {
@@ -280,42 +319,50 @@ describe('punctual lights: known answers', () => {
   });
 });
 
+/** Region by region and channel by channel, the point light's render equals the sphere's. */
+function compareRenders(scenes: Scene[]): void {
+  const seeds = Array.from({ length: 12 }, (_, k) => 77 + 104729 * k);
+  const renders = scenes.map((s) => {
+    return renderReplicas(
+      s,
+      compileScene(s),
+      { estimator: 'nee-mis', sampler: 'sobol', spp: 32 },
+      seeds,
+      16,
+      12,
+      ROOM_REGIONS,
+    );
+  });
+  for (const r of renders) expect(r.stats.rejected).toBe(0);
+  const failures: string[] = [];
+  for (let ri = 0; ri < ROOM_REGIONS.length; ri++) {
+    for (let c = 0; c < 3; c++) {
+      const a = replicaMean(renders[0], ri, c);
+      const b = replicaMean(renders[1], ri, c);
+      // The sphere's own size: its radiance pattern equals the point's up to (r/d)² ≈ 1e-6.
+      const bias = 1e-5 * Math.max(a.mean, b.mean);
+      const diff = Math.max(0, Math.abs(a.mean - b.mean) - bias);
+      const w = welch(diff, a.variance, seeds.length - 1, 0, b.variance, seeds.length - 1);
+      if (w.p < ALPHA / TESTS)
+        failures.push(
+          `${ROOM_REGIONS[ri].name} channel ${c}: point ${a.mean.toPrecision(6)} ± ` +
+            `${Math.sqrt(a.variance).toPrecision(2)}, sphere ${b.mean.toPrecision(6)} ± ` +
+            `${Math.sqrt(b.variance).toPrecision(2)} (p = ${w.p.toExponential(2)})`,
+        );
+    }
+  }
+  expect(failures).toEqual([]);
+  // The light reaches the image: not a comparison of two black pictures.
+  expect(replicaMean(renders[0], 0, 0).mean).toBeGreaterThan(0.01);
+}
+
 describe('punctual lights: a point light and a tiny sphere of its intensity in a room', () => {
   it('agree in every region and channel (4 bounces, diffuse walls, rough metal)', () => {
-    const seeds = Array.from({ length: 12 }, (_, k) => 77 + 104729 * k);
-    const renders = (['point', 'sphere'] as const).map((e) => {
-      const s = parseScene(JSON.stringify(room(e)));
-      return renderReplicas(
-        s,
-        compileScene(s),
-        { estimator: 'nee-mis', sampler: 'sobol', spp: 32 },
-        seeds,
-        16,
-        12,
-        ROOM_REGIONS,
-      );
-    });
-    for (const r of renders) expect(r.stats.rejected).toBe(0);
-    const failures: string[] = [];
-    for (let ri = 0; ri < ROOM_REGIONS.length; ri++) {
-      for (let c = 0; c < 3; c++) {
-        const a = replicaMean(renders[0], ri, c);
-        const b = replicaMean(renders[1], ri, c);
-        // The sphere's own size: its radiance pattern equals the point's up to (r/d)² ≈ 1e-6.
-        const bias = 1e-5 * Math.max(a.mean, b.mean);
-        const diff = Math.max(0, Math.abs(a.mean - b.mean) - bias);
-        const w = welch(diff, a.variance, seeds.length - 1, 0, b.variance, seeds.length - 1);
-        if (w.p < ALPHA / TESTS)
-          failures.push(
-            `${ROOM_REGIONS[ri].name} channel ${c}: point ${a.mean.toPrecision(6)} ± ` +
-              `${Math.sqrt(a.variance).toPrecision(2)}, sphere ${b.mean.toPrecision(6)} ± ` +
-              `${Math.sqrt(b.variance).toPrecision(2)} (p = ${w.p.toExponential(2)})`,
-          );
-      }
-    }
-    expect(failures).toEqual([]);
-    // The light reaches the image: not a comparison of two black pictures.
-    expect(replicaMean(renders[0], 0, 0).mean).toBeGreaterThan(0.01);
+    compareRenders((['point', 'sphere'] as const).map((e) => parseScene(JSON.stringify(room(e)))));
+  });
+
+  it('agree over glTF metallic–roughness surfaces (3 bounces)', async () => {
+    compareRenders(await Promise.all((['point', 'sphere'] as const).map(gltfRoom)));
   });
 });
 
