@@ -12,6 +12,7 @@ import {
   type BatchOptions,
 } from './batch-args.ts';
 import { UsageError } from './errors.ts';
+import { BARE_ENVIRONMENTS, type BareEnvironment } from '../core/lights/studio.ts';
 import {
   POSITIVE_DECIMAL,
   parseDecimalValue,
@@ -36,6 +37,8 @@ export interface RenderArgs {
   batch: BatchOptions;
   /** `--allow-read DIR`, repeatable: folders beyond the scene's whose files may be read. */
   allowRead: string[];
+  /** `--environment studio|none`: a bare model's environment (core/scene/load/bare-scene.ts). */
+  environment?: BareEnvironment;
 }
 
 export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png|FILE.film [options]
@@ -53,6 +56,8 @@ export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png|
   --sampler sobol|independent  random numbers: Owen-scrambled Sobol for the leading dimensions (default), or the independent PCG hash
   --stripe-rows R     rows per work stripe (default: automatic; the image does not depend on it)
   --json              print one JSON line of statistics on stdout (a switch: no value)
+  --environment studio|none  a glTF model's environment: the studio (default), or none
+                      to see only the model's own lights (not for scene files)
   --allow-read DIR    files may also be read from DIR (repeatable); by default a scene and its
                       models read only files inside the scene's folder (a bare model's folder)
 ${BATCH_USAGE}`;
@@ -122,6 +127,7 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     'exposure',
     'estimator',
     'sampler',
+    'environment',
     'json',
     'help',
     ...BATCH_OPTION_NAMES,
@@ -164,6 +170,12 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
       `--sampler must be one of ${SAMPLER_KINDS.join(', ')}, got ${quote(String(sampler))}`,
     );
   }
+  const environment = options.get('environment');
+  if (environment !== undefined && !BARE_ENVIRONMENTS.includes(environment as BareEnvironment)) {
+    throw new UsageError(
+      `--environment must be one of ${BARE_ENVIRONMENTS.join(', ')}, got ${quote(String(environment))}`,
+    );
+  }
   return {
     scenePath: positional[0],
     out,
@@ -182,5 +194,6 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     stripeRows: int('stripe-rows', 1, 1 << 24),
     batch: parseBatchOptions(options),
     allowRead,
+    environment: environment as BareEnvironment | undefined,
   };
 }

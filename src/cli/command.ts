@@ -45,6 +45,7 @@ async function renderScene(args: RenderArgs, early: EarlyWorkers): Promise<void>
     width: args.width,
     height: args.height,
     allowRead: args.allowRead,
+    environment: args.environment,
   });
   for (const w of sceneWarnings(scene)) {
     process.stderr.write(`pathwise: note: ${printableLine(w)}\n`);

@@ -11,6 +11,7 @@ import { CliError } from './errors.ts';
 import { ReadLimitError, readBounded, showPath } from './read-bounded.ts';
 import { nodeSceneFiles } from './scene-files.ts';
 import { testStage } from './test-stages.ts';
+import type { BareEnvironment } from '../core/lights/studio.ts';
 
 export interface SceneFileOptions {
   /** Image size asked for on the command line: a bare model's camera frames it at this aspect. */
@@ -18,6 +19,8 @@ export interface SceneFileOptions {
   height?: number;
   /** Folders beyond the scene's whose files may be read (`--allow-read`; scene-files.ts). */
   allowRead?: readonly string[];
+  /** A bare model's environment (`--environment`); a scene file sets its own, so it refuses it. */
+  environment?: BareEnvironment;
 }
 
 /**
@@ -54,7 +57,13 @@ export async function loadSceneFile(path: string, options: SceneFileOptions = {}
         ...(await tangents()),
         width: options.width,
         height: options.height,
+        environment: options.environment,
       });
+    }
+    if (options.environment !== undefined) {
+      throw new CliError(
+        `${showPath(path)}: --environment applies to a glTF model; a scene file sets its own environment`,
+      );
     }
     testStage('parse');
     const scene = parseScene(bytes);

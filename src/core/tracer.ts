@@ -21,7 +21,12 @@ export {
 } from './scene/validate/validate.ts';
 export { setCancelCheck, CancelledError } from './util/cancel.ts';
 export { GLTF_FILE_BYTES, isModelFileName } from './gltf/file-names.ts';
-export { studioEnvironment, STUDIO_FILE } from './lights/studio.ts';
+export {
+  BARE_ENVIRONMENTS,
+  studioEnvironment,
+  STUDIO_FILE,
+  type BareEnvironment,
+} from './lights/studio.ts';
 export { sceneWarnings } from './scene/validate/warnings.ts';
 export { sceneNeedsFiles } from './scene/validate/needs-files.ts';
 export { countSkippedTriangles } from './scene/validate/mesh-desc.ts';

@@ -230,6 +230,7 @@ export class SceneRequests {
           source,
           width,
           height,
+          environment: this.host.options.environment,
           shared: this.host.shared(),
         },
         owned ? handOver(bytes) : [],
@@ -240,6 +241,7 @@ export class SceneRequests {
       ...(await this.gltfPlatform()),
       width,
       height,
+      environment: this.host.options.environment,
     });
     return { scene };
   }
@@ -370,7 +372,8 @@ export class SceneRequests {
       this.progressLoad(stage, done, total);
     if (typeof Worker !== 'undefined') {
       const { width, height } = this.framing();
-      const request = { kind: 'url', url: href, label: url, width, height } as const;
+      const environment = this.host.options.environment;
+      const request = { kind: 'url', url: href, label: url, width, height, environment } as const;
       const loaded = await this.inWorker({ ...request, shared: this.host.shared() }, []);
       if (loaded !== null) return loaded;
     }

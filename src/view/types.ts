@@ -3,7 +3,13 @@
  * (src/widget): `createPathTracer(canvas, options)` returns a
  * PathTracerController. This file is the contract; src/view implements it.
  */
-import type { CameraDesc, LoadStage, Scene, SceneFileReader } from '../core/index.ts';
+import type {
+  BareEnvironment,
+  CameraDesc,
+  LoadStage,
+  Scene,
+  SceneFileReader,
+} from '../core/index.ts';
 
 export type DisplayMode = 'webgl2' | 'canvas2d';
 export type ComputeMode = 'shared' | 'transfer';
@@ -86,6 +92,11 @@ export interface PathTracerOptions {
   autoplay?: boolean;
   /** Orbit on drag, dolly on wheel. */
   cameraControls?: boolean;
+  /**
+   * A bare glTF model's environment: the studio (default) or 'none', to see it by its
+   * own lights only (docs/gltf.md, Punctual lights); read when a model loads.
+   */
+  environment?: BareEnvironment;
 }
 
 /** A stage of loading a scene or model (core/scene/load/load.ts LoadStage), `done` of `total`. */

@@ -342,6 +342,8 @@ export class PathwiseViewElement extends ElementBase {
     if (this.bounces !== null) options.bounces = this.bounces;
     if (this.renderScale !== null) options.renderScale = this.renderScale;
     if (this.seed !== null) options.seed = this.seed;
+    // A bare model's environment (docs/gltf.md, Punctual lights): read when it loads.
+    if (this.getAttribute('environment') === 'none') options.environment = 'none';
     // A worker URL goes to the pool as is: it starts one on another origin
     // through a same-origin shim, and reports a URL it cannot start as an
     // `error` event (shown here) rather than throwing at this point.

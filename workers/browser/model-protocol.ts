@@ -5,7 +5,7 @@
  * tangents), then compiles and packs it (the BVH build), so that none of that blocks the
  * page however large or degenerate the scene.
  */
-import type { LoadStage, PackedScene, Scene } from '../../src/core/index.ts';
+import type { BareEnvironment, LoadStage, PackedScene, Scene } from '../../src/core/index.ts';
 import type { FileSource } from './scene-files.ts';
 
 interface Common {
@@ -30,6 +30,8 @@ export interface ModelRequest extends Common {
   /** Image size whose aspect ratio the framing camera takes. */
   width: number;
   height: number;
+  /** The model's environment (bare-scene.ts); the studio when absent. */
+  environment?: BareEnvironment;
 }
 
 /** A pathwise-scene/1 scene: its bytes or text, or a scene object (validated there). */
@@ -56,6 +58,8 @@ export interface UrlRequest extends Common {
   /** Image size whose aspect ratio a model's framing camera takes. */
   width: number;
   height: number;
+  /** A model's environment (bare-scene.ts); the studio when absent. */
+  environment?: BareEnvironment;
 }
 
 export type LoadRequest = ModelRequest | SceneRequest | UrlRequest;

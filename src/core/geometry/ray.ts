@@ -31,6 +31,13 @@ export const SHAPE_QUAD = 1;
 export const SHAPE_TRIANGLE = 2;
 /** Not a shape: the environment map, as a kind of light (lights/lights.ts). */
 export const LIGHT_ENVIRONMENT = 3;
+/**
+ * Not shapes either: the punctual (delta) lights of KHR_lights_punctual and the scene
+ * format's `lights` (lights/punctual.ts). Every tag from LIGHT_POINT on is a delta light.
+ */
+export const LIGHT_POINT = 4;
+export const LIGHT_SPOT = 5;
+export const LIGHT_DIRECTIONAL = 6;
 
 /**
  * Ray record layout (a Float64Array the queries of trace.ts fill): origin,

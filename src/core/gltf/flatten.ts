@@ -20,6 +20,8 @@
 import type { Document, Mesh, Primitive } from '@gltf-transform/core';
 import { readFloats } from './accessors.ts';
 import { readCamera } from './cameras.ts';
+import { nodeLight } from './punctual-lights.ts';
+import type { LightDesc } from '../scene/format/types.ts';
 import type { GltfCamera } from '../scene/format/gltf-model.ts';
 import { triangleList } from './triangles.ts';
 import { GltfError } from './errors.ts';
@@ -84,6 +86,7 @@ export function flattenGltf(
   const nodes = (json.nodes as Json[] | undefined) ?? [];
   const jsonCameras = (json.cameras as Json[] | undefined) ?? [];
   const cameras: GltfCamera[] = [];
+  const lights: LightDesc[] = [];
   const instances: { mesh: number; matrix: Mat4; node: number }[] = [];
   if (sceneIndex >= 0) {
     const scene = (json.scenes as Json[])[sceneIndex];
@@ -103,6 +106,11 @@ export function flattenGltf(
         if (typeof cam === 'string') warn(`${where}: ${cam}; ignored`);
         else cameras.push(cam);
       }
+      // KHR_lights_punctual (punctual-lights.ts).
+      const light = nodeLight(json, n, world);
+      if (typeof light === 'string')
+        warn(`nodes[${node}].extensions.KHR_lights_punctual: ${light}; ignored`);
+      else if (light !== null) lights.push(light);
       const children = (n.children as number[] | undefined) ?? [];
       for (let c = children.length - 1; c >= 0; c--)
         stack.push({ node: children[c], parent: world });
@@ -368,5 +376,7 @@ export function flattenGltf(
     skipped,
     bounds,
     cameras,
+    // Only when there are some: a model without lights hashes as before (cli/film-file.ts).
+    ...(lights.length > 0 ? { lights } : {}),
   };
 }

@@ -15,6 +15,7 @@
  */
 import { Document, type JSONDocument } from '@gltf-transform/core';
 import {
+  KHRLightsPunctual,
   KHRMaterialsEmissiveStrength,
   KHRMaterialsIOR,
   KHRMaterialsSpecular,
@@ -49,9 +50,11 @@ import { validateSparseIndices } from './validate-sparse.ts';
 import { positionBoundsNotes } from './validate-bounds.ts';
 import { validateGltfJson } from './validate.ts';
 import { dropSourcelessTextures } from './sourceless.ts';
+import { checkPunctualLights } from './punctual-lights.ts';
 
 /** Extensions whose content is used (everything else is reported as ignored). */
 export const HONOURED_EXTENSIONS = new Set([
+  'KHR_lights_punctual',
   'KHR_materials_emissive_strength',
   'KHR_materials_ior',
   'KHR_materials_specular',
@@ -90,6 +93,7 @@ export interface GltfLoadOptions {
 export type { GltfCamera, GltfDecoders, GltfModel };
 
 const EXTENSIONS = [
+  KHRLightsPunctual,
   KHRMaterialsEmissiveStrength,
   KHRMaterialsIOR,
   KHRMaterialsSpecular,
@@ -135,6 +139,7 @@ export async function loadGltf(
     );
   }
   for (const note of summary.notes) warn(note);
+  checkPunctualLights(json);
   const asset = json.asset as Record<string, unknown>;
   if (asset.version !== '2.0') {
     // §3.2: a 2.x file whose minVersion (checked above) is at most 2.0 is meant to load

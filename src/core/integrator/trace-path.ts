@@ -36,7 +36,13 @@ import {
   M_GEOMETRIC_SIDE,
   M_TYPE,
 } from '../bsdf/materials.ts';
-import { LIGHT_ENVIRONMENT, SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE } from '../geometry/ray.ts';
+import {
+  LIGHT_ENVIRONMENT,
+  LIGHT_POINT,
+  SHAPE_QUAD,
+  SHAPE_SPHERE,
+  SHAPE_TRIANGLE,
+} from '../geometry/ray.ts';
 import {
   OFFSET_SCALE,
   QUAD_STRIDE,
@@ -369,6 +375,9 @@ export function trace(
         lpz = 0;
       let lpdf = 0;
       let infinite = false;
+      // A punctual light (lights/punctual.ts): no BSDF-sampled ray finds it, so its
+      // sample's MIS weight is 1 (pbr-book 4e §13.4: pdf_bsdf counts as 0).
+      let delta = false;
       if (lights!.kind[l] === SHAPE_QUAD) {
         // sampleLight's quad case (and finishAreaSample) written out,
         // the same arithmetic: the call was not inlined.
@@ -416,6 +425,7 @@ export function trace(
           lpz = ls.pz;
           lpdf = ls.pdf;
           infinite = ls.distance === Infinity;
+          delta = lights!.kind[l] >= LIGHT_POINT;
         }
       }
       if (sampled) {
@@ -485,7 +495,8 @@ export function trace(
                 : 0;
             if (visible > 0) {
               let er: number, eg: number, eb: number;
-              if (lights!.kind[l] === LIGHT_ENVIRONMENT) {
+              // Not a shape (the environment, a punctual light): sampleLight wrote what arrives.
+              if (lights!.kind[l] >= LIGHT_ENVIRONMENT) {
                 er = ls.r;
                 eg = ls.g;
                 eb = ls.b;
@@ -514,7 +525,7 @@ export function trace(
                 }
               }
               const pl = lpdf;
-              const w = (pl / (pl * pl + pb * pb)) * Math.abs(lwiz) * visible;
+              const w = (pl / (pl * pl + (delta ? 0 : pb * pb))) * Math.abs(lwiz) * visible;
               lr += br * fr * er * w;
               lg += bg * fg * eg * w;
               lb += bb * fb * eb * w;

@@ -11,6 +11,8 @@
  *   subtend (pbr-book 3e §14.2.2, Sphere::Sample(ref)), which wastes no
  *   samples on the hidden back side; from inside, uniformly by area.
  * Emission leaves only the front side of a surface (outside of a sphere).
+ * Point, spot and directional lights are delta lights (punctual.ts): chosen by
+ * power like the rest, never hit by a ray, so lightPdf is never asked for them.
  *
  * The shadow ray's far end is the sampled point lifted off the emitter, toward
  * the reference point, by a distance relative to the emitter's coordinates
@@ -32,10 +34,11 @@ import {
   Q_V,
   SPHERE_STRIDE,
 } from '../geometry/shapes.ts';
-import { LIGHT_ENVIRONMENT, SHAPE_QUAD, SHAPE_TRIANGLE } from '../geometry/ray.ts';
+import { LIGHT_ENVIRONMENT, LIGHT_POINT, SHAPE_QUAD, SHAPE_TRIANGLE } from '../geometry/ray.ts';
 import { Distribution1D } from '../sampling/distribution.ts';
 import { EnvironmentSample, type EnvironmentMap } from './environment-map.ts';
 import { MeshLightSample, type MeshLight } from './mesh-light.ts';
+import { samplePunctual } from './punctual.ts';
 
 /**
  * In: the reference point and two random numbers (set by the caller; a
@@ -70,7 +73,10 @@ export class LightSample {
   triangle = -1;
   b1 = 0;
   b2 = 0;
-  /** Radiance arriving from the environment map (`distance` is then Infinity). */
+  /**
+   * Radiance arriving from the environment map (`distance` is then Infinity), or the
+   * irradiance from a punctual light (punctual.ts).
+   */
   r = 0;
   g = 0;
   b = 0;
@@ -78,9 +84,12 @@ export class LightSample {
 
 /** What a light list is made of, one entry per light. */
 export interface LightListInput {
-  /** SHAPE_SPHERE, SHAPE_QUAD, SHAPE_TRIANGLE (a whole mesh) or LIGHT_ENVIRONMENT. */
+  /**
+   * SHAPE_SPHERE, SHAPE_QUAD, SHAPE_TRIANGLE (a whole mesh), LIGHT_ENVIRONMENT, or a
+   * punctual light (LIGHT_POINT, LIGHT_SPOT, LIGHT_DIRECTIONAL).
+   */
   kind: number[];
-  /** Index of the sphere, quad or mesh (0 for the environment). */
+  /** Index of the sphere, quad, mesh or punctual light (0 for the environment). */
   shape: number[];
   /** Selection weight (see the module comment). */
   power: number[];
@@ -91,6 +100,8 @@ export interface LightListInput {
   /** The MeshLight of each mesh entry, by its `shape`: meshLights[shape]. */
   meshLights?: (MeshLight | null)[];
   environment?: EnvironmentMap | null;
+  /** The punctual lights' records (punctual.ts), indexed by `shape`. */
+  punctual?: Float64Array;
 }
 
 export class LightList {
@@ -106,6 +117,7 @@ export class LightList {
   readonly offset: Float64Array;
   readonly meshLights: (MeshLight | null)[];
   readonly environment: EnvironmentMap | null;
+  readonly punctual: Float64Array;
   /** Index of the environment map in the list, or −1. */
   readonly environmentLight: number;
   /** Scratch records of sampleLight (one list per thread, so never shared). */
@@ -122,6 +134,7 @@ export class LightList {
     this.prob = Float64Array.from({ length: this.count }, (_, i) => this.distribution.prob(i));
     this.meshLights = input.meshLights ?? [];
     this.environment = input.environment ?? null;
+    this.punctual = input.punctual ?? new Float64Array(0);
     this.environmentLight = input.kind.indexOf(LIGHT_ENVIRONMENT);
   }
 
@@ -210,6 +223,7 @@ export function sampleLight(
       out,
     );
   }
+  if (kind >= LIGHT_POINT) return samplePunctual(lights.punctual, s, kind, choose, out);
   const o = s * SPHERE_STRIDE;
   const cx = spheres[o];
   const cy = spheres[o + 1];

@@ -16,6 +16,14 @@
  */
 import type { EnvironmentMapDesc } from '../scene/format/types.ts';
 
+/**
+ * A bare model's environments: the studio (the default) or none (its own lights only);
+ * the command line's `--environment`. Here, not in bare-scene.ts, so the command line's
+ * argument parser does not import the glTF loader.
+ */
+export const BARE_ENVIRONMENTS = ['studio', 'none'] as const;
+export type BareEnvironment = (typeof BARE_ENVIRONMENTS)[number];
+
 export const STUDIO_WIDTH = 256;
 export const STUDIO_HEIGHT = 128;
 /** The `file` a studio environment names (no file is read for it). */

@@ -24,6 +24,7 @@ import {
 import { EnvironmentMap } from '../../lights/environment-map.ts';
 import { LightList } from '../../lights/lights.ts';
 import { MeshLight } from '../../lights/mesh-light.ts';
+import { compilePunctualLights } from '../../lights/punctual.ts';
 import { sceneRadius } from './bounds.ts';
 import { CompiledMeshes, compileMeshArrays, type MeshArrays } from './compile-meshes.ts';
 import { compileGltfShapes } from './compile-gltf.ts';
@@ -79,6 +80,8 @@ export interface SceneData extends MeshArrays {
   lightPower: Float64Array;
   lightScale: Float64Array;
   lightMaterial: Int32Array;
+  /** Punctual lights' records (lights/punctual.ts); empty without them. */
+  punctual: Float64Array;
   /** Constant environment radiance, RGB. */
   environment: Float64Array;
   /**
@@ -117,6 +120,7 @@ export const SCENE_ARRAYS = [
   'lightPower',
   'lightScale',
   'lightMaterial',
+  'punctual',
   'environment',
   'envTexels',
   'envParams',
@@ -246,6 +250,7 @@ export class CompiledScene implements SceneGeometry {
             material: Array.from(data.lightMaterial),
             meshLights,
             environment: this.envMap,
+            punctual: data.punctual,
           })
         : null;
     this.envR = data.environment[0];
@@ -401,6 +406,25 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
       material.push(-1);
     }
   }
+  // Punctual lights: the scene's own, then each glTF model's (already in world space).
+  const lightDescs = [...(scene.lights ?? []), ...gltfDescs.flatMap((g) => g.data!.lights ?? [])];
+  let punctual: Float64Array = new Float64Array(0);
+  if (lightDescs.length > 0) {
+    const directional = lightDescs.some((l) => l.type === 'directional');
+    const r = directional
+      ? sceneRadius(spheres, sphereCount, quads, quadCount, mesh.triPositions)
+      : 0;
+    const p = compilePunctualLights(lightDescs, r);
+    punctual = p.data;
+    p.kinds.forEach((kind, i) => {
+      kinds.push(kind);
+      shapes.push(i);
+      power.push(p.power[i]);
+      powerLog.push(p.powerLog[i]);
+      scale.push(0);
+      material.push(-1);
+    });
+  }
   const total = sphereCount + quadCount + triCount;
   const useBvh = options.bvh ?? total >= BVH_THRESHOLD;
   let bvh: Bvh | null = null;
@@ -429,6 +453,7 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
     lightPower: Float64Array.from(selectionWeights(power, powerLog)),
     lightScale: Float64Array.from(scale),
     lightMaterial: Int32Array.from(material),
+    punctual,
     environment: Float64Array.from(scene.environment),
     envTexels,
     envParams,

@@ -6,6 +6,7 @@
  * (flatten.ts, io.ts, tangents.ts) re-export them.
  */
 import type { TextureStore } from '../../texture/texture-store.ts';
+import type { LightDesc } from './types.ts';
 
 export interface GltfCamera {
   position: [number, number, number];
@@ -115,6 +116,11 @@ export interface GltfGeometry {
   bounds: Float64Array;
   /** Perspective cameras of the scene, in traversal order. */
   cameras: GltfCamera[];
+  /**
+   * KHR_lights_punctual lights of the scene in world space, in traversal order
+   * (gltf/punctual-lights.ts); absent when there are none.
+   */
+  lights?: LightDesc[];
 }
 
 export interface GltfModel extends GltfGeometry {

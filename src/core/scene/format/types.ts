@@ -131,6 +131,28 @@ export interface EnvironmentImage {
   rgb: Float32Array;
 }
 
+/**
+ * A punctual light: a point, a spot or a directional light, a delta light sampled only by
+ * next-event estimation (lights/punctual.ts). From the scene's `lights`
+ * (docs/scene-format.md, Lights) or a glTF file's KHR_lights_punctual (docs/gltf.md).
+ */
+export interface LightDesc {
+  type: 'point' | 'spot' | 'directional';
+  /** Where a point or spot light is ([0, 0, 0] for a directional light). */
+  position: Vec3;
+  /** Unit direction the light travels (spot, directional; [0, 0, -1] for a point light). */
+  direction: Vec3;
+  /** Linear RGB factor of `intensity`. */
+  color: Vec3;
+  /** Candela (point, spot) or lux (directional). */
+  intensity: number;
+  /** Degrees from a spot's axis: full intensity within the inner cone, none beyond the outer. */
+  innerConeAngle: number;
+  outerConeAngle: number;
+  /** glTF's `range`: no light beyond this distance; null for none (the scene format's). */
+  range: number | null;
+}
+
 export interface Scene {
   format: 'pathwise-scene/1';
   name: string;
@@ -145,6 +167,8 @@ export interface Scene {
    * environment. The loader always sets it.
    */
   environmentMap?: EnvironmentMapDesc | null;
+  /** Punctual lights; absent when there are none. */
+  lights?: LightDesc[];
 }
 
 /** Hard limits on input size; each has a clear error in the loader. */

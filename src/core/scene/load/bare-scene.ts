@@ -3,9 +3,11 @@
  * demo without a scene file) as a scene of pathwise-scene/1: the model as its one
  * `gltf` shape, a camera from the file's first perspective camera or framing its
  * bounds (framing.ts) at the image's aspect ratio, the studio environment
- * (lights/studio.ts), and the format's default settings.
+ * (lights/studio.ts) unless `environment` is 'none', and the format's default settings.
+ * The model's punctual lights come with its shape (GltfModel.lights), whatever the
+ * environment: a model with one weak lamp still shows in the studio.
  */
-import { studioEnvironment } from '../../lights/studio.ts';
+import { type BareEnvironment, studioEnvironment } from '../../lights/studio.ts';
 import { type LoadStage, type ResolveOptions, type SceneFileReader } from './load.ts';
 import { markValidated, SceneError } from '../validate/validate.ts';
 import { DEFAULT_SETTINGS, LIMITS, type Scene } from '../format/types.ts';
@@ -27,6 +29,11 @@ export interface BareSceneOptions {
   /** Image size; the format's defaults (512 × 512) when absent. */
   width?: number;
   height?: number;
+  /**
+   * The environment: the studio (the default), or none, to see only the model's own
+   * lights (KHR_lights_punctual, emissive materials). The command line's `--environment`.
+   */
+  environment?: BareEnvironment;
 }
 
 /** The scene of a loaded model (`file`: its name, for the shape and the scene's name). */
@@ -46,7 +53,7 @@ export function bareModelScene(
     materials: {},
     shapes: [{ type: 'gltf', file, transform: null, data: model }],
     environment: [0, 0, 0],
-    environmentMap: studioEnvironment(),
+    environmentMap: options.environment === 'none' ? null : studioEnvironment(),
   });
 }
 

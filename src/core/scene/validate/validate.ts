@@ -46,6 +46,7 @@ import { checkEnvironment } from './environment-desc.ts';
 import { GLTF_KEYS, checkGltfShape } from './gltf-desc.ts';
 import { MESH_KEYS, checkMesh } from './mesh-desc.ts';
 import { sceneRangeProblem } from './extent.ts';
+import { checkLights } from './light-desc.ts';
 
 const FORMAT = 'pathwise-scene/1';
 
@@ -111,7 +112,16 @@ export function parseScene(input: string | Uint8Array): Scene {
   return validateScene(value);
 }
 
-const TOP_KEYS = ['format', 'name', 'camera', 'settings', 'materials', 'shapes', 'environment'];
+const TOP_KEYS = [
+  'format',
+  'name',
+  'camera',
+  'settings',
+  'materials',
+  'shapes',
+  'environment',
+  'lights',
+];
 
 /** Validates a parsed scene (or any JS value) and returns a fresh Scene with defaults filled. */
 export function validateScene(value: unknown): Scene {
@@ -129,6 +139,7 @@ export function validateScene(value: unknown): Scene {
   const materials = checkMaterials(root.materials, problems);
   const shapes = checkShapes(root.shapes, materials, problems);
   const environment = checkEnvironment(root.environment, problems);
+  const lights = checkLights(root.lights, problems);
 
   if (problems.length > 0) throw new SceneError(problems);
   // No problem was recorded, so every part validated and is defined.
@@ -141,6 +152,9 @@ export function validateScene(value: unknown): Scene {
     shapes: shapes!,
     environment: environment!.constant,
     environmentMap: environment!.map,
+    // Only when there are some: a scene without lights stays the object (and the film
+    // key, cli/film-file.ts) it was before lights existed.
+    ...(lights!.length > 0 ? { lights } : {}),
   };
   const range = sceneRangeProblem(scene);
   if (range !== undefined) throw new SceneError([range]);
