@@ -15,6 +15,7 @@
 import { MIN_ALPHA } from '../bsdf/materials.ts';
 import type { ShadingParams } from '../bsdf/shading.ts';
 import { Texel, textureBilinear } from '../texture/bilinear.ts';
+import { fillLayers } from './layers-fill.ts';
 import type { TextureStore } from '../texture/texture-store.ts';
 import {
   ALPHA_BLEND,
@@ -61,10 +62,11 @@ export class HitAttributes {
   a = 1;
 }
 
-const T = new Texel();
+/** The texel of the last successful `lookup` (shared with layers-fill.ts). */
+export const T = new Texel();
 
 /** Looks up binding `slot` of the record at `o` into T; false when it has no texture. */
-function lookup(
+export function lookup(
   table: Float64Array,
   o: number,
   slot: number,
@@ -204,6 +206,8 @@ export function fillGltfShading(
   sp.specR = sr;
   sp.specG = sg;
   sp.specB = sb;
+  // Clearcoat, sheen, unlit, specular–glossiness: every field, every hit.
+  fillLayers(table, textures, o, hit, sp);
 
   if (lookup(table, o, TEX_NORMAL, textures, hit)) {
     const scale = table[o + GM_NORMAL_SCALE];

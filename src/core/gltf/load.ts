@@ -15,10 +15,14 @@
  */
 import { Document, type JSONDocument } from '@gltf-transform/core';
 import {
+  KHRMaterialsClearcoat,
   KHRMaterialsEmissiveStrength,
   KHRMaterialsIOR,
+  KHRMaterialsPBRSpecularGlossiness,
+  KHRMaterialsSheen,
   KHRMaterialsSpecular,
   KHRMaterialsTransmission,
+  KHRMaterialsUnlit,
   KHRMeshQuantization,
   KHRTextureTransform,
 } from '@gltf-transform/extensions';
@@ -50,10 +54,14 @@ import { dropSourcelessTextures } from './sourceless.ts';
 
 /** Extensions whose content is used (everything else is reported as ignored). */
 export const HONOURED_EXTENSIONS = new Set([
+  'KHR_materials_clearcoat',
   'KHR_materials_emissive_strength',
   'KHR_materials_ior',
+  'KHR_materials_pbrSpecularGlossiness',
+  'KHR_materials_sheen',
   'KHR_materials_specular',
   'KHR_materials_transmission',
+  'KHR_materials_unlit',
   'KHR_mesh_quantization',
   'KHR_texture_transform',
 ]);
@@ -86,10 +94,14 @@ export interface GltfLoadOptions {
 export type { GltfCamera, GltfModel };
 
 const EXTENSIONS = [
+  KHRMaterialsClearcoat,
   KHRMaterialsEmissiveStrength,
   KHRMaterialsIOR,
+  KHRMaterialsPBRSpecularGlossiness,
+  KHRMaterialsSheen,
   KHRMaterialsSpecular,
   KHRMaterialsTransmission,
+  KHRMaterialsUnlit,
   KHRMeshQuantization,
   KHRTextureTransform,
 ];
