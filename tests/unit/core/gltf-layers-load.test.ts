@@ -60,7 +60,7 @@ describe('the layer extensions: parsing', () => {
     const doc = docOf((d) => {
       const cc = d.createExtension(KHRMaterialsClearcoat);
       const sh = d.createExtension(KHRMaterialsSheen);
-      const ul = d.createExtension(KHRMaterialsUnlit);
+      const ul = d.createExtension(KHRMaterialsUnlit).setRequired(true);
       const sg = d.createExtension(KHRMaterialsPBRSpecularGlossiness);
       const coat = d.createMaterial('coat').setExtension(
         'KHR_materials_clearcoat',
