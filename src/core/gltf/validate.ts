@@ -154,6 +154,11 @@ export function validateGltfJson(json: unknown): GltfSummary {
     }
   }
   const used = Array.isArray(json.extensionsUsed) ? json.extensionsUsed : [];
+  // glTF 2.0 §3.12: every extension in extensionsRequired is also in extensionsUsed.
+  for (const name of req) {
+    if (!used.includes(name))
+      fail('extensionsRequired', `${quote(name as string)} is not listed in extensionsUsed`);
+  }
   const quantized = used.includes('KHR_mesh_quantization');
   const buffers = list(json, 'buffers');
   const views = list(json, 'bufferViews');

@@ -35,6 +35,7 @@ import {
   TEX_SHEEN_COLOR,
   TEX_SPEC_GLOSS,
 } from '../../../src/core/gltf-material/material-table.ts';
+import { validateGltfJson } from '../../../src/core/gltf/validate.ts';
 import { fillGltfShading, HitAttributes } from '../../../src/core/gltf-material/shading-fill.ts';
 import { compileScene, PathTracer, RenderStats, type Scene } from '../../../src/core/index.ts';
 import { docWith, loadGlb, png, quadPrimitive, sceneWithFiles, toGlb } from '../../helpers/gltf.ts';
@@ -146,6 +147,16 @@ describe('the layer extensions: parsing', () => {
     const rough = 1 - 0.8 * (128 / 255);
     expect(sp.alpha).toBeCloseTo(rough * rough, 3);
     expect(sp.specR).toBeCloseTo(0.1, 6);
+  });
+
+  it('refuses a required extension that is not listed as used (glTF 2.0 §3.12)', () => {
+    const json = { asset: { version: '2.0' }, extensionsRequired: ['KHR_materials_unlit'] };
+    expect(() => validateGltfJson(json)).toThrow(
+      /extensionsRequired: "KHR_materials_unlit" is not listed in extensionsUsed/,
+    );
+    expect(() =>
+      validateGltfJson({ ...json, extensionsUsed: ['KHR_materials_unlit'] }),
+    ).not.toThrow();
   });
 
   it('refuses a factor out of range, naming its JSON path', async () => {
