@@ -36,6 +36,8 @@ interface Params {
   coatNormal?: [number, number, number];
   sheen?: [number, number, number];
   sheenRoughness?: number;
+  /** χ² sample count, when not N_DEFAULT. */
+  samples?: number;
 }
 
 const q = new BsdfQuery();
@@ -80,7 +82,11 @@ const CASES: [string, Params][] = [
   ],
   ['half coat on rough metal', { metallic: 1, roughness: 0.6, clearcoat: 0.5, coatRoughness: 0.7 }],
   ['smooth coat on rough plastic', { metallic: 0, roughness: 0.5, clearcoat: 1, coatRoughness: 0 }],
-  ['rough coat on smooth metal', { metallic: 1, roughness: 0, clearcoat: 1, coatRoughness: 0.4 }],
+  // Mostly the base's mirror (a delta): more samples, for enough in the coat's cells.
+  [
+    'rough coat on smooth metal',
+    { metallic: 1, roughness: 0, clearcoat: 1, coatRoughness: 0.4, samples: 300_000 },
+  ],
   [
     'tilted rough coat',
     { metallic: 0, roughness: 0.7, clearcoat: 1, coatRoughness: 0.5, coatNormal: [0.3, -0.2, 1] },
@@ -102,13 +108,14 @@ const CASES: [string, Params][] = [
 ];
 const THETAS = [0, 50, 85];
 const ALPHA = 1 - Math.pow(1 - 0.01, 1 / (CASES.length * THETAS.length));
-const N = 100_000;
+const N_DEFAULT = 60_000;
 
 describe('layered glTF BSDF: sample vs pdf (χ²)', () => {
   CASES.forEach(([name, p], index) => {
     for (const thetaO of THETAS) {
       it(`${name}, wo at ${thetaO}°`, () => {
         const sp = setParams(p);
+        const N = p.samples ?? N_DEFAULT;
         const [wox, woy, woz] = direction(thetaO);
         const pdf = (x: number, y: number, z: number): number => {
           q.wox = wox;
@@ -199,12 +206,12 @@ describe('layered glTF BSDF: sample vs pdf (χ²)', () => {
     });
     let mass = 0;
     for (let i = 0; i < grid.below; i++) mass += expected[i];
-    for (let i = 0; i < grid.below; i++) expected[i] *= N;
-    expected[grid.failed] = N * (1 - mass);
+    for (let i = 0; i < grid.below; i++) expected[i] *= N_DEFAULT;
+    expected[grid.failed] = N_DEFAULT * (1 - mass);
     const observed = new Float64Array(grid.nCells);
     const sp = setParams(p);
     const out = new BsdfSample();
-    for (let i = 0; i < N; i++) {
+    for (let i = 0; i < N_DEFAULT; i++) {
       const key = sampleKey(98, i, 0);
       q.wox = wox;
       q.woy = woy;
@@ -293,7 +300,7 @@ function expectFurnace(cases: Params[], seed: number): void {
   const bad: string[] = [];
   cases.forEach((p, k) => {
     for (const theta of FURNACE_THETAS) {
-      const channels = furnace(p, theta, 20_000, seed + k);
+      const channels = furnace(p, theta, 8_000, seed + k);
       for (const [c, [mean, se]] of channels.entries()) {
         if (mean - 1 > 4 * se)
           bad.push(`${JSON.stringify(p)} at ${theta}°, channel ${c}: ${mean} ± ${se}`);
