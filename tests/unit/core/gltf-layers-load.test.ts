@@ -38,7 +38,19 @@ import {
 import { validateGltfJson } from '../../../src/core/gltf/validate.ts';
 import { fillGltfShading, HitAttributes } from '../../../src/core/gltf-material/shading-fill.ts';
 import { compileScene, PathTracer, RenderStats, type Scene } from '../../../src/core/index.ts';
-import { docWith, loadGlb, png, quadPrimitive, sceneWithFiles, toGlb } from '../../helpers/gltf.ts';
+import { loadGltf } from '../../../src/core/gltf/load.ts';
+import {
+  docWith,
+  loadGlb,
+  memoryOptions,
+  png,
+  quadPrimitive,
+  sceneWithFiles,
+  toGlb,
+  toGltfFiles,
+} from '../../helpers/gltf.ts';
+import { drawLayersMaterial } from '../../validation/gltf-draw-layers.ts';
+import { Rng } from '../../validation/rng.ts';
 
 function texture(doc: Document, rgba: number[]) {
   return doc
@@ -279,5 +291,33 @@ describe('the layer extensions: rendering', () => {
     );
     expect(layered.every(Number.isFinite)).toBe(true);
     expect(layered).not.toEqual(base);
+  });
+});
+
+describe("drawLayersMaterial (the validation suite's layered materials)", () => {
+  it('draws glTF material JSON that loads with no warning, onto the furnace grids', async () => {
+    const doc = docOf((d) => [d.createMaterial()]);
+    const files = await toGltfFiles(doc, 'm');
+    const base = JSON.parse(new TextDecoder().decode(files.get('m.gltf')!));
+    const g = new Rng(25);
+    for (let k = 0; k < 12; k++) {
+      const mat = drawLayersMaterial(g);
+      const cc = mat.extensions.KHR_materials_clearcoat;
+      const sh = mat.extensions.KHR_materials_sheen;
+      expect([0, 0.5, 1]).toContain(cc.clearcoatFactor);
+      expect([0, 0.3, 0.7, 1]).toContain(cc.clearcoatRoughnessFactor);
+      for (const c of sh.sheenColorFactor) expect([0, 0.5, 1]).toContain(c);
+      expect([0.05, 0.3, 0.6, 1]).toContain(sh.sheenRoughnessFactor);
+      const json = {
+        ...base,
+        materials: [mat],
+        extensionsUsed: ['KHR_materials_clearcoat', 'KHR_materials_sheen'],
+      };
+      files.set('m.gltf', new TextEncoder().encode(JSON.stringify(json)));
+      const model = await loadGltf(files.get('m.gltf')!, 'm.gltf', await memoryOptions(files));
+      expect(model.warnings).toEqual([]);
+      expect(model.materials[GM_CLEARCOAT]).toBe(cc.clearcoatFactor);
+      expect(model.materials[GM_SHEEN_ROUGHNESS]).toBe(sh.sheenRoughnessFactor);
+    }
   });
 });
