@@ -31,7 +31,8 @@
  * Nc, and the base's own mirror and refraction) are separate Dirac branches.
  *
  * Unlit (KHR_materials_unlit): the BSDF is 0 and sampling ends the path; the base
- * colour is the surface's emission (shading-fill.ts, docs/gltf.md).
+ * colour is the surface's emission, seen by paths that reach it but never sampled as a
+ * light (layers-fill.ts, compile-gltf.ts, docs/gltf.md).
  *
  * Without a coat (c = 0) and with a black sheen the calls fall straight through to the
  * base, so such materials render bit-identically to gltf-pbr.ts alone.
