@@ -4,7 +4,7 @@
  * gltf-bsdf-chi2.test.ts:
  *
  * - χ² of `layeredSample` against `layeredPdf` over a grid of coats (factor, roughness,
- *   tilted normal), sheens (colour, roughness), bases (metallic, roughness) and wo;
+ *   tilted normal), sheens (colour, roughness), bases (metallic, roughness, glass) and wo;
  *   delta samples (smooth coat, smooth base) and refusals share one pseudo-cell of
  *   expected count N·(1 − ∫pdf). Every non-delta sample's weight must be f·cos/pdf.
  * - Reciprocity: f(wo, wi) = f(wi, wo) to 1e-12 on random pairs, for every case.
@@ -12,7 +12,8 @@
  *   standard errors (false-alarm rate < 1e-4 per case) over the grids of the plan:
  *   coat c ∈ {.5, 1} × coat roughness {0, .3, .7, 1} × white base metallic {0, 1} ×
  *   roughness {0, .3, 1}, and sheen colour {.5, 1, (1, .5, 0)} × sheen roughness
- *   {.05, .3, .6, 1} × white diffuse or white metal, each at 5 angles.
+ *   {.05, .3, .6, 1} × white diffuse or white metal, each at 5 angles; and a coat and a
+ *   sheen over white glass, seen from outside (energy: weight × etaScale).
  * - Reductions: clearcoat 0 and black sheen are the base bit for bit (eval, pdf,
  *   sample); unlit scatters nothing.
  *
@@ -31,6 +32,7 @@ interface Params {
   base?: [number, number, number];
   metallic: number;
   roughness: number;
+  transmission?: number;
   clearcoat?: number;
   coatRoughness?: number;
   coatNormal?: [number, number, number];
@@ -48,6 +50,7 @@ function setParams(p: Params): ShadingParams {
   [sp.baseR, sp.baseG, sp.baseB] = p.base ?? [0.9, 0.6, 0.3];
   sp.metallic = p.metallic;
   sp.alpha = p.roughness * p.roughness;
+  sp.transmission = p.transmission ?? 0;
   sp.clearcoat = p.clearcoat ?? 0;
   sp.clearcoatAlpha = (p.coatRoughness ?? 0) ** 2;
   if (p.coatNormal) {
@@ -90,6 +93,18 @@ const CASES: [string, Params][] = [
   [
     'tilted rough coat',
     { metallic: 0, roughness: 0.7, clearcoat: 1, coatRoughness: 0.5, coatNormal: [0.3, -0.2, 1] },
+  ],
+  [
+    'rough coat over sheen on rough glass (from outside)',
+    {
+      metallic: 0,
+      roughness: 0.3,
+      transmission: 1,
+      clearcoat: 1,
+      coatRoughness: 0.5,
+      sheen: SHEEN,
+      sheenRoughness: 0.5,
+    },
   ],
   ['sharp sheen on plastic', { metallic: 0, roughness: 0.5, sheen: SHEEN, sheenRoughness: 0.1 }],
   ['rough sheen on metal', { metallic: 1, roughness: 0.3, sheen: SHEEN, sheenRoughness: 1 }],
@@ -281,7 +296,8 @@ function furnace(p: Params, thetaO: number, n: number, seed: number): [number, n
     q.u1 = hashToUnit(key, 1);
     q.u2 = hashToUnit(key, 2);
     if (!layeredSample(sp, q, out)) continue;
-    const w = [out.weightR, out.weightG, out.weightB];
+    // Energy: undo radiance mode's (n1/n2)² on refraction.
+    const w = [out.weightR, out.weightG, out.weightB].map((x) => x * out.etaScale);
     for (let c = 0; c < 3; c++) {
       if (!(Number.isFinite(w[c]) && w[c] >= 0)) throw new Error(`bad weight ${w[c]}`);
       sum[c] += w[c];
@@ -335,7 +351,25 @@ describe('layered glTF BSDF: white furnace (energy ≤ 1)', () => {
     });
   }
   it('clearcoat over sheen over a white base', () => {
-    const cases: Params[] = [];
+    const cases: Params[] = [
+      // …and over white glass, from outside (the refraction carries the rest).
+      {
+        base: [1, 1, 1],
+        metallic: 0,
+        roughness: 0.3,
+        transmission: 1,
+        clearcoat: 1,
+        coatRoughness: 0.3,
+      },
+      {
+        base: [1, 1, 1],
+        metallic: 0,
+        roughness: 0,
+        transmission: 1,
+        sheen: [1, 1, 1],
+        sheenRoughness: 0.5,
+      },
+    ];
     for (const coatRoughness of [0, 0.5])
       for (const sheenRoughness of [0.05, 0.5])
         cases.push({

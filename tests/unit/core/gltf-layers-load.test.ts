@@ -35,6 +35,7 @@ import {
   TEX_SHEEN_COLOR,
   TEX_SPEC_GLOSS,
 } from '../../../src/core/gltf-material/material-table.ts';
+import { SHAPE_TRIANGLE } from '../../../src/core/geometry/ray.ts';
 import { validateGltfJson } from '../../../src/core/gltf/validate.ts';
 import { fillGltfShading, HitAttributes } from '../../../src/core/gltf-material/shading-fill.ts';
 import { compileScene, PathTracer, RenderStats, type Scene } from '../../../src/core/index.ts';
@@ -230,7 +231,13 @@ describe('the layer extensions: rendering', () => {
         .setBaseColorFactor([0.2, 0.5, 0.8, 1])
         .setExtension('KHR_materials_unlit', d.createExtension(KHRMaterialsUnlit).createUnlit()),
     ]);
-    const v = samples(await quadScene(doc), 4);
+    const scene = await quadScene(doc);
+    // Not a light: nothing aims shadow rays at it.
+    const lights = compileScene(scene).lights;
+    expect(
+      lights === null ? 0 : Array.from(lights.kind).filter((k) => k === SHAPE_TRIANGLE).length,
+    ).toBe(0);
+    const v = samples(scene, 4);
     for (let i = 0; i < v.length; i += 3)
       expect([v[i], v[i + 1], v[i + 2]]).toEqual([0.2, 0.5, 0.8]);
   });
