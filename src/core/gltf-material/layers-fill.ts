@@ -20,6 +20,7 @@
  */
 import { MIN_ALPHA } from '../bsdf/materials.ts';
 import type { ShadingParams } from '../bsdf/shading.ts';
+import type { Texel } from '../texture/bilinear.ts';
 import type { TextureStore } from '../texture/texture-store.ts';
 import {
   GM_CLEARCOAT,
@@ -36,7 +37,16 @@ import {
   TEX_SHEEN_ROUGHNESS,
   TEX_SPEC_GLOSS,
 } from './material-table.ts';
-import { type HitAttributes, lookup, T } from './shading-fill.ts';
+import type { HitAttributes } from './shading-fill.ts';
+
+/** shading-fill.ts's texture lookup into its texel T (passed in: no import cycle). */
+export type Lookup = (
+  table: Float64Array,
+  o: number,
+  slot: number,
+  textures: TextureStore,
+  hit: HitAttributes,
+) => boolean;
 
 function clamp01(x: number): number {
   return x < 0 ? 0 : x > 1 ? 1 : x;
@@ -53,6 +63,8 @@ export function fillLayers(
   o: number,
   hit: HitAttributes,
   sp: ShadingParams,
+  lookup: Lookup,
+  T: Texel,
 ): void {
   let c = table[o + GM_CLEARCOAT];
   if (c > 0 && lookup(table, o, TEX_CLEARCOAT, textures, hit)) c *= T.r;

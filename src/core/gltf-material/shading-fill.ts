@@ -62,11 +62,10 @@ export class HitAttributes {
   a = 1;
 }
 
-/** The texel of the last successful `lookup` (shared with layers-fill.ts). */
-export const T = new Texel();
+const T = new Texel();
 
 /** Looks up binding `slot` of the record at `o` into T; false when it has no texture. */
-export function lookup(
+function lookup(
   table: Float64Array,
   o: number,
   slot: number,
@@ -207,7 +206,7 @@ export function fillGltfShading(
   sp.specG = sg;
   sp.specB = sb;
   // Clearcoat, sheen, unlit, specular–glossiness: every field, every hit.
-  fillLayers(table, textures, o, hit, sp);
+  fillLayers(table, textures, o, hit, sp, lookup, T);
 
   if (lookup(table, o, TEX_NORMAL, textures, hit)) {
     const scale = table[o + GM_NORMAL_SCALE];
