@@ -73,7 +73,7 @@ export const coatValue = { f: 0, pdf: 0 };
 
 /**
  * f_coat(wo, wi) and the density with which `coatSample` returns wi (non-delta only:
- * both 0 for a smooth coat). Needs setCoatFrame(sp) first.
+ * both 0 for a smooth coat), all in the shading frame (no rotation needed).
  */
 export function coatEval(
   sp: ShadingParams,

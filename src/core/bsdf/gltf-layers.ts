@@ -82,7 +82,7 @@ function selectLayers(sp: ShadingParams, wox: number, woy: number, woz: number):
 
 /**
  * The layered f and pdf for wo, wi both above the surface (LQ holds them, wo.z, wi.z >
- * 0). Needs selectLayers and setCoatFrame for this wo first.
+ * 0). Needs selectLayers for this wo first.
  */
 function evalLayers(sp: ShadingParams, out: BsdfValue): void {
   const wox = LQ.wox,
