@@ -13,7 +13,7 @@ import { mkdtempSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { Document } from '@gltf-transform/core';
-import { KHRMaterialsClearcoat } from '@gltf-transform/extensions';
+import { KHRXMP } from '@gltf-transform/extensions';
 import type { Page } from 'playwright-core';
 import { describe, expect, it } from 'vitest';
 import { nodeTangentGenerator } from '../../src/cli/gltf-node.ts';
@@ -34,7 +34,7 @@ const ctx = useDemo();
 
 /**
  * A checker-textured, normal-mapped quad (no tangents: MikkTSpace makes them) in front
- * of a floor placed by a TRS node, with a clearcoat that pathwise ignores.
+ * of a floor placed by a TRS node, with metadata (KHR_xmp_json_ld) that pathwise ignores.
  */
 function model(): Document {
   const doc = new Document();
@@ -46,13 +46,16 @@ function model(): Document {
     .createTexture()
     .setImage(png(2, 2, (x) => (x ? [200, 128, 230, 255] : [60, 128, 230, 255])))
     .setMimeType('image/png');
-  const cc = doc.createExtension(KHRMaterialsClearcoat).createClearcoat().setClearcoatFactor(1);
+  const xmp = doc
+    .createExtension(KHRXMP)
+    .createPacket()
+    .setContext({ dc: 'http://purl.org/dc/elements/1.1/' });
   const mat = doc
     .createMaterial()
     .setBaseColorTexture(base)
     .setNormalTexture(normal)
     .setRoughnessFactor(0.4)
-    .setExtension('KHR_materials_clearcoat', cc);
+    .setExtension('KHR_xmp_json_ld', xmp);
   const floor = doc.createMaterial().setBaseColorFactor([0.7, 0.7, 0.7, 1]).setMetallicFactor(0);
   docWith(doc, quadPrimitive(doc).setMaterial(mat));
   const node = doc
@@ -132,9 +135,9 @@ describe('glTF models in the demo and the widget (Chromium)', () => {
     const stages = await page.evaluate(() => (window as any).stages as string[]);
     for (const s of ['parse', 'textures', 'geometry', 'compile']) expect(stages).toContain(s);
     expect(await page.evaluate(() => (window as any).warnings)).toEqual([
-      'shapes[0] (chair.gltf): extension "KHR_materials_clearcoat" is not supported; its content is ignored',
+      'shapes[0] (chair.gltf): extension "KHR_xmp_json_ld" is not supported; its content is ignored',
     ]);
-    expect(await page.textContent('#notice')).toContain('KHR_materials_clearcoat');
+    expect(await page.textContent('#notice')).toContain('KHR_xmp_json_ld');
     // The page keeps the scene without the model's arrays: the packed scene has them.
     expect(
       await page.evaluate(() => (window as any).__pathwise.controller.scene.shapes[0].data),
@@ -252,7 +255,7 @@ describe('glTF models in the demo and the widget (Chromium)', () => {
         expect(r.gltfName).toBe('chair.gltf');
         expect(r.gltfSameBits).toBe(true);
         expect(r.warnings).toEqual([
-          'shapes[0] (chair.glb): extension "KHR_materials_clearcoat" is not supported; its content is ignored',
+          'shapes[0] (chair.glb): extension "KHR_xmp_json_ld" is not supported; its content is ignored',
         ]);
         // Lit by the studio: neither black nor absurd.
         expect(r.mean).toBeGreaterThan(0.05);

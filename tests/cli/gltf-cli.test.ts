@@ -10,7 +10,7 @@ import { mkdirSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { Document } from '@gltf-transform/core';
-import { KHRMaterialsClearcoat } from '@gltf-transform/extensions';
+import { KHRXMP } from '@gltf-transform/extensions';
 import { describe, expect, it } from 'vitest';
 import { decodePfm } from '../../src/core/index.ts';
 import { docWith, png, quadPrimitive, toGlb, toGltfFiles } from '../helpers/gltf.ts';
@@ -90,13 +90,16 @@ describe('pathwise render MODEL.glb', () => {
 
   it('prints what the file uses and pathwise ignores as notes', async () => {
     const doc = model();
-    const cc = doc.createExtension(KHRMaterialsClearcoat).createClearcoat().setClearcoatFactor(1);
-    doc.getRoot().listMaterials()[0].setExtension('KHR_materials_clearcoat', cc);
+    const xmp = doc
+      .createExtension(KHRXMP)
+      .createPacket()
+      .setContext({ dc: 'http://purl.org/dc/elements/1.1/' });
+    doc.getRoot().listMaterials()[0].setExtension('KHR_xmp_json_ld', xmp);
     writeFileSync(join(dir, 'coat.glb'), await toGlb(doc));
     const r = run(['render', 'coat.glb', ...small, '--out', 'c.pfm']);
     expect(r.status).toBe(0);
     expect(r.stderr).toBe(
-      'pathwise: note: shapes[0] (coat.glb): extension "KHR_materials_clearcoat" is not supported; its content is ignored\n',
+      'pathwise: note: shapes[0] (coat.glb): extension "KHR_xmp_json_ld" is not supported; its content is ignored\n',
     );
   });
 

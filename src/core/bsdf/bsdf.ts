@@ -6,7 +6,7 @@
 import { conductorEval, conductorPdf, conductorSample } from './conductor.ts';
 import { dielectricSample } from './dielectric.ts';
 import { diffuseEval, diffusePdf, diffuseSample } from './diffuse.ts';
-import { gltfEval, gltfPdf, gltfSample } from './gltf-pbr.ts';
+import { layeredEval, layeredPdf, layeredSample } from './gltf-layers.ts';
 import {
   MATERIAL_CONDUCTOR,
   MATERIAL_DIELECTRIC,
@@ -32,7 +32,7 @@ export function bsdfEval(materials: Float64Array, m: number, q: BsdfQuery, out: 
       conductorEval(materials, o, q, out);
       return;
     case MATERIAL_GLTF:
-      gltfEval(q.shading, q, out);
+      layeredEval(q.shading, q, out);
       return;
     default:
       out.r = 0;
@@ -51,7 +51,7 @@ export function bsdfPdf(materials: Float64Array, m: number, q: BsdfQuery): numbe
     case MATERIAL_CONDUCTOR:
       return conductorPdf(materials, o, q);
     case MATERIAL_GLTF:
-      return gltfPdf(q.shading, q);
+      return layeredPdf(q.shading, q);
     default:
       return 0;
   }
@@ -76,7 +76,7 @@ export function bsdfSample(
     case MATERIAL_DIELECTRIC:
       return dielectricSample(materials, o, q, out);
     case MATERIAL_GLTF:
-      return gltfSample(q.shading, q, out);
+      return layeredSample(q.shading, q, out);
     default:
       return false;
   }

@@ -35,7 +35,11 @@ export class ShadingParams {
   clearcoat = 0;
   /** Coat GGX α = clearcoatRoughness²; 0 is a smooth coat (a Dirac lobe). */
   clearcoatAlpha = 0;
-  /** Tangent-space coat normal (clearcoatNormalTexture), (0, 0, 1) without one. */
+  /**
+   * Coat normal (clearcoatNormalTexture): in tangent space from fillGltfShading ((0, 0, 1)
+   * without one), in world space after shadeGltfHit, in the BSDF's local frame when the
+   * BSDF reads it (trace-path.ts converts it; clearcoat.ts).
+   */
   ccnx = 0;
   ccny = 0;
   ccnz = 1;

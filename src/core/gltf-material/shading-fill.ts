@@ -15,6 +15,7 @@
 import { MIN_ALPHA } from '../bsdf/materials.ts';
 import type { ShadingParams } from '../bsdf/shading.ts';
 import { Texel, textureBilinear } from '../texture/bilinear.ts';
+import { fillLayers } from './layers-fill.ts';
 import type { TextureStore } from '../texture/texture-store.ts';
 import {
   ALPHA_BLEND,
@@ -204,6 +205,8 @@ export function fillGltfShading(
   sp.specR = sr;
   sp.specG = sg;
   sp.specB = sb;
+  // Clearcoat, sheen, unlit, specular–glossiness: every field, every hit.
+  fillLayers(table, textures, o, hit, sp, lookup, T);
 
   if (lookup(table, o, TEX_NORMAL, textures, hit)) {
     const scale = table[o + GM_NORMAL_SCALE];

@@ -16,10 +16,14 @@
 import { Document, type JSONDocument } from '@gltf-transform/core';
 import {
   KHRLightsPunctual,
+  KHRMaterialsClearcoat,
   KHRMaterialsEmissiveStrength,
   KHRMaterialsIOR,
+  KHRMaterialsPBRSpecularGlossiness,
+  KHRMaterialsSheen,
   KHRMaterialsSpecular,
   KHRMaterialsTransmission,
+  KHRMaterialsUnlit,
   KHRMeshQuantization,
   KHRTextureTransform,
 } from '@gltf-transform/extensions';
@@ -55,10 +59,14 @@ import { checkPunctualLights } from './punctual-lights.ts';
 /** Extensions whose content is used (everything else is reported as ignored). */
 export const HONOURED_EXTENSIONS = new Set([
   'KHR_lights_punctual',
+  'KHR_materials_clearcoat',
   'KHR_materials_emissive_strength',
   'KHR_materials_ior',
+  'KHR_materials_pbrSpecularGlossiness',
+  'KHR_materials_sheen',
   'KHR_materials_specular',
   'KHR_materials_transmission',
+  'KHR_materials_unlit',
   'KHR_mesh_quantization',
   'KHR_texture_transform',
 ]);
@@ -94,10 +102,14 @@ export type { GltfCamera, GltfDecoders, GltfModel };
 
 const EXTENSIONS = [
   KHRLightsPunctual,
+  KHRMaterialsClearcoat,
   KHRMaterialsEmissiveStrength,
   KHRMaterialsIOR,
+  KHRMaterialsPBRSpecularGlossiness,
+  KHRMaterialsSheen,
   KHRMaterialsSpecular,
   KHRMaterialsTransmission,
+  KHRMaterialsUnlit,
   KHRMeshQuantization,
   KHRTextureTransform,
 ];

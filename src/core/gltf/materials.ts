@@ -12,6 +12,7 @@ import type {
   Transform,
   Transmission,
 } from '@gltf-transform/extensions';
+import { compileLayers } from './materials-layers.ts';
 import {
   ALPHA_BLEND,
   ALPHA_MASK,
@@ -69,10 +70,14 @@ export interface CompiledGltfMaterials {
 
 /** The extensions whose material parameters are read here. */
 export const HONOURED_MATERIAL_EXTENSIONS = [
+  'KHR_materials_clearcoat',
   'KHR_materials_emissive_strength',
   'KHR_materials_ior',
+  'KHR_materials_pbrSpecularGlossiness',
+  'KHR_materials_sheen',
   'KHR_materials_specular',
   'KHR_materials_transmission',
+  'KHR_materials_unlit',
   'KHR_texture_transform',
 ];
 
@@ -163,15 +168,20 @@ export function compileGltfMaterials(
       mode === 'MASK' ? ALPHA_MASK : mode === 'BLEND' ? ALPHA_BLEND : ALPHA_OPAQUE;
     table[o + GM_ALPHA_CUTOFF] = mat.getAlphaCutoff();
     table[o + GM_NORMAL_SCALE] = mat.getNormalScale();
-    bind(m, TEX_BASE_COLOR, mat.getBaseColorTexture(), mat.getBaseColorTextureInfo());
-    bind(
-      m,
-      TEX_METALLIC_ROUGHNESS,
-      mat.getMetallicRoughnessTexture(),
-      mat.getMetallicRoughnessTextureInfo(),
-    );
+    // A specular–glossiness material brings its own base colour and roughness textures.
+    if (mat.getExtension('KHR_materials_pbrSpecularGlossiness') === null) {
+      bind(m, TEX_BASE_COLOR, mat.getBaseColorTexture(), mat.getBaseColorTextureInfo());
+      bind(
+        m,
+        TEX_METALLIC_ROUGHNESS,
+        mat.getMetallicRoughnessTexture(),
+        mat.getMetallicRoughnessTextureInfo(),
+      );
+    }
     bind(m, TEX_NORMAL, mat.getNormalTexture(), mat.getNormalTextureInfo());
     bind(m, TEX_EMISSIVE, mat.getEmissiveTexture(), mat.getEmissiveTextureInfo());
+    // Clearcoat, sheen, unlit and specular–glossiness (materials-layers.ts).
+    compileLayers(mat, table, o, (slot, texture, info) => bind(m, slot, texture, info));
   });
   writeDefaultMaterial(table, n - 1);
   // Bindings keep B_IMAGE = −1 (writeDefaultMaterial) until their image is decoded.

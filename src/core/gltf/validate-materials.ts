@@ -13,6 +13,7 @@ import {
   isObject,
   type Json,
 } from './validate-values.ts';
+import { checkLayerNumbers, layerBindings } from './validate-layers.ts';
 
 /** The numbers of a material and of the extensions pathwise reads, as the glTF schemas bound them. */
 export function checkMaterialNumbers(m: Json, p: string): void {
@@ -53,6 +54,7 @@ export function checkMaterialNumbers(m: Json, p: string): void {
   const [spec, specPath] = e('KHR_materials_specular');
   bounded(spec, 'specularFactor', specPath, 0, 1);
   boundedArray(spec, 'specularColorFactor', specPath, 3, 0, 1e6);
+  checkLayerNumbers(ext, p);
   const infos: [unknown, string][] = [
     [isObject(pbr) ? pbr.baseColorTexture : undefined, `${pp}.baseColorTexture`],
     [isObject(pbr) ? pbr.metallicRoughnessTexture : undefined, `${pp}.metallicRoughnessTexture`],
@@ -100,5 +102,6 @@ export function textureBindings(m: Json, p: string): { path: string; set: number
     add(sp.specularTexture, `${p}.extensions.KHR_materials_specular.specularTexture`);
     add(sp.specularColorTexture, `${p}.extensions.KHR_materials_specular.specularColorTexture`);
   }
+  layerBindings(ext, p, add);
   return out;
 }

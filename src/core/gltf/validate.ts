@@ -48,10 +48,14 @@ export { fail, list };
 
 /** Extensions a file may require: those pathwise reads (see docs/gltf.md). */
 export const SUPPORTED_REQUIRED = new Set([
+  'KHR_materials_clearcoat',
   'KHR_materials_emissive_strength',
   'KHR_materials_ior',
+  'KHR_materials_pbrSpecularGlossiness',
+  'KHR_materials_sheen',
   'KHR_materials_specular',
   'KHR_materials_transmission',
+  'KHR_materials_unlit',
   'KHR_mesh_quantization',
   'KHR_texture_transform',
 ]);
@@ -158,6 +162,11 @@ export function validateGltfJson(
     );
   }
   const used = Array.isArray(json.extensionsUsed) ? json.extensionsUsed : [];
+  // glTF 2.0 §3.12: every extension in extensionsRequired is also in extensionsUsed.
+  for (const name of req) {
+    if (!used.includes(name))
+      fail('extensionsRequired', `${quote(name as string)} is not listed in extensionsUsed`);
+  }
   const quantized = used.includes('KHR_mesh_quantization');
   const buffers = list(json, 'buffers');
   const views = list(json, 'bufferViews');

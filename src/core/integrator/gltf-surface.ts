@@ -83,6 +83,7 @@ export function shadeGltfHit(
   interpolateAttributes(gltf, i0, i1, i2, b1, b2, a);
   fillGltfShading(gltf.table, gltf.textures, row, a, sp);
   const tangents = gltf.tangents;
+  if (sp.clearcoat > 0) coatNormalToWorld(ts, tangents, i0, i1, i2, b1, b2, sp, work);
   if (tangents !== null && (sp.nx !== 0 || sp.ny !== 0 || sp.nz !== 1)) {
     const tg = work.tangent;
     interpolateTangent(tangents, i0, i1, i2, b1, b2, tg);
@@ -110,6 +111,53 @@ export function shadeGltfHit(
       ts.snz = n.z;
     }
   }
+}
+
+/**
+ * The coat normal of KHR_materials_clearcoat, from tangent space (fillGltfShading) to
+ * world space, in sp.ccnx, ccny, ccnz: through the same TBN frame as the normal map
+ * (the unmapped shading normal and the vertex tangent), or the unmapped shading normal
+ * itself without a coat normal texture or without tangents. The integrator then takes
+ * it into the BSDF's local frame (trace-path.ts).
+ */
+function coatNormalToWorld(
+  ts: TriangleSurface,
+  tangents: Float32Array | null,
+  i0: number,
+  i1: number,
+  i2: number,
+  b1: number,
+  b2: number,
+  sp: ShadingParams,
+  work: GltfWork,
+): void {
+  const n = work.normal;
+  n.x = ts.snx;
+  n.y = ts.sny;
+  n.z = ts.snz;
+  if (tangents !== null && (sp.ccnx !== 0 || sp.ccny !== 0 || sp.ccnz !== 1)) {
+    const tg = work.tangent;
+    interpolateTangent(tangents, i0, i1, i2, b1, b2, tg);
+    applyNormalMap(
+      ts.snx,
+      ts.sny,
+      ts.snz,
+      tg[0],
+      tg[1],
+      tg[2],
+      tg[3],
+      sp.ccnx,
+      sp.ccny,
+      sp.ccnz,
+      ts.nx,
+      ts.ny,
+      ts.nz,
+      n,
+    );
+  }
+  sp.ccnx = n.x;
+  sp.ccny = n.y;
+  sp.ccnz = n.z;
 }
 
 /**

@@ -286,7 +286,8 @@ export function trace(
     // Emission, front side only.
     if (materials[mo + M_EMISSIVE] !== 0 && cosO > 0) {
       let w = 1;
-      if (nee && !specular) {
+      // An emitter that is no light (an unlit glTF surface) is never light-sampled: weight 1.
+      if (nee && !specular && light >= 0) {
         // Past alpha surfaces the light is farther than this last segment.
         const d = crossings === 0 ? t : Math.hypot(x - prevX, y - prevY, z - prevZ);
         // lightPdf's quad case written out: the call, not inlined, boxed
@@ -338,6 +339,24 @@ export function trace(
     const fty = fsign + sy * sy * fa;
     const ftz = -sy;
     const bq = this.bq;
+    if (isGltf && sp.clearcoat > 0) {
+      // The coat normal (world space, gltf-surface.ts) into this frame; it flips with
+      // the frame. Unmapped, it is the shading normal: exactly +z.
+      const cx = sp.ccnx,
+        cy = sp.ccny,
+        cz = sp.ccnz;
+      if (cx === snx && cy === sny && cz === snz) {
+        sp.ccnx = 0;
+        sp.ccny = 0;
+        sp.ccnz = 1;
+      } else {
+        const cl = cx * sx + cy * sy + cz * sz;
+        const k = cl < 0 ? -1 : 1;
+        sp.ccnx = k * (cx * fsx + cy * fsy + cz * fsz);
+        sp.ccny = k * (cx * ftx + cy * fty + cz * ftz);
+        sp.ccnz = k * cl;
+      }
+    }
     const lwox = wox * fsx + woy * fsy + woz * fsz;
     const lwoy = wox * ftx + woy * fty + woz * ftz;
     const lwoz = wox * sx + woy * sy + woz * sz;

@@ -7,7 +7,7 @@
  */
 import { Document } from '@gltf-transform/core';
 import {
-  KHRMaterialsClearcoat,
+  KHRXMP,
   KHRMaterialsEmissiveStrength,
   KHRMaterialsIOR,
   KHRMaterialsSpecular,
@@ -455,15 +455,16 @@ describe('glTF materials and textures', () => {
 
   it('warns for extensions it ignores and for images it cannot decode', async () => {
     const doc = quadDoc();
-    const cc = doc.createExtension(KHRMaterialsClearcoat).createClearcoat().setClearcoatFactor(1);
+    // Metadata pathwise has no use for (KHR_xmp_json_ld) stands for any ignored extension.
+    const xmp = doc
+      .createExtension(KHRXMP)
+      .createPacket()
+      .setContext({ dc: 'http://purl.org/dc/elements/1.1/' });
     const tex = doc
       .createTexture()
       .setImage(Uint8Array.of(1, 2, 3, 4))
       .setMimeType('image/webp');
-    const mat = doc
-      .createMaterial()
-      .setExtension('KHR_materials_clearcoat', cc)
-      .setBaseColorTexture(tex);
+    const mat = doc.createMaterial().setExtension('KHR_xmp_json_ld', xmp).setBaseColorTexture(tex);
     doc.getRoot().listMeshes()[0].listPrimitives()[0].setMaterial(mat);
     // A skin and a morph target: rendered in the rest pose.
     const prim = doc.getRoot().listMeshes()[0].listPrimitives()[0];
@@ -473,7 +474,7 @@ describe('glTF materials and textures', () => {
     );
     const m = await loadGlb(doc);
     expect(m.warnings).toEqual([
-      'extension "KHR_materials_clearcoat" is not supported; its content is ignored',
+      'extension "KHR_xmp_json_ld" is not supported; its content is ignored',
       '1 skin(s) ignored: the model is rendered in its rest pose',
       'morph targets ignored: the model is rendered in its rest pose',
       'images[0] (materials[0].baseColorTexture): image/webp is not PNG or JPEG; the texture is ignored',

@@ -12,6 +12,7 @@
 import {
   MATERIAL_GLTF,
   MATERIAL_STRIDE,
+  M_DELTA,
   M_EMISSION,
   M_EMISSIVE,
   M_GEOMETRIC_SIDE,
@@ -29,6 +30,7 @@ import {
   GM_STRIDE,
   GM_TEXTURES,
   GM_TRANSMISSION,
+  GM_UNLIT,
   TEX_COUNT,
 } from '../../gltf-material/material-table.ts';
 import {
@@ -121,6 +123,15 @@ export function compileGltfShapes(shapes: GltfDesc[], firstMaterial: number): Co
       materials[r + M_EMISSION + 1] = eg;
       materials[r + M_EMISSION + 2] = eb;
       materials[r + M_EMISSIVE] = er > 0 || eg > 0 || eb > 0 ? 1 : 0;
+      if (table[o + GM_UNLIT] !== 0) {
+        // KHR_materials_unlit: its base colour is seen (emission, per hit) but it is no
+        // light (zero power: not in the light list), and nothing is lit at it (no NEE).
+        materials[r + M_EMISSION] = 0;
+        materials[r + M_EMISSION + 1] = 0;
+        materials[r + M_EMISSION + 2] = 0;
+        materials[r + M_EMISSIVE] = 1;
+        materials[r + M_DELTA] = 1;
+      }
       // A transmissive material bounds a solid: its BSDF needs the outward normal.
       materials[r + M_GEOMETRIC_SIDE] = table[o + GM_TRANSMISSION] > 0 ? 1 : 0;
     }
