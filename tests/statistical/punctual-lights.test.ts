@@ -63,7 +63,7 @@ function pinpoint(eye: Vec3, at: Vec3, up: Vec3, footprint: number) {
   return { position: eye, target: at, up, fovY };
 }
 
-const floor = (S: number): ShapeJson => ({
+const floor = (S: number): Extract<ShapeJson, { type: 'quad' }> => ({
   type: 'quad',
   corner: [-S, 0, -S],
   u: [0, 0, 2 * S],
