@@ -1,8 +1,12 @@
-import { defineConfig } from 'vitest/config';
+import { configDefaults, defineConfig } from 'vitest/config';
+
+/** The generated-scene consistency suite: minutes of CPU, run by `npm run test:validation` (CI runs it too). */
+export const VALIDATION_SUITE = ['tests/validation/consistency-*.test.ts'];
 
 export default defineConfig({
   test: {
     include: ['tests/**/*.test.ts'],
+    exclude: [...configDefaults.exclude, ...VALIDATION_SUITE],
     globalSetup: ['tests/global-setup.ts'],
     testTimeout: 120_000,
     hookTimeout: 180_000,
