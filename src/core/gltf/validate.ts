@@ -316,6 +316,13 @@ export function validateGltfJson(
     finiteArray(n, 'matrix', p, 16);
     finiteArray(n, 'translation', p, 3);
     finiteArray(n, 'rotation', p, 4);
+    // §5.25: `rotation` is a unit quaternion. Writers round (the corpus is within 3e-7 of
+    // unit); one far from unit, or zero, names no rotation at all.
+    if (Array.isArray(n.rotation)) {
+      const l = Math.hypot(...(n.rotation as number[]));
+      if (!(Math.abs(l - 1) <= 1e-2))
+        fail(`${p}.rotation`, `is not a unit quaternion (length ${l}); glTF requires one`);
+    }
     finiteArray(n, 'scale', p, 3);
     checkNodeFeatures(n, p, arrays, skins);
     for (const c of indexArray(n, 'children', p, nodes.length, 'nodes')) {

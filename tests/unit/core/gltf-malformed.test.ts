@@ -255,6 +255,9 @@ describe('malformed structure', () => {
       j.nodes[0].translation = [0, 1e400, 0];
     }, /^glTF: nodes\[0\]\.translation: must be 3 finite numbers$/);
     await mutated((j) => {
+      j.nodes[0].rotation = [0, 0, 0, 0];
+    }, /^glTF: nodes\[0\]\.rotation: is not a unit quaternion \(length 0\); glTF requires one$/);
+    await mutated((j) => {
       j.nodes[0].mesh = 5;
     }, /^glTF: nodes\[0\]\.mesh: refers to meshes\[5\], but the file has 1$/);
     await mutated((j) => {
