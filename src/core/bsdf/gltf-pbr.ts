@@ -29,8 +29,11 @@
  * refracts through the smooth macro-surface. That delta lobe therefore
  * carries exactly the energy the rough reflection leaves, 1 − E_m[Fd(wo·m)]
  * (so glass never gains energy), and at roughness 0 it is the smooth
- * dielectric exactly. KHR_materials_transmission's thin-walled default is
- * not modelled: a transmissive surface bounds a solid of index `ior`.
+ * dielectric exactly. A transmissive surface bounds a solid of index `ior`
+ * only when KHR_materials_volume gives it a thicknessFactor > 0; otherwise it
+ * is KHR_materials_transmission's default thin wall: the refracted ray goes
+ * straight on (wi = −wo) and η sets only the Fresnel split, the same from
+ * both sides. Absorption inside a solid is the integrator's (medium.ts).
  *
  * Sampling picks one lobe (diffuse, GGX reflection, glass) with
  * probabilities from wo alone, so `pdf` is the exact mixture density of the
@@ -154,7 +157,9 @@ function evalReflection(
     const d = ggxD(hz, alpha);
     const g1o = ggxG1(oz, alpha);
     const s = (d * g1o * ggxG1(iz, alpha)) / (4 * oz * iz);
-    const fd = cGlass > 0 ? fresnelDielectric(c, inside ? 1 / sp.ior : sp.ior) : 0;
+    // A thin wall has air on both sides: the same η from either side.
+    const fd =
+      cGlass > 0 ? fresnelDielectric(c, inside && sp.thickness > 0 ? 1 / sp.ior : sp.ior) : 0;
     const layer = cGlass * fd;
     r += s * (metallic * (baseR + (1 - baseR) * w) + cOpaque * fr + layer);
     g += s * (metallic * (baseG + (1 - baseG) * w) + cOpaque * fg + layer);
@@ -214,7 +219,7 @@ export function gltfSample(sp: ShadingParams, q: BsdfQuery, out: BsdfSample): bo
   // (so rounding in the sum of the probabilities cannot pick it).
   const glassFrom = lobe.glass > 0 ? lobe.diffuse + lobe.reflect : Infinity;
   const alpha = sp.alpha;
-  const eta = inside ? 1 / sp.ior : sp.ior;
+  const eta = inside && sp.thickness > 0 ? 1 / sp.ior : sp.ior;
   out.etaScale = 1;
   let wix: number, wiy: number, iz: number;
   // The half vector: computed for a diffuse sample, the sampled microfacet
@@ -312,6 +317,22 @@ function refract(
   probability: number,
   out: BsdfSample,
 ): boolean {
+  if (!(sp.thickness > 0)) {
+    // Thin-walled (KHR_materials_volume absent or thicknessFactor 0): the
+    // wall's two faces bend the ray back, so it passes straight through;
+    // η only sets the Fresnel split, and no (n1/n2)² applies (air on both sides).
+    out.wx = -q.wox;
+    out.wy = -q.woy;
+    out.wz = -q.woz;
+    const total = lobe.total;
+    out.weightR = sp.baseR * total;
+    out.weightG = sp.baseG * total;
+    out.weightB = sp.baseB * total;
+    out.pdf = probability;
+    out.isDelta = true;
+    out.etaScale = 1;
+    return true;
+  }
   const invEta = 1 / eta;
   const sin2T = (1 - cosI * cosI) * invEta * invEta;
   // Total internal reflection of the macro-surface: no refracted direction.

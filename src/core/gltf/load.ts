@@ -15,10 +15,13 @@
  */
 import { Document, type JSONDocument } from '@gltf-transform/core';
 import {
+  KHRMaterialsDiffuseTransmission,
+  KHRMaterialsDispersion,
   KHRMaterialsEmissiveStrength,
   KHRMaterialsIOR,
   KHRMaterialsSpecular,
   KHRMaterialsTransmission,
+  KHRMaterialsVolume,
   KHRMeshQuantization,
   KHRTextureTransform,
 } from '@gltf-transform/extensions';
@@ -50,10 +53,13 @@ import { dropSourcelessTextures } from './sourceless.ts';
 
 /** Extensions whose content is used (everything else is reported as ignored). */
 export const HONOURED_EXTENSIONS = new Set([
+  'KHR_materials_diffuse_transmission',
+  'KHR_materials_dispersion',
   'KHR_materials_emissive_strength',
   'KHR_materials_ior',
   'KHR_materials_specular',
   'KHR_materials_transmission',
+  'KHR_materials_volume',
   'KHR_mesh_quantization',
   'KHR_texture_transform',
 ]);
@@ -86,10 +92,13 @@ export interface GltfLoadOptions {
 export type { GltfCamera, GltfModel };
 
 const EXTENSIONS = [
+  KHRMaterialsDiffuseTransmission,
+  KHRMaterialsDispersion,
   KHRMaterialsEmissiveStrength,
   KHRMaterialsIOR,
   KHRMaterialsSpecular,
   KHRMaterialsTransmission,
+  KHRMaterialsVolume,
   KHRMeshQuantization,
   KHRTextureTransform,
 ];
@@ -231,6 +240,7 @@ async function build(
   const { table, defaultMaterial, requests } = compileGltfMaterials(
     root.listMaterials(),
     root.listTextures(),
+    warn,
   );
   const textures = await decodeGltfTextures(
     requests,

@@ -46,6 +46,7 @@ import {
   TEX_TRANSMISSION,
   writeDefaultMaterial,
 } from '../gltf-material/material-table.ts';
+import { readVolumeExtensions } from './materials-volume.ts';
 
 /** A texture to decode: which glTF texture, in which colour space, and where its bindings are. */
 export interface TextureRequest {
@@ -69,16 +70,20 @@ export interface CompiledGltfMaterials {
 
 /** The extensions whose material parameters are read here. */
 export const HONOURED_MATERIAL_EXTENSIONS = [
+  'KHR_materials_diffuse_transmission',
+  'KHR_materials_dispersion',
   'KHR_materials_emissive_strength',
   'KHR_materials_ior',
   'KHR_materials_specular',
   'KHR_materials_transmission',
+  'KHR_materials_volume',
   'KHR_texture_transform',
 ];
 
 export function compileGltfMaterials(
   materials: Material[],
   textures: Texture[],
+  warn: (message: string) => void = () => {},
 ): CompiledGltfMaterials {
   const n = materials.length + 1;
   const table = new Float64Array(n * GM_STRIDE);
@@ -151,6 +156,7 @@ export function compileGltfMaterials(
       table[o + GM_TRANSMISSION] = tr.getTransmissionFactor();
       bind(m, TEX_TRANSMISSION, tr.getTransmissionTexture(), tr.getTransmissionTextureInfo());
     }
+    readVolumeExtensions(mat, m, table, bind, warn);
     const sp = mat.getExtension<Specular>('KHR_materials_specular');
     if (sp !== null) {
       table[o + GM_SPECULAR] = sp.getSpecularFactor();
