@@ -28,6 +28,7 @@ import {
   GM_EMISSIVE,
   GM_STRIDE,
   GM_TEXTURES,
+  GM_DIFFUSE_TRANSMISSION,
   GM_TRANSMISSION,
   TEX_COUNT,
 } from '../../gltf-material/material-table.ts';
@@ -121,8 +122,10 @@ export function compileGltfShapes(shapes: GltfDesc[], firstMaterial: number): Co
       materials[r + M_EMISSION + 1] = eg;
       materials[r + M_EMISSION + 2] = eb;
       materials[r + M_EMISSIVE] = er > 0 || eg > 0 || eb > 0 ? 1 : 0;
-      // A transmissive material bounds a solid: its BSDF needs the outward normal.
-      materials[r + M_GEOMETRIC_SIDE] = table[o + GM_TRANSMISSION] > 0 ? 1 : 0;
+      // A transmissive material (specular or diffuse) scatters to the far side too: its
+      // BSDF needs the outward normal to tell the sides apart.
+      materials[r + M_GEOMETRIC_SIDE] =
+        table[o + GM_TRANSMISSION] > 0 || table[o + GM_DIFFUSE_TRANSMISSION] > 0 ? 1 : 0;
     }
     const keepUv0 = usesSet(model.materials, n, 0);
     const keepUv1 = usesSet(model.materials, n, 1);
