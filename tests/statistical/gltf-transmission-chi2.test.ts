@@ -109,11 +109,13 @@ for (const dt of [0.5, 1]) {
   }
 }
 const ALPHA = 1 - Math.pow(1 - 0.01, 1 / CASES.length);
-const N = 60_000;
+/** Samples per case: the thin wall's non-delta part (rough reflection) holds only ~5%. */
+const samplesOf = (c: Case): number => (c.params.dt ? 50_000 : 150_000);
 
 describe('glTF transmission lobes: χ² of sample against pdf on the sphere', () => {
   CASES.forEach((c, index) => {
     it(c.name, () => {
+      const N = samplesOf(c);
       const sp = setParams(c.params);
       const s = c.inside ? -1 : 1;
       const [wox, woy, oz] = direction(c.thetaO);
