@@ -12,7 +12,10 @@
  *   point and a thin wall at another, and the inside of the mesh would have
  *   no consistent medium.
  * - dispersion: kept as read (20 / Abbe number); used only by volumes.
- * - diffuse transmission: factor, colour and their textures.
+ * - diffuse transmission: factor, colour and their textures. Its lobe is a
+ *   thin Lambertian BTDF; on a volume the light it sends inside is absorbed
+ *   like refracted light (the integrator's medium), but the volume does not
+ *   scatter (no subsurface scattering), which the loader warns about.
  */
 import type { Material, Texture, TextureInfo } from '@gltf-transform/core';
 import type { DiffuseTransmission, Dispersion, Volume } from '@gltf-transform/extensions';
@@ -82,8 +85,9 @@ export function readVolumeExtensions(
     );
     if (f > 0 && table[o + GM_THICKNESS] > 0) {
       warn(
-        `${where}.KHR_materials_diffuse_transmission: diffuse transmission into a volume is ` +
-          `rendered thin-walled (subsurface scattering is not modelled)`,
+        `${where}.KHR_materials_diffuse_transmission: light that crosses into the volume ` +
+          `diffusely is absorbed by it but not scattered inside (subsurface scattering is ` +
+          `not modelled)`,
       );
     }
   }
