@@ -110,7 +110,7 @@ for (const dt of [0.5, 1]) {
 }
 const ALPHA = 1 - Math.pow(1 - 0.01, 1 / CASES.length);
 /** Samples per case: the thin wall's non-delta part (rough reflection) holds only ~5%. */
-const samplesOf = (c: Case): number => (c.params.dt ? 50_000 : 150_000);
+const samplesOf = (c: Case): number => (c.params.dt ? 40_000 : 100_000);
 
 describe('glTF transmission lobes: χ² of sample against pdf on the sphere', () => {
   CASES.forEach((c, index) => {
@@ -255,7 +255,7 @@ describe('glTF transmission lobes: white furnace (energy ≤ 1)', () => {
             base: [1, 1, 1],
             dtColor: [1, 1, 1],
           });
-          for (const thetaO of [0, 45, 80, 89]) {
+          for (const thetaO of [0, 60, 89]) {
             for (const inside of [false, true]) {
               const [x, y, z] = direction(thetaO);
               const out = new BsdfSample();
