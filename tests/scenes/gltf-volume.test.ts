@@ -248,7 +248,7 @@ describe('a lamp inside an absorbing volume', () => {
     const json = {
       format: 'pathwise-scene/1',
       camera: { position: [0, 2.2, 3], target: [0, 0.3, 0], up: [0, 1, 0], fovY: 45 },
-      settings: { width: 24, height: 24, maxBounces: 4, spp: 64 },
+      settings: { width: 16, height: 16, maxBounces: 4, spp: 64 },
       materials: {
         floor: { type: 'diffuse', albedo: [0.7, 0.7, 0.7] },
         bright: { type: 'diffuse', albedo: [0, 0, 0], emission: [8, 8, 8] },

@@ -35,7 +35,11 @@
  * straight on (wi = −wo) and η sets only the Fresnel split, the same from
  * both sides. Absorption inside a solid is the integrator's (medium.ts).
  *
- * Sampling picks one lobe (diffuse, GGX reflection, glass) with
+ * KHR_materials_diffuse_transmission adds a thin Lambertian BTDF under the
+ * specular layer, beside the Lambert base (diffuse-transmission.ts): the one
+ * lobe with density on the far side of the surface.
+ *
+ * Sampling picks one lobe (diffuse, GGX reflection, glass, diffuse transmission) with
  * probabilities from wo alone, so `pdf` is the exact mixture density of the
  * non-delta lobes (pbr-book 4e §9.7 on mixtures); non-delta sample weights
  * are the full f·cosθi / pdf. At roughness 0 every reflection lobe is the
