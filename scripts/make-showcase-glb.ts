@@ -1,8 +1,9 @@
 /**
  * Writes docs/showcase.glb, the glTF model of the README's second picture: three UV
  * spheres on a floor — a checker-textured plastic (baseColorTexture, a normal map whose
- * tangents MikkTSpace makes), gold (metallic 1), clear glass (KHR_materials_transmission
- * + KHR_materials_ior) — and an emissive bar (KHR_materials_emissive_strength), placed
+ * tangents MikkTSpace makes), gold (metallic 1), clear solid glass (KHR_materials_transmission
+ * + KHR_materials_ior, and KHR_materials_volume so that it is a solid, not glTF's default
+ * thin wall) — and an emissive bar (KHR_materials_emissive_strength), placed
  * by TRS nodes. Made with glTF-Transform, textures as PNGs by fast-png.
  * Run: node scripts/run-ts.mjs scripts/make-showcase-glb.ts
  * Then: npx pathwise render docs/showcase.glb --width 640 --height 400 --spp 256 --out docs/showcase.png
@@ -14,6 +15,7 @@ import {
   KHRMaterialsEmissiveStrength,
   KHRMaterialsIOR,
   KHRMaterialsTransmission,
+  KHRMaterialsVolume,
 } from '@gltf-transform/extensions';
 import { encode as encodePng } from 'fast-png';
 import { PreloadedIO } from '../src/core/gltf/io.ts';
@@ -141,7 +143,11 @@ const glass = doc
     'KHR_materials_transmission',
     doc.createExtension(KHRMaterialsTransmission).createTransmission().setTransmissionFactor(1),
   )
-  .setExtension('KHR_materials_ior', doc.createExtension(KHRMaterialsIOR).createIOR().setIOR(1.5));
+  .setExtension('KHR_materials_ior', doc.createExtension(KHRMaterialsIOR).createIOR().setIOR(1.5))
+  .setExtension(
+    'KHR_materials_volume',
+    doc.createExtension(KHRMaterialsVolume).createVolume().setThicknessFactor(1),
+  );
 const floor = doc
   .createMaterial('floor')
   .setBaseColorFactor([0.55, 0.56, 0.6, 1])
@@ -182,7 +188,12 @@ place(box(lamp), [0, 2.4, -1.6], [2.4, 0.06, 0.06]);
 doc.getRoot().setDefaultScene(scene);
 
 const glb = await new PreloadedIO()
-  .registerExtensions([KHRMaterialsEmissiveStrength, KHRMaterialsIOR, KHRMaterialsTransmission])
+  .registerExtensions([
+    KHRMaterialsEmissiveStrength,
+    KHRMaterialsIOR,
+    KHRMaterialsTransmission,
+    KHRMaterialsVolume,
+  ])
   .writeBinary(doc);
 // run-ts.mjs bundles this file elsewhere; argv[1] is where it really is.
 const out = join(resolve(dirname(process.argv[1]), '..'), 'docs/showcase.glb');

@@ -9,7 +9,8 @@
  * - metallic 1 is the conductor with F0 = baseColor (rough and smooth);
  * - a dielectric layer without specular (KHR_materials_specular 0) is the diffuse
  *   material;
- * - transmission 1 with roughness 0 is the smooth dielectric of the same index.
+ * - transmission 1 with roughness 0 on a volume (KHR_materials_volume thicknessFactor > 0)
+ *   is the smooth dielectric of the same index.
  * The scene: the sphere over a diffuse floor, under a constant environment, and for
  * the opaque cases also an emissive quad, so both next-event estimation and BSDF
  * sampling (with MIS) take part.
@@ -19,6 +20,7 @@ import {
   KHRMaterialsIOR,
   KHRMaterialsSpecular,
   KHRMaterialsTransmission,
+  KHRMaterialsVolume,
 } from '@gltf-transform/extensions';
 import { describe, expect, it } from 'vitest';
 import type { Scene } from '../../src/core/index.ts';
@@ -148,7 +150,7 @@ describe('glTF material reductions, rendered both ways', () => {
       meshVersion(true, { type: 'diffuse', albedo: BASE }),
     ));
 
-  it('transmission 1 with roughness 0 is the smooth dielectric', () =>
+  it('transmission 1 with roughness 0 on a volume is the smooth dielectric', () =>
     expectSameImage(
       gltfVersion(false, (doc) => {
         const m = doc
@@ -158,7 +160,9 @@ describe('glTF material reductions, rendered both ways', () => {
           .setRoughnessFactor(0);
         const tr = doc.createExtension(KHRMaterialsTransmission).createTransmission();
         const ior = doc.createExtension(KHRMaterialsIOR).createIOR().setIOR(1.5);
+        const volume = doc.createExtension(KHRMaterialsVolume).createVolume().setThicknessFactor(1);
         m.setExtension('KHR_materials_transmission', tr.setTransmissionFactor(1));
+        m.setExtension('KHR_materials_volume', volume);
         return m.setExtension('KHR_materials_ior', ior);
       }),
       meshVersion(false, { type: 'dielectric', ior: 1.5, color: BASE }),

@@ -33,6 +33,8 @@ interface Params {
   transmission: number;
   ior?: number;
   specular?: number;
+  /** KHR_materials_volume thicknessFactor: these tests are of the solid (> 0) unless told. */
+  thickness?: number;
 }
 
 const q = new BsdfQuery();
@@ -46,6 +48,7 @@ function setParams(p: Params): ShadingParams {
   sp.transmission = p.transmission;
   sp.ior = p.ior ?? 1.5;
   sp.specular = p.specular ?? 1;
+  sp.thickness = p.thickness ?? 1;
   return sp;
 }
 

@@ -29,10 +29,17 @@
  * refracts through the smooth macro-surface. That delta lobe therefore
  * carries exactly the energy the rough reflection leaves, 1 − E_m[Fd(wo·m)]
  * (so glass never gains energy), and at roughness 0 it is the smooth
- * dielectric exactly. KHR_materials_transmission's thin-walled default is
- * not modelled: a transmissive surface bounds a solid of index `ior`.
+ * dielectric exactly. A transmissive surface bounds a solid of index `ior`
+ * only when KHR_materials_volume gives it a thicknessFactor > 0; otherwise it
+ * is KHR_materials_transmission's default thin wall: the refracted ray goes
+ * straight on (wi = −wo) and η sets only the Fresnel split, the same from
+ * both sides. Absorption inside a solid is the integrator's (medium.ts).
  *
- * Sampling picks one lobe (diffuse, GGX reflection, glass) with
+ * KHR_materials_diffuse_transmission adds a thin Lambertian BTDF under the
+ * specular layer, beside the Lambert base (diffuse-transmission.ts): the one
+ * lobe with density on the far side of the surface.
+ *
+ * Sampling picks one lobe (diffuse, GGX reflection, glass, diffuse transmission) with
  * probabilities from wo alone, so `pdf` is the exact mixture density of the
  * non-delta lobes (pbr-book 4e §9.7 on mixtures); non-delta sample weights
  * are the full f·cosθi / pdf. At roughness 0 every reflection lobe is the
@@ -46,6 +53,7 @@
 import { squareToCosineHemisphere } from '../sampling/warps.ts';
 import { fresnelDielectric, schlickWeight } from './fresnel.ts';
 import { ggxD, ggxG1, ggxSampleVisibleNormal } from './ggx.ts';
+import { diffuseTransmissionAlbedo, evalDiffuseTransmission } from './diffuse-transmission.ts';
 import { BsdfQuery, type BsdfSample, type BsdfValue } from './records.ts';
 import type { ShadingParams } from './shading.ts';
 
@@ -60,7 +68,7 @@ const W = { x: 0, y: 0, z: 1 };
  * `diffuse`, `reflect` (metal + opaque specular) and `glass`; `total` is the
  * unnormalised sum they were divided by.
  */
-const lobe = { diffuse: 0, reflect: 0, glass: 0, total: 0 };
+const lobe = { diffuse: 0, reflect: 0, glass: 0, dtrans: 0, total: 0 };
 
 /** F0 of the dielectric layer per channel, and f90 (KHR_materials_specular). */
 const f0 = { r: 0, g: 0, b: 0, f90: 1 };
@@ -91,21 +99,27 @@ function selectLobes(sp: ShadingParams, cosO: number): boolean {
   const fg = f0.g + (f90 - f0.g) * w;
   const fb = f0.b + (f90 - f0.b) * w;
   const pSpec = (cOpaque * (fr + fg + fb)) / 3;
+  const dt = sp.diffuseTransmission;
   const pDiffuse =
-    (cOpaque * ((1 - fr) * sp.baseR + (1 - fg) * sp.baseG + (1 - fb) * sp.baseB)) / 3;
+    (cOpaque * (1 - dt) * ((1 - fr) * sp.baseR + (1 - fg) * sp.baseG + (1 - fb) * sp.baseB)) / 3;
   const pGlass = (1 - metallic) * t;
-  const total = pDiffuse + metallic + pSpec + pGlass;
+  // KHR_materials_diffuse_transmission (diffuse-transmission.ts): last, so
+  // that without it the sum and the other lobes' intervals in u2 are unchanged.
+  const pTrans = dt > 0 ? diffuseTransmissionAlbedo(sp, f0, cosO) : 0;
+  const total = pDiffuse + metallic + pSpec + pGlass + pTrans;
   lobe.total = total;
   if (!(total > 0)) {
     lobe.diffuse = 0;
     lobe.reflect = 0;
     lobe.glass = 0;
+    lobe.dtrans = 0;
     return false;
   }
   const inv = 1 / total;
   lobe.diffuse = pDiffuse * inv;
   lobe.reflect = (metallic + pSpec) * inv;
   lobe.glass = pGlass * inv;
+  lobe.dtrans = pTrans * inv;
   return true;
 }
 
@@ -144,7 +158,7 @@ function evalReflection(
   // the way in and on the way out (see the header).
   const wo5 = schlickWeight(oz);
   const wi5 = schlickWeight(iz);
-  const kd = cOpaque * INV_PI;
+  const kd = cOpaque * (1 - sp.diffuseTransmission) * INV_PI;
   let r = kd * (1 - f0.r - (f90 - f0.r) * wo5) * (1 - f0.r - (f90 - f0.r) * wi5) * baseR;
   let g = kd * (1 - f0.g - (f90 - f0.g) * wo5) * (1 - f0.g - (f90 - f0.g) * wi5) * baseG;
   let b = kd * (1 - f0.b - (f90 - f0.b) * wo5) * (1 - f0.b - (f90 - f0.b) * wi5) * baseB;
@@ -154,7 +168,9 @@ function evalReflection(
     const d = ggxD(hz, alpha);
     const g1o = ggxG1(oz, alpha);
     const s = (d * g1o * ggxG1(iz, alpha)) / (4 * oz * iz);
-    const fd = cGlass > 0 ? fresnelDielectric(c, inside ? 1 / sp.ior : sp.ior) : 0;
+    // A thin wall has air on both sides: the same η from either side.
+    const fd =
+      cGlass > 0 ? fresnelDielectric(c, inside && sp.thickness > 0 ? 1 / sp.ior : sp.ior) : 0;
     const layer = cGlass * fd;
     r += s * (metallic * (baseR + (1 - baseR) * w) + cOpaque * fr + layer);
     g += s * (metallic * (baseG + (1 - baseG) * w) + cOpaque * fg + layer);
@@ -173,6 +189,11 @@ export function gltfEval(sp: ShadingParams, q: BsdfQuery, out: BsdfValue): void 
   const inside = q.woz < 0;
   const oz = inside ? -q.woz : q.woz;
   const iz = inside ? -q.wiz : q.wiz;
+  if (iz < 0 && sp.diffuseTransmission > 0 && oz > 0 && selectLobes(sp, oz)) {
+    // wi behind the surface: only the diffuse transmission reaches it.
+    evalDiffuseTransmission(sp, f0, lobe.dtrans, oz, -iz, out);
+    return;
+  }
   if (!(oz > 0) || !(iz > 0) || !selectLobes(sp, oz)) {
     out.r = 0;
     out.g = 0;
@@ -214,13 +235,30 @@ export function gltfSample(sp: ShadingParams, q: BsdfQuery, out: BsdfSample): bo
   // (so rounding in the sum of the probabilities cannot pick it).
   const glassFrom = lobe.glass > 0 ? lobe.diffuse + lobe.reflect : Infinity;
   const alpha = sp.alpha;
-  const eta = inside ? 1 / sp.ior : sp.ior;
+  const eta = inside && sp.thickness > 0 ? 1 / sp.ior : sp.ior;
   out.etaScale = 1;
   let wix: number, wiy: number, iz: number;
   // The half vector: computed for a diffuse sample, the sampled microfacet
   // normal for a reflection (the same in exact arithmetic, and then the pdf
   // is exactly the density the sampler drew m with).
   let hx: number, hy: number, hz: number;
+  if (lobe.dtrans > 0 && u >= lobe.diffuse + lobe.reflect + lobe.glass) {
+    // Diffuse transmission: cosine-weighted on the far side (diffuse-transmission.ts).
+    squareToCosineHemisphere(q.u0, q.u1, W);
+    const fv = PDF_VALUE;
+    evalDiffuseTransmission(sp, f0, lobe.dtrans, oz, W.z, fv);
+    if (!(fv.pdf > 0)) return false;
+    const k = W.z / fv.pdf;
+    out.weightR = fv.r * k;
+    out.weightG = fv.g * k;
+    out.weightB = fv.b * k;
+    out.wx = W.x;
+    out.wy = W.y;
+    out.wz = inside ? W.z : -W.z;
+    out.pdf = fv.pdf;
+    out.isDelta = false;
+    return true;
+  }
   if (u < lobe.diffuse || (lobe.reflect === 0 && lobe.glass === 0)) {
     squareToCosineHemisphere(q.u0, q.u1, W);
     wix = W.x;
@@ -312,6 +350,22 @@ function refract(
   probability: number,
   out: BsdfSample,
 ): boolean {
+  if (!(sp.thickness > 0)) {
+    // Thin-walled (KHR_materials_volume absent or thicknessFactor 0): the
+    // wall's two faces bend the ray back, so it passes straight through;
+    // η only sets the Fresnel split, and no (n1/n2)² applies (air on both sides).
+    out.wx = -q.wox;
+    out.wy = -q.woy;
+    out.wz = -q.woz;
+    const total = lobe.total;
+    out.weightR = sp.baseR * total;
+    out.weightG = sp.baseG * total;
+    out.weightB = sp.baseB * total;
+    out.pdf = probability;
+    out.isDelta = true;
+    out.etaScale = 1;
+    return true;
+  }
   const invEta = 1 / eta;
   const sin2T = (1 - cosI * cosI) * invEta * invEta;
   // Total internal reflection of the macro-surface: no refracted direction.

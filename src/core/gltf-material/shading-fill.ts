@@ -28,7 +28,12 @@ import {
   BINDING_STRIDE,
   GM_ALPHA_CUTOFF,
   GM_ALPHA_MODE,
+  GM_ATTENUATION_COLOR,
+  GM_ATTENUATION_DISTANCE,
   GM_BASE,
+  GM_DIFFUSE_TRANSMISSION,
+  GM_DIFFUSE_TRANSMISSION_COLOR,
+  GM_DISPERSION,
   GM_EMISSIVE,
   GM_IOR,
   GM_METALLIC,
@@ -38,8 +43,11 @@ import {
   GM_SPECULAR_COLOR,
   GM_STRIDE,
   GM_TEXTURES,
+  GM_THICKNESS,
   GM_TRANSMISSION,
   TEX_BASE_COLOR,
+  TEX_DIFFUSE_TRANSMISSION,
+  TEX_DIFFUSE_TRANSMISSION_COLOR,
   TEX_EMISSIVE,
   TEX_METALLIC_ROUGHNESS,
   TEX_NORMAL,
@@ -84,6 +92,16 @@ function lookup(
     table[b + B_TRANSFORM + 3] * u + table[b + B_TRANSFORM + 4] * v + table[b + B_TRANSFORM + 5];
   textureBilinear(textures, image, tu, tv, table[b + B_WRAP_S], table[b + B_WRAP_T], T);
   return true;
+}
+
+/**
+ * Absorption coefficient of one channel (KHR_materials_volume): the colour a
+ * white ray has after `distance`, so exp(−σ·distance) = c. A black channel
+ * absorbs everything: a huge finite σ keeps exp(−σ·0) = 1 (∞ · 0 is NaN).
+ */
+function sigmaA(c: number, distance: number): number {
+  if (!(c < 1)) return 0;
+  return c > 0 ? Math.min(-Math.log(c) / distance, 1e300) : 1e300;
 }
 
 function clamp01(x: number): number {
@@ -207,6 +225,42 @@ export function fillGltfShading(
   sp.specB = sb;
   // Clearcoat, sheen, unlit, specular–glossiness: every field, every hit.
   fillLayers(table, textures, o, hit, sp, lookup, T);
+
+  // KHR_materials_volume: only the factor decides thin wall or solid (materials-volume.ts);
+  // σa = −ln(attenuationColor) / attenuationDistance, 0 at the default infinite distance.
+  const thickness = table[o + GM_THICKNESS];
+  sp.thickness = thickness;
+  const distance = table[o + GM_ATTENUATION_DISTANCE];
+  if (thickness > 0 && distance < Infinity) {
+    sp.sigmaAR = sigmaA(table[o + GM_ATTENUATION_COLOR], distance);
+    sp.sigmaAG = sigmaA(table[o + GM_ATTENUATION_COLOR + 1], distance);
+    sp.sigmaAB = sigmaA(table[o + GM_ATTENUATION_COLOR + 2], distance);
+  } else {
+    sp.sigmaAR = 0;
+    sp.sigmaAG = 0;
+    sp.sigmaAB = 0;
+  }
+  // KHR_materials_dispersion "only applies to volumetric transmission" (dispersion.ts).
+  sp.dispersion = thickness > 0 && table[o + GM_TRANSMISSION] > 0 ? table[o + GM_DISPERSION] : 0;
+  let dt = table[o + GM_DIFFUSE_TRANSMISSION];
+  let dtr = 1,
+    dtg = 1,
+    dtb = 1;
+  if (dt > 0) {
+    if (lookup(table, o, TEX_DIFFUSE_TRANSMISSION, textures, hit)) dt *= T.a;
+    dtr = table[o + GM_DIFFUSE_TRANSMISSION_COLOR];
+    dtg = table[o + GM_DIFFUSE_TRANSMISSION_COLOR + 1];
+    dtb = table[o + GM_DIFFUSE_TRANSMISSION_COLOR + 2];
+    if (lookup(table, o, TEX_DIFFUSE_TRANSMISSION_COLOR, textures, hit)) {
+      dtr *= T.r;
+      dtg *= T.g;
+      dtb *= T.b;
+    }
+  }
+  sp.diffuseTransmission = clamp01(dt);
+  sp.dtR = clamp01(dtr);
+  sp.dtG = clamp01(dtg);
+  sp.dtB = clamp01(dtb);
 
   if (lookup(table, o, TEX_NORMAL, textures, hit)) {
     const scale = table[o + GM_NORMAL_SCALE];

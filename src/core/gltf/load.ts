@@ -17,6 +17,8 @@ import { Document, type JSONDocument } from '@gltf-transform/core';
 import {
   KHRLightsPunctual,
   KHRMaterialsClearcoat,
+  KHRMaterialsDiffuseTransmission,
+  KHRMaterialsDispersion,
   KHRMaterialsEmissiveStrength,
   KHRMaterialsIOR,
   KHRMaterialsPBRSpecularGlossiness,
@@ -24,6 +26,7 @@ import {
   KHRMaterialsSpecular,
   KHRMaterialsTransmission,
   KHRMaterialsUnlit,
+  KHRMaterialsVolume,
   KHRMeshQuantization,
   KHRTextureTransform,
 } from '@gltf-transform/extensions';
@@ -60,6 +63,8 @@ import { checkPunctualLights } from './punctual-lights.ts';
 export const HONOURED_EXTENSIONS = new Set([
   'KHR_lights_punctual',
   'KHR_materials_clearcoat',
+  'KHR_materials_diffuse_transmission',
+  'KHR_materials_dispersion',
   'KHR_materials_emissive_strength',
   'KHR_materials_ior',
   'KHR_materials_pbrSpecularGlossiness',
@@ -67,6 +72,7 @@ export const HONOURED_EXTENSIONS = new Set([
   'KHR_materials_specular',
   'KHR_materials_transmission',
   'KHR_materials_unlit',
+  'KHR_materials_volume',
   'KHR_mesh_quantization',
   'KHR_texture_transform',
 ]);
@@ -103,6 +109,8 @@ export type { GltfCamera, GltfDecoders, GltfModel };
 const EXTENSIONS = [
   KHRLightsPunctual,
   KHRMaterialsClearcoat,
+  KHRMaterialsDiffuseTransmission,
+  KHRMaterialsDispersion,
   KHRMaterialsEmissiveStrength,
   KHRMaterialsIOR,
   KHRMaterialsPBRSpecularGlossiness,
@@ -110,6 +118,7 @@ const EXTENSIONS = [
   KHRMaterialsSpecular,
   KHRMaterialsTransmission,
   KHRMaterialsUnlit,
+  KHRMaterialsVolume,
   KHRMeshQuantization,
   KHRTextureTransform,
 ];
@@ -261,6 +270,7 @@ async function build(
   const { table, defaultMaterial, requests } = compileGltfMaterials(
     root.listMaterials(),
     root.listTextures(),
+    warn,
   );
   const textures = await decodeGltfTextures(
     requests,

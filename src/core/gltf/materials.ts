@@ -47,6 +47,7 @@ import {
   TEX_TRANSMISSION,
   writeDefaultMaterial,
 } from '../gltf-material/material-table.ts';
+import { readVolumeExtensions } from './materials-volume.ts';
 
 /** A texture to decode: which glTF texture, in which colour space, and where its bindings are. */
 export interface TextureRequest {
@@ -71,6 +72,8 @@ export interface CompiledGltfMaterials {
 /** The extensions whose material parameters are read here. */
 export const HONOURED_MATERIAL_EXTENSIONS = [
   'KHR_materials_clearcoat',
+  'KHR_materials_diffuse_transmission',
+  'KHR_materials_dispersion',
   'KHR_materials_emissive_strength',
   'KHR_materials_ior',
   'KHR_materials_pbrSpecularGlossiness',
@@ -78,12 +81,14 @@ export const HONOURED_MATERIAL_EXTENSIONS = [
   'KHR_materials_specular',
   'KHR_materials_transmission',
   'KHR_materials_unlit',
+  'KHR_materials_volume',
   'KHR_texture_transform',
 ];
 
 export function compileGltfMaterials(
   materials: Material[],
   textures: Texture[],
+  warn: (message: string) => void = () => {},
 ): CompiledGltfMaterials {
   const n = materials.length + 1;
   const table = new Float64Array(n * GM_STRIDE);
@@ -156,6 +161,7 @@ export function compileGltfMaterials(
       table[o + GM_TRANSMISSION] = tr.getTransmissionFactor();
       bind(m, TEX_TRANSMISSION, tr.getTransmissionTexture(), tr.getTransmissionTextureInfo());
     }
+    readVolumeExtensions(mat, m, table, bind, warn);
     const sp = mat.getExtension<Specular>('KHR_materials_specular');
     if (sp !== null) {
       table[o + GM_SPECULAR] = sp.getSpecularFactor();

@@ -22,6 +22,9 @@ function bindings(m: Json): [Json, string][] {
   at(ext.KHR_materials_transmission, 'transmissionTexture');
   at(ext.KHR_materials_specular, 'specularTexture');
   at(ext.KHR_materials_specular, 'specularColorTexture');
+  at(ext.KHR_materials_volume, 'thicknessTexture');
+  at(ext.KHR_materials_diffuse_transmission, 'diffuseTransmissionTexture');
+  at(ext.KHR_materials_diffuse_transmission, 'diffuseTransmissionColorTexture');
   return out;
 }
 

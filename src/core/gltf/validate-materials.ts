@@ -55,6 +55,17 @@ export function checkMaterialNumbers(m: Json, p: string): void {
   bounded(spec, 'specularFactor', specPath, 0, 1);
   boundedArray(spec, 'specularColorFactor', specPath, 3, 0, 1e6);
   checkLayerNumbers(ext, p);
+  // KHR_materials_volume, _dispersion, _diffuse_transmission (their schemas; the
+  // attenuation distance is exclusive of 0, and a thickness has no upper bound).
+  const [vol, volPath] = e('KHR_materials_volume');
+  bounded(vol, 'thicknessFactor', volPath, 0, Number.MAX_VALUE);
+  bounded(vol, 'attenuationDistance', volPath, Number.MIN_VALUE, Infinity);
+  boundedArray(vol, 'attenuationColor', volPath, 3, 0, 1);
+  const [disp, dispPath] = e('KHR_materials_dispersion');
+  bounded(disp, 'dispersion', dispPath, 0, Number.MAX_VALUE);
+  const [dt, dtPath] = e('KHR_materials_diffuse_transmission');
+  bounded(dt, 'diffuseTransmissionFactor', dtPath, 0, 1);
+  boundedArray(dt, 'diffuseTransmissionColorFactor', dtPath, 3, 0, 1);
   const infos: [unknown, string][] = [
     [isObject(pbr) ? pbr.baseColorTexture : undefined, `${pp}.baseColorTexture`],
     [isObject(pbr) ? pbr.metallicRoughnessTexture : undefined, `${pp}.metallicRoughnessTexture`],
@@ -103,5 +114,14 @@ export function textureBindings(m: Json, p: string): { path: string; set: number
     add(sp.specularColorTexture, `${p}.extensions.KHR_materials_specular.specularColorTexture`);
   }
   layerBindings(ext, p, add);
+  const vol = ext.KHR_materials_volume;
+  if (isObject(vol))
+    add(vol.thicknessTexture, `${p}.extensions.KHR_materials_volume.thicknessTexture`);
+  const dt = ext.KHR_materials_diffuse_transmission;
+  if (isObject(dt)) {
+    const dp = `${p}.extensions.KHR_materials_diffuse_transmission`;
+    add(dt.diffuseTransmissionTexture, `${dp}.diffuseTransmissionTexture`);
+    add(dt.diffuseTransmissionColorTexture, `${dp}.diffuseTransmissionColorTexture`);
+  }
   return out;
 }

@@ -49,6 +49,8 @@ export { fail, list };
 /** Extensions a file may require: those pathwise reads (see docs/gltf.md). */
 export const SUPPORTED_REQUIRED = new Set([
   'KHR_materials_clearcoat',
+  'KHR_materials_diffuse_transmission',
+  'KHR_materials_dispersion',
   'KHR_materials_emissive_strength',
   'KHR_materials_ior',
   'KHR_materials_pbrSpecularGlossiness',
@@ -56,6 +58,7 @@ export const SUPPORTED_REQUIRED = new Set([
   'KHR_materials_specular',
   'KHR_materials_transmission',
   'KHR_materials_unlit',
+  'KHR_materials_volume',
   'KHR_mesh_quantization',
   'KHR_texture_transform',
 ]);

@@ -25,6 +25,7 @@
  * PathTracer (path-tracer.ts) owns the state and runs the loop per pixel.
  */
 import { bsdfEval, bsdfSample } from '../bsdf/bsdf.ts';
+import { dispersedIor, dispersionChannel } from '../bsdf/dispersion.ts';
 import {
   MATERIAL_DIFFUSE,
   MATERIAL_GLTF,
@@ -145,6 +146,15 @@ export function trace(
     prevZ = 0;
   // Alpha surfaces the current segment passed through (see gltf-surface.ts).
   let crossings = 0;
+  // KHR_materials_volume: the absorbing solid the path is inside, if any — σa
+  // per channel, set by refraction into a glTF volume and cleared by
+  // refraction out of one (one medium: nested volumes are not tracked).
+  let inMedium = false;
+  let sar = 0,
+    sag = 0,
+    sab = 0;
+  // KHR_materials_dispersion: the one colour channel the path carries, once chosen (dispersion.ts).
+  let channel = -1;
 
   for (let depth = 0; ; depth++) {
     if (!intersectScene(scene, ray, hit)) {
@@ -170,6 +180,13 @@ export function trace(
     }
     const t = hit.t;
     const index = hit.index;
+    if (inMedium) {
+      // Beer–Lambert over the segment (rays have unit direction): T = exp(−σa·t),
+      // pbr-book 4e §11.2. A path that leaves an open mesh without a hit is not absorbed.
+      br *= Math.exp(-sar * t);
+      bg *= Math.exp(-sag * t);
+      bb *= Math.exp(-sab * t);
+    }
     let x = ray.ox + t * ray.dx;
     let y = ray.oy + t * ray.dy;
     let z = ray.oz + t * ray.dz;
@@ -379,6 +396,18 @@ export function trace(
       depth + 1 >= ROULETTE_DEPTH ? DIM_ROULETTE + 1 : DIM_ROULETTE,
       u,
     );
+    if (isGltf && sp.dispersion > 0) {
+      if (channel < 0) {
+        // Keep one channel, chosen with probability ⅓, weighted 3 (dispersion.ts);
+        // the lobe number is rescaled so the BSDF still gets a uniform one.
+        channel = dispersionChannel(u[DIM_BSDF_LOBE]);
+        u[DIM_BSDF_LOBE] = u[DIM_BSDF_LOBE] * 3 - channel;
+        br = channel === 0 ? br * 3 : 0;
+        bg = channel === 1 ? bg * 3 : 0;
+        bb = channel === 2 ? bb * 3 : 0;
+      }
+      sp.ior = dispersedIor(sp.ior, sp.dispersion, channel);
+    }
 
     // Next-event estimation.
     if (sampleLights) {
@@ -545,6 +574,12 @@ export function trace(
               }
               const pl = lpdf;
               const w = (pl / (pl * pl + (delta ? 0 : pb * pb))) * Math.abs(lwiz) * visible;
+              if (inMedium && !infinite) {
+                // The shadow ray runs inside the absorbing solid too.
+                er *= Math.exp(-sar * len);
+                eg *= Math.exp(-sag * len);
+                eb *= Math.exp(-sab * len);
+              }
               lr += br * fr * er * w;
               lg += bg * fg * eg * w;
               lb += bb * fb * eb * w;
@@ -624,6 +659,14 @@ export function trace(
 
     // Spawn the next ray from the side of the surface it leaves by.
     const side = wix * nx + wiy * ny + wiz * nz >= 0 ? scale : -scale;
+    if (isGltf && geometricSide && sp.thickness > 0 && side < 0 !== cosO < 0) {
+      // Refraction through a glTF volume's boundary: in by the back of the
+      // geometric normal, out by its front. Reflections keep the medium.
+      inMedium = side < 0 && sp.sigmaAR + sp.sigmaAG + sp.sigmaAB > 0;
+      sar = sp.sigmaAR;
+      sag = sp.sigmaAG;
+      sab = sp.sigmaAB;
+    }
     ray.ox = x + nx * side;
     ray.oy = y + ny * side;
     ray.oz = z + nz * side;

@@ -83,7 +83,12 @@ describe('glTF BSDF: eval', () => {
     for (const metallic of [0, 0.4, 1]) {
       for (const transmission of [0, 0.5, 1]) {
         for (const roughness of ROUGHNESSES) {
-          for (const specular of [1, 0.3]) {
+          for (const [specular, thickness] of [
+            [1, 0],
+            [0.3, 0],
+            [1, 1],
+          ]) {
+            // thickness 0: the thin wall; 1: a volume (KHR_materials_volume).
             setGltf({
               baseR: 0.8,
               baseG: 0.5,
@@ -93,6 +98,7 @@ describe('glTF BSDF: eval', () => {
               roughness,
               specular,
               ior: 1.4,
+              thickness,
             });
             for (let i = 0; i < 400; i++) {
               const [ax, ay, az] = randomDir(10 + n, i);
@@ -209,7 +215,7 @@ describe('glTF BSDF: reductions', () => {
     },
   );
 
-  it('transmission 1 with roughness 0 is the smooth dielectric (outside and inside)', () => {
+  it('transmission 1 with roughness 0 on a volume is the smooth dielectric (outside and inside)', () => {
     setGltf({
       baseR: COLOR[0],
       baseG: COLOR[1],
@@ -217,10 +223,11 @@ describe('glTF BSDF: reductions', () => {
       transmission: 1,
       roughness: 0,
       ior: 1.5,
+      thickness: 1,
     });
     expect(compareSamples(GLASS, 500)).toBeLessThan(1e-12);
     expect(compareSamples(GLASS, 600, true)).toBeLessThan(1e-12);
-    setGltf({ transmission: 1, roughness: 0, ior: 1.33 });
+    setGltf({ transmission: 1, roughness: 0, ior: 1.33, thickness: 1 });
     expect(compareSamples(WATER, 700)).toBeLessThan(1e-12);
     expect(compareSamples(WATER, 800, true)).toBeLessThan(1e-12);
     // Both are pure Dirac: eval and pdf vanish.

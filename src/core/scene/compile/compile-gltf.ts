@@ -29,6 +29,7 @@ import {
   GM_EMISSIVE,
   GM_STRIDE,
   GM_TEXTURES,
+  GM_DIFFUSE_TRANSMISSION,
   GM_TRANSMISSION,
   GM_UNLIT,
   TEX_COUNT,
@@ -132,8 +133,10 @@ export function compileGltfShapes(shapes: GltfDesc[], firstMaterial: number): Co
         materials[r + M_EMISSIVE] = 1;
         materials[r + M_DELTA] = 1;
       }
-      // A transmissive material bounds a solid: its BSDF needs the outward normal.
-      materials[r + M_GEOMETRIC_SIDE] = table[o + GM_TRANSMISSION] > 0 ? 1 : 0;
+      // A transmissive material (specular or diffuse) scatters to the far side too: its
+      // BSDF needs the outward normal to tell the sides apart.
+      materials[r + M_GEOMETRIC_SIDE] =
+        table[o + GM_TRANSMISSION] > 0 || table[o + GM_DIFFUSE_TRANSMISSION] > 0 ? 1 : 0;
     }
     const keepUv0 = usesSet(model.materials, n, 0);
     const keepUv1 = usesSet(model.materials, n, 1);
