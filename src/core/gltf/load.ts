@@ -15,8 +15,10 @@
  */
 import { Document, type JSONDocument } from '@gltf-transform/core';
 import {
+  KHRMaterialsAnisotropy,
   KHRMaterialsEmissiveStrength,
   KHRMaterialsIOR,
+  KHRMaterialsIridescence,
   KHRMaterialsSpecular,
   KHRMaterialsTransmission,
   KHRMeshQuantization,
@@ -50,8 +52,10 @@ import { dropSourcelessTextures } from './sourceless.ts';
 
 /** Extensions whose content is used (everything else is reported as ignored). */
 export const HONOURED_EXTENSIONS = new Set([
+  'KHR_materials_anisotropy',
   'KHR_materials_emissive_strength',
   'KHR_materials_ior',
+  'KHR_materials_iridescence',
   'KHR_materials_specular',
   'KHR_materials_transmission',
   'KHR_mesh_quantization',
@@ -86,8 +90,10 @@ export interface GltfLoadOptions {
 export type { GltfCamera, GltfModel };
 
 const EXTENSIONS = [
+  KHRMaterialsAnisotropy,
   KHRMaterialsEmissiveStrength,
   KHRMaterialsIOR,
+  KHRMaterialsIridescence,
   KHRMaterialsSpecular,
   KHRMaterialsTransmission,
   KHRMeshQuantization,

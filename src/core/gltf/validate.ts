@@ -48,8 +48,10 @@ export { fail, list };
 
 /** Extensions a file may require: those pathwise reads (see docs/gltf.md). */
 export const SUPPORTED_REQUIRED = new Set([
+  'KHR_materials_anisotropy',
   'KHR_materials_emissive_strength',
   'KHR_materials_ior',
+  'KHR_materials_iridescence',
   'KHR_materials_specular',
   'KHR_materials_transmission',
   'KHR_mesh_quantization',

@@ -52,6 +52,7 @@ import { intersectScene, occluded } from '../accel/trace.ts';
 import { SPHERE_HUGE, SPHERE_TINY } from '../geometry/intersect.ts';
 import { environmentLightPdf, lightPdf, sampleLight } from '../lights/lights.ts';
 import { completeTriangleHit } from './triangle-surface.ts';
+import { anisotropyToLocal } from '../gltf-material/anisotropy-frame.ts';
 import {
   MAX_ALPHA_CROSSINGS,
   gltfLightEmission,
@@ -331,6 +332,9 @@ export function trace(
     const ftx = fb;
     const fty = fsign + sy * sy * fa;
     const ftz = -sy;
+    // KHR_materials_anisotropy: its direction on this frame's tangents.
+    if (isGltf && sp.anisotropy > 0)
+      anisotropyToLocal(this.gw.anisotropy, fsx, fsy, fsz, ftx, fty, ftz, sp);
     const bq = this.bq;
     const lwox = wox * fsx + woy * fsy + woz * fsz;
     const lwoy = wox * ftx + woy * fty + woz * ftz;
