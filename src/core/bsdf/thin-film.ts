@@ -7,20 +7,23 @@
  * orders of the oscillating terms, integrated against the CIE XYZ
  * sensitivities in Fourier space and converted to linear Rec. 709 (our RGB).
  *
- * Both interfaces use Schlick's Fresnel, as the README does: air → film of
- * index `eta` (the film's F0 from eta), film → base of index derived from the
- * base's F0 per channel (Fresnel0ToIor). The film's index is blended towards
- * the outside medium's (1) as the thickness goes to 0 (the README's
- * smoothstep over 0.03 nm), so a vanishing film leaves the plain Schlick
- * Fresnel of the base.
+ * The film → base interface uses Schlick's Fresnel, as the README does, with
+ * the base's index derived from its F0 per channel (Fresnel0ToIor). The
+ * film's index is blended towards the outside medium's (1) as the thickness
+ * goes to 0 (the README's smoothstep over 0.03 nm), so a vanishing film
+ * leaves the plain Schlick Fresnel of the base.
  *
- * Two deliberate departures from the Sample Viewer, both for a path tracer's
- * energy bookkeeping: R12·R23 is clamped below only at 0 (the viewer's 1e-5
- * floor leaves a 0.3 % ripple at zero thickness or a film of index 1, where
- * the Fresnel must be the plain one), and the result is clamped to [0, 1]
- * per channel (the viewer clamps negative, out-of-gamut values only), so that
- * 1 − F, the light the layer lets through to the diffuse base, is never
- * negative and the lobe never reflects more than arrives.
+ * Three deliberate departures from the Sample Viewer, all so that "no film"
+ * is exactly the plain Fresnel and energy is conserved:
+ * - the air → film interface uses the exact dielectric Fresnel (the one
+ *   Belcour–Barla use) rather than Schlick's: Schlick with F0 = 0 still
+ *   reflects (1 − cosθ)⁵, so an index-matched film would add a grazing
+ *   reflection of up to 100 % that no interface has;
+ * - R12·R23 is clamped below only at 0 (the viewer's 1e-5 floor leaves a
+ *   0.3 % ripple where the film vanishes);
+ * - the result is clamped to [0, 1] per channel (the viewer clamps only
+ *   negative, out-of-gamut values), so that 1 − F, the light the layer lets
+ *   through to the diffuse base, is never negative.
  *
  * Allocation-free: inputs and outputs live in a caller-owned ThinFilm record.
  */
@@ -42,6 +45,7 @@ export class ThinFilm {
   g = 0;
   b = 0;
 }
+import { fresnelDielectric } from './fresnel.ts';
 
 function schlick(f0: number, c: number): number {
   const m = 1 - c;
@@ -116,7 +120,7 @@ export function thinFilmFresnel(t: ThinFilm): void {
   }
   const cos2 = Math.sqrt(cos2Sq);
   // Air → film.
-  const r12 = schlick(f0Of(eta2, 1), cos1);
+  const r12 = fresnelDielectric(cos1, eta2);
   const t121 = 1 - r12;
   const phi21 = eta2 < 1 ? 0 : Math.PI;
   // Film → base, per channel.
