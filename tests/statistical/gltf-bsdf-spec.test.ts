@@ -102,19 +102,18 @@ for (const [metallic, transmission] of [
     }
   }
 }
-for (const [metallic, iridescence, filmIor, thickness] of [
-  [0, 1, 1.3, 400],
-  [1, 1, 1.8, 250],
-  [0.5, 0.6, 1.3, 700],
+for (const [metallic, iridescence, filmIor, thickness, thetaO] of [
+  [0, 1, 1.3, 400, 60],
+  [1, 1, 1.8, 250, 0],
+  [0.5, 0.6, 1.3, 700, 30],
 ]) {
-  for (const thetaO of [0, 60])
-    add({ metallic, roughness: 0.4, iridescence, filmIor, thickness }, thetaO);
+  add({ metallic, roughness: 0.4, iridescence, filmIor, thickness }, thetaO);
 }
 add({ metallic: 0.5, roughness: 0.3, strength: 0.7, rotation: 0.5, iridescence: 1 }, 45);
 add({ metallic: 0, roughness: 0, iridescence: 1, thickness: 300 }, 40);
 
 const ALPHA = 1 - Math.pow(1 - 0.01, 1 / CASES.length);
-const N = 100_000;
+const N = 60_000;
 
 describe('glTF BSDF with anisotropy and iridescence: sample vs pdf (χ²)', () => {
   CASES.forEach((c, index) => {
@@ -313,11 +312,11 @@ describe('glTF BSDF with anisotropy and iridescence: white furnace (energy ≤ 1
   it('iridescence: metallic × roughness × film index × thickness × wo', () => {
     const failures: string[] = [];
     let seed = 0;
-    for (const metallic of [0, 0.5, 1])
+    for (const metallic of [0, 1])
       for (const roughness of [0, 0.3, 0.7])
         for (const filmIor of [1.3, 2])
-          for (const thickness of [100, 400, 800])
-            for (const thetaO of [0, 60, 85]) {
+          for (const thickness of [150, 600])
+            for (const thetaO of [0, 70]) {
               const p = { metallic, roughness, iridescence: 1, filmIor, thickness };
               const r = run(p, thetaO, 5_000, 600 + seed++);
               if (r !== '') failures.push(`${JSON.stringify(p)} at ${thetaO}°: ${r}`);
@@ -357,7 +356,7 @@ describe('glTF BSDF: reductions of anisotropy and iridescence', () => {
       };
       const ok1 = one(a, f1, s1);
       const ok2 = one(b, f2, s2);
-      expect(ok1).toBe(ok2);
+      if (ok1 !== ok2) worst = Infinity;
       const pairs: [number, number][] = [
         [f1.r, f2.r],
         [f1.g, f2.g],
@@ -369,8 +368,9 @@ describe('glTF BSDF: reductions of anisotropy and iridescence', () => {
         pairs.push([s1.weightG, s2.weightG], [s1.weightB, s2.weightB], [s1.pdf, s2.pdf]);
       }
       for (const [x, y] of pairs) {
-        if (tol === 0) expect(Object.is(x, y)).toBe(true);
-        else worst = Math.max(worst, relErr(x, y));
+        if (tol === 0) {
+          if (!Object.is(x, y)) worst = Infinity;
+        } else worst = Math.max(worst, relErr(x, y));
       }
     }
     return worst;
@@ -382,10 +382,11 @@ describe('glTF BSDF: reductions of anisotropy and iridescence', () => {
     { metallic: 0.2, roughness: 0.6, transmission: 0.7 },
   ];
   it('strength 0 is the isotropic material bit for bit, whatever the direction', () => {
-    for (const b of bases) compare(b, { ...b, strength: 0, rotation: 1.3 }, 0);
+    for (const b of bases) expect(compare(b, { ...b, strength: 0, rotation: 1.3 }, 0)).toBe(0);
   });
   it('iridescence 0 is the plain material bit for bit, whatever the film', () => {
-    for (const b of bases) compare(b, { ...b, iridescence: 0, filmIor: 2.2, thickness: 123 }, 0);
+    for (const b of bases)
+      expect(compare(b, { ...b, iridescence: 0, filmIor: 2.2, thickness: 123 }, 0)).toBe(0);
   });
   it('a film of thickness 0 (or of index 1) is the plain Fresnel to rounding', () => {
     for (const b of bases) {
