@@ -110,6 +110,8 @@ for (const [metallic, iridescence, filmIor, thickness, thetaO] of [
   add({ metallic, roughness: 0.4, iridescence, filmIor, thickness }, thetaO);
 }
 add({ metallic: 0.5, roughness: 0.3, strength: 0.7, rotation: 0.5, iridescence: 1 }, 45);
+add({ metallic: 0, transmission: 1, roughness: 0.3, iridescence: 1, filmIor: 1.8 }, 50);
+add({ metallic: 0, transmission: 1, roughness: 0.3, iridescence: 1, filmIor: 1.8 }, 50, true);
 add({ metallic: 0, roughness: 0, iridescence: 1, thickness: 300 }, 40);
 
 const ALPHA = 1 - Math.pow(1 - 0.01, 1 / CASES.length);
@@ -309,15 +311,20 @@ describe('glTF BSDF with anisotropy and iridescence: white furnace (energy ≤ 1
             }
     expect(failures).toEqual([]);
   });
-  it('iridescence: metallic × roughness × film index × thickness × wo', () => {
+  it('iridescence: (metallic, transmission) × roughness × film index × thickness × wo', () => {
     const failures: string[] = [];
     let seed = 0;
-    for (const metallic of [0, 1])
+    for (const [metallic, transmission] of [
+      [0, 0],
+      [1, 0],
+      [0, 1],
+      [0.2, 0.5],
+    ])
       for (const roughness of [0, 0.3, 0.7])
         for (const filmIor of [1.3, 2])
           for (const thickness of [150, 600])
             for (const thetaO of [0, 70]) {
-              const p = { metallic, roughness, iridescence: 1, filmIor, thickness };
+              const p = { metallic, transmission, roughness, iridescence: 1, filmIor, thickness };
               const r = run(p, thetaO, 5_000, 600 + seed++);
               if (r !== '') failures.push(`${JSON.stringify(p)} at ${thetaO}°: ${r}`);
             }

@@ -64,3 +64,25 @@ export function iridescentMetal(sp: ShadingParams, c: number, out: Rgb): void {
   out.g += i * (TF.g - out.g);
   out.b += i * (TF.b - out.b);
 }
+
+/**
+ * Mixed reflectance of the glass lobe at c, for a path arriving from outside
+ * (the film is on the outer surface, seen from air): `out` holds the exact
+ * Fresnel on entry; the film's base is the glass of index ior (exact Fresnel, so
+ * that a vanishing film leaves exactly the glass's own reflectance).
+ * Returns the mean over the channels, the probability of reflecting: the
+ * refraction then carries (1 − F) per channel over (1 − mean).
+ */
+export function iridescentGlass(sp: ShadingParams, c: number, out: Rgb): number {
+  TF.eta = sp.iridescenceIor;
+  TF.thickness = sp.iridescenceThickness;
+  TF.baseIor = sp.ior;
+  TF.cos = c;
+  thinFilmFresnel(TF);
+  TF.baseIor = 0;
+  const i = sp.iridescence;
+  out.r += i * (TF.r - out.r);
+  out.g += i * (TF.g - out.g);
+  out.b += i * (TF.b - out.b);
+  return (out.r + out.g + out.b) / 3;
+}

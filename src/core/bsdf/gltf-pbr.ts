@@ -47,7 +47,7 @@ import { squareToCosineHemisphere } from '../sampling/warps.ts';
 import { fresnelDielectric, schlickWeight } from './fresnel.ts';
 import { ggxD, ggxG1, ggxSampleVisibleNormal } from './ggx.ts';
 import { ANISO, anisoSampleNormal, anisoTerms } from './gltf-anisotropy.ts';
-import { iridescentDielectric, iridescentMetal } from './gltf-iridescence.ts';
+import { iridescentDielectric, iridescentGlass, iridescentMetal } from './gltf-iridescence.ts';
 import { BsdfQuery, type BsdfSample, type BsdfValue } from './records.ts';
 import type { ShadingParams } from './shading.ts';
 
@@ -61,6 +61,8 @@ const FD = { r: 0, g: 0, b: 0 };
 const FO = { r: 0, g: 0, b: 0 };
 const FI = { r: 0, g: 0, b: 0 };
 const FM = { r: 0, g: 0, b: 0 };
+/** The glass lobe's iridescent reflectance per channel (its mean is the reflection probability). */
+const FG = { r: 0, g: 0, b: 0 };
 
 /**
  * Lobe-selection probabilities of the current call (functions of wo only):
@@ -224,11 +226,22 @@ function evalReflection(
       g1i = ggxG1(iz, alpha);
     }
     const s = (d * g1o * g1i) / (4 * oz * iz);
-    const fd = cGlass > 0 ? fresnelDielectric(c, inside ? 1 / sp.ior : sp.ior) : 0;
-    const layer = cGlass * fd;
+    let fd = cGlass > 0 ? fresnelDielectric(c, inside ? 1 / sp.ior : sp.ior) : 0;
+    let layer = cGlass * fd,
+      layerG = layer,
+      layerB = layer;
+    if (cGlass > 0 && sp.iridescence > 0 && !inside) {
+      FG.r = fd;
+      FG.g = fd;
+      FG.b = fd;
+      fd = iridescentGlass(sp, c, FG);
+      layer = cGlass * FG.r;
+      layerG = cGlass * FG.g;
+      layerB = cGlass * FG.b;
+    }
     r += s * (metallic * mr + cOpaque * fr + layer);
-    g += s * (metallic * mg + cOpaque * fg + layer);
-    b += s * (metallic * mb + cOpaque * fb + layer);
+    g += s * (metallic * mg + cOpaque * fg + layerG);
+    b += s * (metallic * mb + cOpaque * fb + layerB);
     // Every reflection lobe draws the visible normal: G1(wo)·D(h) / (4 cosθo).
     pdf += (lobe.reflect + lobe.glass * fd) * ((g1o * d) / (4 * oz));
   }
@@ -305,12 +318,18 @@ export function gltfSample(sp: ShadingParams, q: BsdfQuery, out: BsdfSample): bo
     hz *= inv;
   } else if (alpha === 0) {
     // Smooth: metal, specular layer and glass reflection share the mirror direction.
-    const fd = lobe.glass > 0 ? fresnelDielectric(oz, eta) : 0;
+    let fd = lobe.glass > 0 ? fresnelDielectric(oz, eta) : 0;
+    const filmGlass = lobe.glass > 0 && sp.iridescence > 0 && !inside;
+    FG.r = fd;
+    FG.g = fd;
+    FG.b = fd;
+    if (filmGlass) fd = iridescentGlass(sp, oz, FG);
     const pMirror = lobe.reflect + lobe.glass * fd;
     if (u < lobe.diffuse + pMirror || u < glassFrom) {
       const metallic = sp.metallic;
       const cOpaque = (1 - metallic) * (1 - sp.transmission);
-      const layer = (1 - metallic) * sp.transmission * fd;
+      const cGlass = (1 - metallic) * sp.transmission;
+      const layer = cGlass * FG.r;
       const w = schlickWeight(oz);
       const f90 = f0.f90;
       const inv = 1 / pMirror;
@@ -328,8 +347,8 @@ export function gltfSample(sp: ShadingParams, q: BsdfQuery, out: BsdfSample): bo
       const metalG = metallic * FM.g;
       const metalB = metallic * FM.b;
       out.weightR = (metalR + cOpaque * FD.r + layer) * inv;
-      out.weightG = (metalG + cOpaque * FD.g + layer) * inv;
-      out.weightB = (metalB + cOpaque * FD.b + layer) * inv;
+      out.weightG = (metalG + cOpaque * FD.g + cGlass * FG.g) * inv;
+      out.weightB = (metalB + cOpaque * FD.b + cGlass * FG.b) * inv;
       out.wx = -wox;
       out.wy = -woy;
       out.wz = woz;
@@ -337,7 +356,9 @@ export function gltfSample(sp: ShadingParams, q: BsdfQuery, out: BsdfSample): bo
       out.isDelta = true;
       return true;
     }
-    return refract(sp, q, oz, eta, lobe.glass * (1 - fd), out);
+    if (!refract(sp, q, oz, eta, lobe.glass * (1 - fd), out)) return false;
+    if (filmGlass) filmRefraction(fd, out);
+    return true;
   } else {
     // The sampler reads a query record and α from an array (no boxed doubles);
     // the reflection frame may be mirrored, so it gets its own query.
@@ -353,9 +374,20 @@ export function gltfSample(sp: ShadingParams, q: BsdfQuery, out: BsdfSample): bo
     if (c <= 0) return false;
     if (u >= glassFrom) {
       // Glass: reflect about m with probability Fd(wo·m), else refract.
-      const fd = fresnelDielectric(c, eta);
+      let fd = fresnelDielectric(c, eta);
+      const filmGlass = sp.iridescence > 0 && !inside;
+      if (filmGlass) {
+        FG.r = fd;
+        FG.g = fd;
+        FG.b = fd;
+        fd = iridescentGlass(sp, c, FG);
+      }
       const ug = (u - lobe.diffuse - lobe.reflect) / lobe.glass;
-      if (ug >= fd) return refract(sp, q, oz, eta, lobe.glass * (1 - fd), out);
+      if (ug >= fd) {
+        if (!refract(sp, q, oz, eta, lobe.glass * (1 - fd), out)) return false;
+        if (filmGlass) filmRefraction(fd, out);
+        return true;
+      }
     }
     wix = 2 * c * M.x - wox;
     wiy = 2 * c * M.y - woy;
@@ -378,6 +410,17 @@ export function gltfSample(sp: ShadingParams, q: BsdfQuery, out: BsdfSample): bo
   out.pdf = fv.pdf;
   out.isDelta = false;
   return true;
+}
+
+/**
+ * KHR_materials_iridescence on glass: the refraction was chosen with
+ * probability ∝ 1 − mean(F) and carries 1 − F per channel (FG, mean `fd`).
+ */
+function filmRefraction(fd: number, out: BsdfSample): void {
+  const k = 1 / (1 - fd);
+  out.weightR *= (1 - FG.r) * k;
+  out.weightG *= (1 - FG.g) * k;
+  out.weightB *= (1 - FG.b) * k;
 }
 
 /**

@@ -8,7 +8,9 @@
  * sensitivities in Fourier space and converted to linear Rec. 709 (our RGB).
  *
  * The film → base interface uses Schlick's Fresnel, as the README does, with
- * the base's index derived from its F0 per channel (Fresnel0ToIor). The
+ * the base's index derived from its F0 per channel (Fresnel0ToIor) — except
+ * over glass (the transmission lobe, whose plain reflectance is the exact
+ * Fresnel), where it is the exact Fresnel of the base's index. The
  * film's index is blended towards the outside medium's (1) as the thickness
  * goes to 0 (the README's smoothstep over 0.03 nm), so a vanishing film
  * leaves the plain Schlick Fresnel of the base.
@@ -34,7 +36,13 @@ export class ThinFilm {
   eta = 1.3;
   /** Film thickness in nanometres. */
   thickness = 400;
-  /** F0 of the base under the film, per channel, in [0, 1]. */
+  /**
+   * Index of a dielectric base (glass) whose film → base reflectance is the
+   * exact Fresnel; 0 to describe the base by its F0 below instead (Schlick,
+   * the README's Fresnel0ToIor for metals and the specular layer).
+   */
+  baseIor = 0;
+  /** F0 of the base under the film, per channel, in [0, 1] (when baseIor is 0). */
   f0r = 0.04;
   f0g = 0.04;
   f0b = 0.04;
@@ -124,12 +132,13 @@ export function thinFilmFresnel(t: ThinFilm): void {
   const t121 = 1 - r12;
   const phi21 = eta2 < 1 ? 0 : Math.PI;
   // Film → base, per channel.
-  const nr = iorOfF0(t.f0r),
-    ng = iorOfF0(t.f0g),
-    nb = iorOfF0(t.f0b);
-  const r23r = schlick(f0Of(nr, eta2), cos2);
-  const r23g = schlick(f0Of(ng, eta2), cos2);
-  const r23b = schlick(f0Of(nb, eta2), cos2);
+  const glass = t.baseIor > 0;
+  const nr = glass ? t.baseIor : iorOfF0(t.f0r),
+    ng = glass ? t.baseIor : iorOfF0(t.f0g),
+    nb = glass ? t.baseIor : iorOfF0(t.f0b);
+  const r23r = glass ? fresnelDielectric(cos2, nr / eta2) : schlick(f0Of(nr, eta2), cos2);
+  const r23g = glass ? r23r : schlick(f0Of(ng, eta2), cos2);
+  const r23b = glass ? r23r : schlick(f0Of(nb, eta2), cos2);
   const phr = phi21 + (nr < eta2 ? Math.PI : 0);
   const phg = phi21 + (ng < eta2 ? Math.PI : 0);
   const phb = phi21 + (nb < eta2 ? Math.PI : 0);

@@ -109,6 +109,26 @@ describe('thin-film Fresnel', () => {
     }
   });
 
+  it('over glass (a base given by its index), no film is the exact Fresnel of the glass', () => {
+    for (const c of COSINES) {
+      for (const ior of [1.33, 1.5, 2.4]) {
+        for (const [eta, d] of [
+          [1.3, 0],
+          [1, 400],
+        ]) {
+          t.cos = c;
+          t.eta = eta;
+          t.thickness = d;
+          t.baseIor = ior;
+          thinFilmFresnel(t);
+          t.baseIor = 0;
+          const fd = fresnelDielectric(c, ior);
+          for (const x of [t.r, t.g, t.b]) expect(x).toBeCloseTo(fd, 12);
+        }
+      }
+    }
+  });
+
   it('a film of the outside medium’s index (1) is no film', () => {
     for (const c of COSINES) {
       for (const f0 of F0S) {
