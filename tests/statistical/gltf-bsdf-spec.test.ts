@@ -223,7 +223,12 @@ describe('glTF BSDF with anisotropy and iridescence: reciprocity', () => {
     let worst = 0;
     let where = '';
     let n = 0;
-    for (const metallic of [0, 0.5, 1]) {
+    for (const [metallic, transmission] of [
+      [0, 0],
+      [0.5, 0],
+      [1, 0],
+      [0.2, 0.6],
+    ]) {
       for (const roughness of [0.05, 0.4, 1]) {
         for (const [strength, iridescence] of [
           [0.7, 0],
@@ -233,6 +238,7 @@ describe('glTF BSDF with anisotropy and iridescence: reciprocity', () => {
         ]) {
           const sp = setParams({
             metallic,
+            transmission,
             roughness,
             strength,
             rotation: 0.9,
@@ -243,8 +249,12 @@ describe('glTF BSDF with anisotropy and iridescence: reciprocity', () => {
             const key = sampleKey(77, i, n);
             const a = Math.acos(hashToUnit(key, 0));
             const b = Math.acos(hashToUnit(key, 1));
-            const [ox, oy, oz] = direction(a / DEG, 2 * Math.PI * hashToUnit(key, 2));
-            const [ix, iy, iz] = direction(b / DEG, 2 * Math.PI * hashToUnit(key, 3));
+            // Both on one side; for glass also both inside (z < 0).
+            const side = transmission > 0 && i % 2 === 1 ? -1 : 1;
+            const [ox, oy, zo] = direction(a / DEG, 2 * Math.PI * hashToUnit(key, 2));
+            const [ix, iy, zi] = direction(b / DEG, 2 * Math.PI * hashToUnit(key, 3));
+            const oz = side * zo,
+              iz = side * zi;
             Object.assign(q, { wox: ox, woy: oy, woz: oz, wix: ix, wiy: iy, wiz: iz });
             gltfEval(sp, q, f1);
             Object.assign(q, { wox: ix, woy: iy, woz: iz, wix: ox, wiy: oy, wiz: oz });
@@ -252,7 +262,7 @@ describe('glTF BSDF with anisotropy and iridescence: reciprocity', () => {
             const e = Math.max(relErr(f1.r, f2.r), relErr(f1.g, f2.g), relErr(f1.b, f2.b));
             if (e > worst) {
               worst = e;
-              where = `metallic ${metallic}, roughness ${roughness}, strength ${strength}, iridescence ${iridescence}`;
+              where = `metallic ${metallic}, transmission ${transmission}, roughness ${roughness}, strength ${strength}, iridescence ${iridescence}`;
             }
           }
           n++;
