@@ -307,16 +307,20 @@ describe('glTF BSDF with anisotropy and iridescence: white furnace (energy ≤ 1
     }
     return '';
   };
-  it('anisotropy: metallic × roughness × strength × rotation × wo', () => {
+  it('anisotropy: (metallic, transmission) × roughness × strength × rotation × wo', () => {
     const failures: string[] = [];
     let seed = 0;
-    for (const metallic of [0, 1])
+    for (const [metallic, transmission] of [
+      [0, 0],
+      [1, 0],
+      [0, 1],
+    ])
       for (const roughness of [0, 0.3, 0.7])
         for (const strength of [0.5, 1])
           for (const rotation of [0, 2])
             for (const thetaO of [0, 60, 85]) {
-              const p = { metallic, roughness, strength, rotation };
-              const r = run(p, thetaO, 10_000, 300 + seed++);
+              const p = { metallic, transmission, roughness, strength, rotation };
+              const r = run(p, thetaO, 8_000, 300 + seed++);
               if (r !== '') failures.push(`${JSON.stringify(p)} at ${thetaO}°: ${r}`);
             }
     expect(failures).toEqual([]);
