@@ -38,6 +38,12 @@
  * are the full f·cosθi / pdf. At roughness 0 every reflection lobe is the
  * mirror direction and they are sampled together as one Dirac lobe.
  *
+ * KHR_materials_iridescence replaces the Fresnel of the specular layer, the
+ * metal and (from outside) the glass by the thin-film one, mixed by its weight
+ * (gltf-iridescence.ts); KHR_materials_anisotropy makes the GGX lobe
+ * anisotropic (gltf-anisotropy.ts). Both are skipped at weight 0, which
+ * leaves the arithmetic of this file exactly as without them.
+ *
  * Local frame: for an opaque material +z faces wo; for a transmissive one
  * (the integrator's geometric-side mode, as for dielectrics) +z is the
  * outward normal and wo.z < 0 means the path arrives from inside. Reflection
