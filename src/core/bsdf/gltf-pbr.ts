@@ -45,6 +45,12 @@
  * are the full f·cosθi / pdf. At roughness 0 every reflection lobe is the
  * mirror direction and they are sampled together as one Dirac lobe.
  *
+ * KHR_materials_iridescence replaces the Fresnel of the specular layer, the
+ * metal and (from outside) the glass by the thin-film one, mixed by its weight
+ * (gltf-iridescence.ts); KHR_materials_anisotropy makes the GGX lobe
+ * anisotropic (gltf-anisotropy.ts). Both are skipped at weight 0, which
+ * leaves the arithmetic of this file exactly as without them.
+ *
  * Local frame: for an opaque material +z faces wo; for a transmissive one
  * (the integrator's geometric-side mode, as for dielectrics) +z is the
  * outward normal and wo.z < 0 means the path arrives from inside. Reflection
@@ -54,6 +60,8 @@ import { squareToCosineHemisphere } from '../sampling/warps.ts';
 import { fresnelDielectric, schlickWeight } from './fresnel.ts';
 import { ggxD, ggxG1, ggxSampleVisibleNormal } from './ggx.ts';
 import { diffuseTransmissionAlbedo, evalDiffuseTransmission } from './diffuse-transmission.ts';
+import { ANISO, anisoSampleNormal, anisoTerms } from './gltf-anisotropy.ts';
+import { iridescentDielectric, iridescentGlass, iridescentMetal } from './gltf-iridescence.ts';
 import { BsdfQuery, type BsdfSample, type BsdfValue } from './records.ts';
 import type { ShadingParams } from './shading.ts';
 
@@ -62,6 +70,13 @@ const M = { x: 0, y: 0, z: 1 };
 const VQ = new BsdfQuery();
 const VALPHA = new Float64Array(1);
 const W = { x: 0, y: 0, z: 1 };
+/** Mixed (iridescent) Fresnel values: dielectric at v·h, at n·wo, at n·wi, and the metal's. */
+const FD = { r: 0, g: 0, b: 0 };
+const FO = { r: 0, g: 0, b: 0 };
+const FI = { r: 0, g: 0, b: 0 };
+const FM = { r: 0, g: 0, b: 0 };
+/** The glass lobe's iridescent reflectance per channel (its mean is the reflection probability). */
+const FG = { r: 0, g: 0, b: 0 };
 
 /**
  * Lobe-selection probabilities of the current call (functions of wo only):
@@ -95,9 +110,18 @@ function selectLobes(sp: ShadingParams, cosO: number): boolean {
   const cOpaque = (1 - metallic) * (1 - t);
   const w = schlickWeight(cosO);
   const f90 = f0.f90;
-  const fr = f0.r + (f90 - f0.r) * w;
-  const fg = f0.g + (f90 - f0.g) * w;
-  const fb = f0.b + (f90 - f0.b) * w;
+  let fr = f0.r + (f90 - f0.r) * w;
+  let fg = f0.g + (f90 - f0.g) * w;
+  let fb = f0.b + (f90 - f0.b) * w;
+  if (sp.iridescence > 0 && cOpaque > 0) {
+    FO.r = fr;
+    FO.g = fg;
+    FO.b = fb;
+    iridescentDielectric(sp, cosO, FO);
+    fr = FO.r;
+    fg = FO.g;
+    fb = FO.b;
+  }
   const pSpec = (cOpaque * (fr + fg + fb)) / 3;
   const dt = sp.diffuseTransmission;
   const pDiffuse =
@@ -151,30 +175,96 @@ function evalReflection(
     baseB = sp.baseB;
   const w = schlickWeight(c);
   const f90 = f0.f90;
-  const fr = f0.r + (f90 - f0.r) * w;
-  const fg = f0.g + (f90 - f0.g) * w;
-  const fb = f0.b + (f90 - f0.b) * w;
+  let fr = f0.r + (f90 - f0.r) * w;
+  let fg = f0.g + (f90 - f0.g) * w;
+  let fb = f0.b + (f90 - f0.b) * w;
   // Lambert base under the layer, weighted by what the layer transmits on
   // the way in and on the way out (see the header).
   const wo5 = schlickWeight(oz);
   const wi5 = schlickWeight(iz);
   const kd = cOpaque * (1 - sp.diffuseTransmission) * INV_PI;
-  let r = kd * (1 - f0.r - (f90 - f0.r) * wo5) * (1 - f0.r - (f90 - f0.r) * wi5) * baseR;
-  let g = kd * (1 - f0.g - (f90 - f0.g) * wo5) * (1 - f0.g - (f90 - f0.g) * wi5) * baseG;
-  let b = kd * (1 - f0.b - (f90 - f0.b) * wo5) * (1 - f0.b - (f90 - f0.b) * wi5) * baseB;
+  let tor = 1 - f0.r - (f90 - f0.r) * wo5,
+    tog = 1 - f0.g - (f90 - f0.g) * wo5,
+    tob = 1 - f0.b - (f90 - f0.b) * wo5;
+  let tir = 1 - f0.r - (f90 - f0.r) * wi5,
+    tig = 1 - f0.g - (f90 - f0.g) * wi5,
+    tib = 1 - f0.b - (f90 - f0.b) * wi5;
+  let mr = baseR + (1 - baseR) * w,
+    mg = baseG + (1 - baseG) * w,
+    mb = baseB + (1 - baseB) * w;
+  if (sp.iridescence > 0) {
+    // KHR_materials_iridescence: the thin-film Fresnel, mixed in (gltf-iridescence.ts).
+    if (cOpaque > 0) {
+      FD.r = fr;
+      FD.g = fg;
+      FD.b = fb;
+      iridescentDielectric(sp, c, FD);
+      fr = FD.r;
+      fg = FD.g;
+      fb = FD.b;
+      FO.r = 1 - tor;
+      FO.g = 1 - tog;
+      FO.b = 1 - tob;
+      iridescentDielectric(sp, oz, FO);
+      tor = 1 - FO.r;
+      tog = 1 - FO.g;
+      tob = 1 - FO.b;
+      FI.r = 1 - tir;
+      FI.g = 1 - tig;
+      FI.b = 1 - tib;
+      iridescentDielectric(sp, iz, FI);
+      tir = 1 - FI.r;
+      tig = 1 - FI.g;
+      tib = 1 - FI.b;
+    }
+    if (metallic > 0) {
+      FM.r = mr;
+      FM.g = mg;
+      FM.b = mb;
+      iridescentMetal(sp, c, FM);
+      mr = FM.r;
+      mg = FM.g;
+      mb = FM.b;
+    }
+  }
+  let r = kd * tor * tir * baseR;
+  let g = kd * tog * tig * baseG;
+  let b = kd * tob * tib * baseB;
   let pdf = lobe.diffuse * iz * INV_PI;
   const alpha = sp.alpha;
   if (alpha > 0) {
-    const d = ggxD(hz, alpha);
-    const g1o = ggxG1(oz, alpha);
-    const s = (d * g1o * ggxG1(iz, alpha)) / (4 * oz * iz);
+    let d: number, g1o: number, g1i: number;
+    if (sp.anisotropy > 0) {
+      // KHR_materials_anisotropy (gltf-anisotropy.ts).
+      anisoTerms(sp, wox, woy, oz, hx, hy, hz);
+      d = ANISO.d;
+      g1o = ANISO.g1o;
+      g1i = ANISO.g1i;
+    } else {
+      d = ggxD(hz, alpha);
+      g1o = ggxG1(oz, alpha);
+      g1i = ggxG1(iz, alpha);
+    }
+    const s = (d * g1o * g1i) / (4 * oz * iz);
     // A thin wall has air on both sides: the same η from either side.
-    const fd =
+    let fd =
       cGlass > 0 ? fresnelDielectric(c, inside && sp.thickness > 0 ? 1 / sp.ior : sp.ior) : 0;
-    const layer = cGlass * fd;
-    r += s * (metallic * (baseR + (1 - baseR) * w) + cOpaque * fr + layer);
-    g += s * (metallic * (baseG + (1 - baseG) * w) + cOpaque * fg + layer);
-    b += s * (metallic * (baseB + (1 - baseB) * w) + cOpaque * fb + layer);
+    let layer = cGlass * fd,
+      layerG = layer,
+      layerB = layer;
+    // A thin wall has air on both sides: the film faces outwards either way.
+    if (cGlass > 0 && sp.iridescence > 0 && (!inside || !(sp.thickness > 0))) {
+      FG.r = fd;
+      FG.g = fd;
+      FG.b = fd;
+      fd = iridescentGlass(sp, c, FG);
+      layer = cGlass * FG.r;
+      layerG = cGlass * FG.g;
+      layerB = cGlass * FG.b;
+    }
+    r += s * (metallic * mr + cOpaque * fr + layer);
+    g += s * (metallic * mg + cOpaque * fg + layerG);
+    b += s * (metallic * mb + cOpaque * fb + layerB);
     // Every reflection lobe draws the visible normal: G1(wo)·D(h) / (4 cosθo).
     pdf += (lobe.reflect + lobe.glass * fd) * ((g1o * d) / (4 * oz));
   }
@@ -273,21 +363,37 @@ export function gltfSample(sp: ShadingParams, q: BsdfQuery, out: BsdfSample): bo
     hz *= inv;
   } else if (alpha === 0) {
     // Smooth: metal, specular layer and glass reflection share the mirror direction.
-    const fd = lobe.glass > 0 ? fresnelDielectric(oz, eta) : 0;
+    let fd = lobe.glass > 0 ? fresnelDielectric(oz, eta) : 0;
+    const filmGlass = lobe.glass > 0 && sp.iridescence > 0 && (!inside || !(sp.thickness > 0));
+    FG.r = fd;
+    FG.g = fd;
+    FG.b = fd;
+    if (filmGlass) fd = iridescentGlass(sp, oz, FG);
     const pMirror = lobe.reflect + lobe.glass * fd;
     if (u < lobe.diffuse + pMirror || u < glassFrom) {
       const metallic = sp.metallic;
       const cOpaque = (1 - metallic) * (1 - sp.transmission);
-      const layer = (1 - metallic) * sp.transmission * fd;
+      const cGlass = (1 - metallic) * sp.transmission;
+      const layer = cGlass * FG.r;
       const w = schlickWeight(oz);
       const f90 = f0.f90;
       const inv = 1 / pMirror;
-      const metalR = metallic * (sp.baseR + (1 - sp.baseR) * w);
-      const metalG = metallic * (sp.baseG + (1 - sp.baseG) * w);
-      const metalB = metallic * (sp.baseB + (1 - sp.baseB) * w);
-      out.weightR = (metalR + cOpaque * (f0.r + (f90 - f0.r) * w) + layer) * inv;
-      out.weightG = (metalG + cOpaque * (f0.g + (f90 - f0.g) * w) + layer) * inv;
-      out.weightB = (metalB + cOpaque * (f0.b + (f90 - f0.b) * w) + layer) * inv;
+      FM.r = sp.baseR + (1 - sp.baseR) * w;
+      FM.g = sp.baseG + (1 - sp.baseG) * w;
+      FM.b = sp.baseB + (1 - sp.baseB) * w;
+      FD.r = f0.r + (f90 - f0.r) * w;
+      FD.g = f0.g + (f90 - f0.g) * w;
+      FD.b = f0.b + (f90 - f0.b) * w;
+      if (sp.iridescence > 0) {
+        if (metallic > 0) iridescentMetal(sp, oz, FM);
+        if (cOpaque > 0) iridescentDielectric(sp, oz, FD);
+      }
+      const metalR = metallic * FM.r;
+      const metalG = metallic * FM.g;
+      const metalB = metallic * FM.b;
+      out.weightR = (metalR + cOpaque * FD.r + layer) * inv;
+      out.weightG = (metalG + cOpaque * FD.g + cGlass * FG.g) * inv;
+      out.weightB = (metalB + cOpaque * FD.b + cGlass * FG.b) * inv;
       out.wx = -wox;
       out.wy = -woy;
       out.wz = woz;
@@ -295,7 +401,9 @@ export function gltfSample(sp: ShadingParams, q: BsdfQuery, out: BsdfSample): bo
       out.isDelta = true;
       return true;
     }
-    return refract(sp, q, oz, eta, lobe.glass * (1 - fd), out);
+    if (!refract(sp, q, oz, eta, lobe.glass * (1 - fd), out)) return false;
+    if (filmGlass) filmRefraction(fd, out);
+    return true;
   } else {
     // The sampler reads a query record and α from an array (no boxed doubles);
     // the reflection frame may be mirrored, so it gets its own query.
@@ -305,14 +413,26 @@ export function gltfSample(sp: ShadingParams, q: BsdfQuery, out: BsdfSample): bo
     VQ.u0 = q.u0;
     VQ.u1 = q.u1;
     VALPHA[0] = alpha;
-    ggxSampleVisibleNormal(VQ, VALPHA, 0, M);
+    if (sp.anisotropy > 0) anisoSampleNormal(sp, wox, woy, oz, q.u0, q.u1, M);
+    else ggxSampleVisibleNormal(VQ, VALPHA, 0, M);
     const c = wox * M.x + woy * M.y + oz * M.z;
     if (c <= 0) return false;
     if (u >= glassFrom) {
       // Glass: reflect about m with probability Fd(wo·m), else refract.
-      const fd = fresnelDielectric(c, eta);
+      let fd = fresnelDielectric(c, eta);
+      const filmGlass = sp.iridescence > 0 && (!inside || !(sp.thickness > 0));
+      if (filmGlass) {
+        FG.r = fd;
+        FG.g = fd;
+        FG.b = fd;
+        fd = iridescentGlass(sp, c, FG);
+      }
       const ug = (u - lobe.diffuse - lobe.reflect) / lobe.glass;
-      if (ug >= fd) return refract(sp, q, oz, eta, lobe.glass * (1 - fd), out);
+      if (ug >= fd) {
+        if (!refract(sp, q, oz, eta, lobe.glass * (1 - fd), out)) return false;
+        if (filmGlass) filmRefraction(fd, out);
+        return true;
+      }
     }
     wix = 2 * c * M.x - wox;
     wiy = 2 * c * M.y - woy;
@@ -335,6 +455,17 @@ export function gltfSample(sp: ShadingParams, q: BsdfQuery, out: BsdfSample): bo
   out.pdf = fv.pdf;
   out.isDelta = false;
   return true;
+}
+
+/**
+ * KHR_materials_iridescence on glass: the refraction was chosen with
+ * probability ∝ 1 − mean(F) and carries 1 − F per channel (FG, mean `fd`).
+ */
+function filmRefraction(fd: number, out: BsdfSample): void {
+  const k = 1 / (1 - fd);
+  out.weightR *= (1 - FG.r) * k;
+  out.weightG *= (1 - FG.g) * k;
+  out.weightB *= (1 - FG.b) * k;
 }
 
 /**

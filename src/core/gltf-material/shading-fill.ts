@@ -20,14 +20,16 @@ import type { TextureStore } from '../texture/texture-store.ts';
 import {
   ALPHA_BLEND,
   ALPHA_MASK,
+  BINDING_STRIDE,
   B_IMAGE,
   B_TEXCOORD,
   B_TRANSFORM,
   B_WRAP_S,
   B_WRAP_T,
-  BINDING_STRIDE,
   GM_ALPHA_CUTOFF,
   GM_ALPHA_MODE,
+  GM_ANISOTROPY_ROTATION,
+  GM_ANISOTROPY_STRENGTH,
   GM_ATTENUATION_COLOR,
   GM_ATTENUATION_DISTANCE,
   GM_BASE,
@@ -36,6 +38,10 @@ import {
   GM_DISPERSION,
   GM_EMISSIVE,
   GM_IOR,
+  GM_IRIDESCENCE,
+  GM_IRIDESCENCE_IOR,
+  GM_IRIDESCENCE_THICKNESS_MAX,
+  GM_IRIDESCENCE_THICKNESS_MIN,
   GM_METALLIC,
   GM_NORMAL_SCALE,
   GM_ROUGHNESS,
@@ -45,10 +51,13 @@ import {
   GM_TEXTURES,
   GM_THICKNESS,
   GM_TRANSMISSION,
+  TEX_ANISOTROPY,
   TEX_BASE_COLOR,
   TEX_DIFFUSE_TRANSMISSION,
   TEX_DIFFUSE_TRANSMISSION_COLOR,
   TEX_EMISSIVE,
+  TEX_IRIDESCENCE,
+  TEX_IRIDESCENCE_THICKNESS,
   TEX_METALLIC_ROUGHNESS,
   TEX_NORMAL,
   TEX_SPECULAR,
@@ -261,6 +270,55 @@ export function fillGltfShading(
   sp.dtR = clamp01(dtr);
   sp.dtG = clamp01(dtg);
   sp.dtB = clamp01(dtb);
+
+  // KHR_materials_iridescence: factor × texture.r; thickness = mix(min, max,
+  // thicknessTexture.g), the maximum without a texture. A film of thickness 0
+  // is no film (the Sample Viewer sets the factor to 0 there too).
+  let iridescence = table[o + GM_IRIDESCENCE];
+  let film = table[o + GM_IRIDESCENCE_THICKNESS_MAX];
+  if (iridescence > 0) {
+    if (lookup(table, o, TEX_IRIDESCENCE, textures, hit)) iridescence *= T.r;
+    if (lookup(table, o, TEX_IRIDESCENCE_THICKNESS, textures, hit)) {
+      const lo = table[o + GM_IRIDESCENCE_THICKNESS_MIN];
+      film = lo + (film - lo) * T.g;
+    }
+    if (!(film > 0)) iridescence = 0;
+  }
+  sp.iridescence = clamp01(iridescence);
+  sp.iridescenceIor = table[o + GM_IRIDESCENCE_IOR];
+  sp.iridescenceThickness = film;
+
+  // KHR_materials_anisotropy: strength × texture.b; direction (cos, sin) in
+  // tangent space, the rotation applied to the texture's normalised RG
+  // (mapped to [−1, 1]) or, without a texture, to the tangent (1, 0). The
+  // integrator turns it into the local shading frame (gltf-surface.ts).
+  let anisotropy = table[o + GM_ANISOTROPY_STRENGTH];
+  let ac = 1,
+    as = 0;
+  if (anisotropy > 0) {
+    const rotation = table[o + GM_ANISOTROPY_ROTATION];
+    ac = Math.cos(rotation);
+    as = Math.sin(rotation);
+    if (lookup(table, o, TEX_ANISOTROPY, textures, hit)) {
+      anisotropy *= T.b;
+      const dx = 2 * T.r - 1,
+        dy = 2 * T.g - 1;
+      const l = Math.sqrt(dx * dx + dy * dy);
+      // A texel with no direction keeps the rotated tangent.
+      if (l > 0) {
+        const c = ac;
+        ac = (c * dx - as * dy) / l;
+        as = (as * dx + c * dy) / l;
+      }
+    }
+  }
+  sp.anisotropy = clamp01(anisotropy);
+  sp.anisotropyCos = ac;
+  sp.anisotropySin = as;
+  // A smooth surface stretched along one direction is rough along it: the
+  // anisotropic lobe needs α > 0 across it too (README: the line of a
+  // fully anisotropic smooth surface has zero width in the limit).
+  if (sp.anisotropy > 0 && sp.alpha === 0) sp.alpha = MIN_ALPHA;
 
   if (lookup(table, o, TEX_NORMAL, textures, hit)) {
     const scale = table[o + GM_NORMAL_SCALE];

@@ -30,9 +30,11 @@ import {
   GM_TEXTURES,
   BINDING_STRIDE,
   B_TEXCOORD,
+  TEX_ANISOTROPY,
   TEX_NORMAL,
   hasTexture,
 } from '../gltf-material/material-table.ts';
+import { usesAnisotropy } from './materials.ts';
 import type { GltfGeometry, TangentGenerator } from '../scene/format/gltf-model.ts';
 import { generatePrimitiveTangents, weldCorners } from './tangents.ts';
 import { det3, identity, type Mat4, multiply, nodeMatrix, normalMatrix } from './transforms.ts';
@@ -152,16 +154,27 @@ export function flattenGltf(
       vertexCount: pos.getCount(),
       generatedTangents: null,
     };
-    if (hasTexture(table, material, TEX_NORMAL) && prim.getAttribute('TANGENT') === null) {
+    const normalMapped = hasTexture(table, material, TEX_NORMAL);
+    // KHR_materials_anisotropy needs tangents too, normal map or not.
+    if (
+      (normalMapped || usesAnisotropy(table, material)) &&
+      prim.getAttribute('TANGENT') === null
+    ) {
       const set =
-        table[material * GM_STRIDE + GM_TEXTURES + TEX_NORMAL * BINDING_STRIDE + B_TEXCOORD];
+        table[
+          material * GM_STRIDE +
+            GM_TEXTURES +
+            (normalMapped ? TEX_NORMAL : TEX_ANISOTROPY) * BINDING_STRIDE +
+            B_TEXCOORD
+        ];
       const uv = prim.getAttribute(`TEXCOORD_${set}`);
+      const lost = normalMapped ? 'the normal map is ignored' : 'its anisotropy is isotropic';
       if (uv === null)
         warn(
-          `${where}: its material has a normal map but the primitive has no TEXCOORD_${set}; the normal map is ignored here`,
+          `${where}: its material needs tangents (${normalMapped ? 'a normal map' : 'KHR_materials_anisotropy'}) but the primitive has no TEXCOORD_${set}; ${lost} here`,
         );
       else if (generateTangents === null)
-        warn(`${where}: no tangent generator was given; the normal map is ignored here`);
+        warn(`${where}: no tangent generator was given; ${lost} here`);
       else {
         // MikkTSpace works on unwelded corners; weld the result back.
         const corner = generatePrimitiveTangents(
@@ -195,7 +208,8 @@ export function flattenGltf(
       has.uv0 ||= p.getAttribute('TEXCOORD_0') !== null;
       has.uv1 ||= p.getAttribute('TEXCOORD_1') !== null;
       has.color ||= p.getAttribute('COLOR_0') !== null;
-      has.tangent ||= hasTexture(table, plan.material, TEX_NORMAL);
+      has.tangent ||=
+        hasTexture(table, plan.material, TEX_NORMAL) || usesAnisotropy(table, plan.material);
     }
   }
 

@@ -16,11 +16,13 @@
 import { Document, type JSONDocument } from '@gltf-transform/core';
 import {
   KHRLightsPunctual,
+  KHRMaterialsAnisotropy,
   KHRMaterialsClearcoat,
   KHRMaterialsDiffuseTransmission,
   KHRMaterialsDispersion,
   KHRMaterialsEmissiveStrength,
   KHRMaterialsIOR,
+  KHRMaterialsIridescence,
   KHRMaterialsPBRSpecularGlossiness,
   KHRMaterialsSheen,
   KHRMaterialsSpecular,
@@ -62,11 +64,13 @@ import { checkPunctualLights } from './punctual-lights.ts';
 /** Extensions whose content is used (everything else is reported as ignored). */
 export const HONOURED_EXTENSIONS = new Set([
   'KHR_lights_punctual',
+  'KHR_materials_anisotropy',
   'KHR_materials_clearcoat',
   'KHR_materials_diffuse_transmission',
   'KHR_materials_dispersion',
   'KHR_materials_emissive_strength',
   'KHR_materials_ior',
+  'KHR_materials_iridescence',
   'KHR_materials_pbrSpecularGlossiness',
   'KHR_materials_sheen',
   'KHR_materials_specular',
@@ -108,11 +112,13 @@ export type { GltfCamera, GltfDecoders, GltfModel };
 
 const EXTENSIONS = [
   KHRLightsPunctual,
+  KHRMaterialsAnisotropy,
   KHRMaterialsClearcoat,
   KHRMaterialsDiffuseTransmission,
   KHRMaterialsDispersion,
   KHRMaterialsEmissiveStrength,
   KHRMaterialsIOR,
+  KHRMaterialsIridescence,
   KHRMaterialsPBRSpecularGlossiness,
   KHRMaterialsSheen,
   KHRMaterialsSpecular,

@@ -6,8 +6,10 @@
  */
 import type { Material, Texture, TextureInfo } from '@gltf-transform/core';
 import type {
+  Anisotropy,
   EmissiveStrength,
   IOR,
+  Iridescence,
   Specular,
   Transform,
   Transmission,
@@ -17,17 +19,23 @@ import {
   ALPHA_BLEND,
   ALPHA_MASK,
   ALPHA_OPAQUE,
+  BINDING_STRIDE,
   B_IMAGE,
   B_TEXCOORD,
   B_TRANSFORM,
   B_WRAP_S,
   B_WRAP_T,
-  BINDING_STRIDE,
   GM_ALPHA_CUTOFF,
   GM_ALPHA_MODE,
+  GM_ANISOTROPY_ROTATION,
+  GM_ANISOTROPY_STRENGTH,
   GM_BASE,
   GM_EMISSIVE,
   GM_IOR,
+  GM_IRIDESCENCE,
+  GM_IRIDESCENCE_IOR,
+  GM_IRIDESCENCE_THICKNESS_MAX,
+  GM_IRIDESCENCE_THICKNESS_MIN,
   GM_METALLIC,
   GM_NORMAL_SCALE,
   GM_ROUGHNESS,
@@ -36,15 +44,18 @@ import {
   GM_STRIDE,
   GM_TEXTURES,
   GM_TRANSMISSION,
-  isColorSlot,
   SLOT_NAMES,
+  TEX_ANISOTROPY,
   TEX_BASE_COLOR,
   TEX_EMISSIVE,
+  TEX_IRIDESCENCE,
+  TEX_IRIDESCENCE_THICKNESS,
   TEX_METALLIC_ROUGHNESS,
   TEX_NORMAL,
   TEX_SPECULAR,
   TEX_SPECULAR_COLOR,
   TEX_TRANSMISSION,
+  isColorSlot,
   writeDefaultMaterial,
 } from '../gltf-material/material-table.ts';
 import { readVolumeExtensions } from './materials-volume.ts';
@@ -71,11 +82,13 @@ export interface CompiledGltfMaterials {
 
 /** The extensions whose material parameters are read here. */
 export const HONOURED_MATERIAL_EXTENSIONS = [
+  'KHR_materials_anisotropy',
   'KHR_materials_clearcoat',
   'KHR_materials_diffuse_transmission',
   'KHR_materials_dispersion',
   'KHR_materials_emissive_strength',
   'KHR_materials_ior',
+  'KHR_materials_iridescence',
   'KHR_materials_pbrSpecularGlossiness',
   'KHR_materials_sheen',
   'KHR_materials_specular',
@@ -169,6 +182,26 @@ export function compileGltfMaterials(
       bind(m, TEX_SPECULAR, sp.getSpecularTexture(), sp.getSpecularTextureInfo());
       bind(m, TEX_SPECULAR_COLOR, sp.getSpecularColorTexture(), sp.getSpecularColorTextureInfo());
     }
+    const ir = mat.getExtension<Iridescence>('KHR_materials_iridescence');
+    if (ir !== null) {
+      table[o + GM_IRIDESCENCE] = ir.getIridescenceFactor();
+      table[o + GM_IRIDESCENCE_IOR] = ir.getIridescenceIOR();
+      table[o + GM_IRIDESCENCE_THICKNESS_MIN] = ir.getIridescenceThicknessMinimum();
+      table[o + GM_IRIDESCENCE_THICKNESS_MAX] = ir.getIridescenceThicknessMaximum();
+      bind(m, TEX_IRIDESCENCE, ir.getIridescenceTexture(), ir.getIridescenceTextureInfo());
+      bind(
+        m,
+        TEX_IRIDESCENCE_THICKNESS,
+        ir.getIridescenceThicknessTexture(),
+        ir.getIridescenceThicknessTextureInfo(),
+      );
+    }
+    const an = mat.getExtension<Anisotropy>('KHR_materials_anisotropy');
+    if (an !== null) {
+      table[o + GM_ANISOTROPY_STRENGTH] = an.getAnisotropyStrength();
+      table[o + GM_ANISOTROPY_ROTATION] = an.getAnisotropyRotation();
+      bind(m, TEX_ANISOTROPY, an.getAnisotropyTexture(), an.getAnisotropyTextureInfo());
+    }
     const mode = mat.getAlphaMode();
     table[o + GM_ALPHA_MODE] =
       mode === 'MASK' ? ALPHA_MASK : mode === 'BLEND' ? ALPHA_BLEND : ALPHA_OPAQUE;
@@ -197,4 +230,9 @@ export function compileGltfMaterials(
 /** Whether material m is transmissive (needs the geometric side, like glass). */
 export function isTransmissive(table: Float64Array, m: number): boolean {
   return table[m * GM_STRIDE + GM_TRANSMISSION] > 0;
+}
+
+/** Whether material m has KHR_materials_anisotropy (its primitives need tangents). */
+export function usesAnisotropy(table: Float64Array, m: number): boolean {
+  return table[m * GM_STRIDE + GM_ANISOTROPY_STRENGTH] > 0;
 }

@@ -66,6 +66,14 @@ export function checkMaterialNumbers(m: Json, p: string): void {
   const [dt, dtPath] = e('KHR_materials_diffuse_transmission');
   bounded(dt, 'diffuseTransmissionFactor', dtPath, 0, 1);
   boundedArray(dt, 'diffuseTransmissionColorFactor', dtPath, 3, 0, 1);
+  const [ir, irPath] = e('KHR_materials_iridescence');
+  bounded(ir, 'iridescenceFactor', irPath, 0, 1);
+  bounded(ir, 'iridescenceIor', irPath, 1, 1e6);
+  bounded(ir, 'iridescenceThicknessMinimum', irPath, 0, 1e6);
+  bounded(ir, 'iridescenceThicknessMaximum', irPath, 0, 1e6);
+  const [an, anPath] = e('KHR_materials_anisotropy');
+  bounded(an, 'anisotropyStrength', anPath, 0, 1);
+  bounded(an, 'anisotropyRotation', anPath, -1e9, 1e9);
   const infos: [unknown, string][] = [
     [isObject(pbr) ? pbr.baseColorTexture : undefined, `${pp}.baseColorTexture`],
     [isObject(pbr) ? pbr.metallicRoughnessTexture : undefined, `${pp}.metallicRoughnessTexture`],
@@ -123,5 +131,14 @@ export function textureBindings(m: Json, p: string): { path: string; set: number
     add(dt.diffuseTransmissionTexture, `${dp}.diffuseTransmissionTexture`);
     add(dt.diffuseTransmissionColorTexture, `${dp}.diffuseTransmissionColorTexture`);
   }
+  const ir = ext.KHR_materials_iridescence;
+  if (isObject(ir)) {
+    const ip = `${p}.extensions.KHR_materials_iridescence`;
+    add(ir.iridescenceTexture, `${ip}.iridescenceTexture`);
+    add(ir.iridescenceThicknessTexture, `${ip}.iridescenceThicknessTexture`);
+  }
+  const an = ext.KHR_materials_anisotropy;
+  if (isObject(an))
+    add(an.anisotropyTexture, `${p}.extensions.KHR_materials_anisotropy.anisotropyTexture`);
   return out;
 }

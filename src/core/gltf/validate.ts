@@ -48,11 +48,13 @@ export { fail, list };
 
 /** Extensions a file may require: those pathwise reads (see docs/gltf.md). */
 export const SUPPORTED_REQUIRED = new Set([
+  'KHR_materials_anisotropy',
   'KHR_materials_clearcoat',
   'KHR_materials_diffuse_transmission',
   'KHR_materials_dispersion',
   'KHR_materials_emissive_strength',
   'KHR_materials_ior',
+  'KHR_materials_iridescence',
   'KHR_materials_pbrSpecularGlossiness',
   'KHR_materials_sheen',
   'KHR_materials_specular',

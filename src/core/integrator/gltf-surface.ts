@@ -26,6 +26,7 @@ import { OFFSET_SCALE } from '../geometry/shapes.ts';
 import { intersectScene } from '../accel/trace.ts';
 import { interpolateAttributes, interpolateTangent } from '../gltf-material/hit-attributes.ts';
 import { applyNormalMap } from '../gltf-material/normal-map.ts';
+import { anisotropyToWorld } from '../gltf-material/anisotropy-frame.ts';
 import {
   fillGltfShading,
   gltfEmission,
@@ -52,6 +53,8 @@ export class GltfWork {
   /** The shadow ray's hits. */
   readonly hit = new Hit();
   readonly geometric = { nx: 0, ny: 0, nz: 1 };
+  /** World direction of KHR_materials_anisotropy at the hit (when sp.anisotropy > 0). */
+  readonly anisotropy = { x: 1, y: 0, z: 0 };
 }
 
 /** Row of the glTF material table of scene material m. */
@@ -110,6 +113,15 @@ export function shadeGltfHit(
       ts.sny = n.y;
       ts.snz = n.z;
     }
+  }
+  // KHR_materials_anisotropy needs the tangent frame; without one the lobe is
+  // isotropic (flatten.ts generates tangents for such primitives and warns
+  // where it cannot).
+  if (sp.anisotropy > 0) {
+    const tg = work.tangent;
+    if (tangents !== null) interpolateTangent(tangents, i0, i1, i2, b1, b2, tg);
+    if (tangents === null || !anisotropyToWorld(tg, ts.snx, ts.sny, ts.snz, sp, work.anisotropy))
+      sp.anisotropy = 0;
   }
 }
 

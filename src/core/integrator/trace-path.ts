@@ -59,6 +59,7 @@ import { intersectScene, occluded } from '../accel/trace.ts';
 import { SPHERE_HUGE, SPHERE_TINY } from '../geometry/intersect.ts';
 import { environmentLightPdf, lightPdf, sampleLight } from '../lights/lights.ts';
 import { completeTriangleHit } from './triangle-surface.ts';
+import { anisotropyToLocal } from '../gltf-material/anisotropy-frame.ts';
 import {
   MAX_ALPHA_CROSSINGS,
   gltfLightEmission,
@@ -355,6 +356,9 @@ export function trace(
     const ftx = fb;
     const fty = fsign + sy * sy * fa;
     const ftz = -sy;
+    // KHR_materials_anisotropy: its direction on this frame's tangents.
+    if (isGltf && sp.anisotropy > 0)
+      anisotropyToLocal(this.gw.anisotropy, fsx, fsy, fsz, ftx, fty, ftz, sp);
     const bq = this.bq;
     if (isGltf && sp.clearcoat > 0) {
       // The coat normal (world space, gltf-surface.ts) into this frame; it flips with

@@ -276,6 +276,12 @@ describe('malformed structure', () => {
       j.materials[0].extensions = { KHR_materials_emissive_strength: { emissiveStrength: 1e300 } };
     }, /^glTF: materials\[0\]\.extensions\.KHR_materials_emissive_strength\.emissiveStrength: must be a number in \[0, 1000000000000\]/);
     await mutated((j) => {
+      j.materials[0].extensions = { KHR_materials_anisotropy: { anisotropyStrength: 1.5 } };
+    }, /^glTF: materials\[0\]\.extensions\.KHR_materials_anisotropy\.anisotropyStrength: must be a number in \[0, 1\], got 1\.5$/);
+    await mutated((j) => {
+      j.materials[0].extensions = { KHR_materials_iridescence: { iridescenceIor: 0.5 } };
+    }, /^glTF: materials\[0\]\.extensions\.KHR_materials_iridescence\.iridescenceIor: must be a number in \[1, 1000000\], got 0\.5$/);
+    await mutated((j) => {
       j.materials[0].pbrMetallicRoughness.baseColorTexture.extensions = {
         KHR_texture_transform: { offset: [0, 'x'] },
       };
