@@ -1,14 +1,30 @@
 /**
  * What loading glTF needs in Node: files read from disk relative to the
- * scene (bounded, kept inside its folder: scene-files.ts), the pure-JS image decoders, and MikkTSpace from the
- * `mikktspace` package (its Node build loads its WebAssembly synchronously).
+ * scene (bounded, kept inside its folder: scene-files.ts), the pure-JS image decoders, MikkTSpace from the
+ * `mikktspace` package (its Node build loads its WebAssembly synchronously), and the
+ * decoders of compressed textures, loaded only when a file has such a texture.
+ *
+ * The decoder packages are reached at run time (createRequire, or `import()` of a
+ * computed name), never by a literal import: esbuild then leaves them out of
+ * dist/cli, which keeps its size and the start-up of plain files as they were, and
+ * their WebAssembly is read from the installed package (or vendor/basis/) and
+ * handed over as bytes or a WebAssembly.Module, so nothing is fetched.
  */
+import { existsSync } from 'node:fs';
 import { readFile } from 'node:fs/promises';
 import { createRequire } from 'node:module';
+import { fileURLToPath } from 'node:url';
 import type { GltfLoadOptions } from '../core/gltf/load.ts';
 import { createMikkTSpace } from '../core/gltf/mikktspace-wasm.ts';
 import type { TangentGenerator } from '../core/gltf/tangents.ts';
+import type { GltfDecoders, WebpDecoder } from '../core/scene/format/gltf-model.ts';
 import { decodeImageJs } from '../core/texture/decode-js.ts';
+import {
+  basisKtx2Transcoder,
+  type BasisModule,
+  type Ktx2ContainerReader,
+  type Ktx2Transcoder,
+} from '../core/texture/ktx2-transcode.ts';
 import { nodeSceneFiles } from './scene-files.ts';
 
 let mikktspace: Promise<TangentGenerator> | null = null;
@@ -26,6 +42,75 @@ export function nodeTangentGenerator(): Promise<TangentGenerator> {
   return mikktspace;
 }
 
+/** An ES module by a name esbuild does not see (so it stays out of the bundle). */
+function importAtRunTime<T>(name: string): Promise<T> {
+  return import(/* @vite-ignore */ name) as Promise<T>;
+}
+
+interface JsquashWebp {
+  init(module: WebAssembly.Module): Promise<void>;
+  default(buffer: ArrayBuffer): Promise<{ width: number; height: number; data: Uint8ClampedArray }>;
+}
+
+let webp: Promise<WebpDecoder> | null = null;
+
+/** libwebp (`@jsquash/webp`, Apache-2.0; libwebp BSD-3-Clause), loaded once. */
+export function nodeWebpDecoder(): Promise<WebpDecoder> {
+  webp ??= (async () => {
+    const require = createRequire(import.meta.url);
+    const wasm = await readFile(require.resolve('@jsquash/webp/codec/dec/webp_dec.wasm'));
+    const codec = await importAtRunTime<JsquashWebp>('@jsquash/webp/decode.js');
+    await codec.init(new WebAssembly.Module(wasm));
+    return async (bytes: Uint8Array) => {
+      // The codec takes an ArrayBuffer of the image alone.
+      const image = await codec.default(bytes.slice().buffer);
+      return { width: image.width, height: image.height, data: image.data, channels: 4, depth: 8 };
+    };
+  })();
+  return webp;
+}
+
+/**
+ * vendor/basis/ of this package: beside src/ when run from the sources, beside dist/
+ * when run from the bundle (dist/cli/chunks/…).
+ */
+function basisFolder(): string {
+  for (const up of ['../../vendor/basis/', '../../../vendor/basis/']) {
+    const folder = fileURLToPath(new URL(up, import.meta.url));
+    if (existsSync(folder + 'basis_transcoder.wasm')) return folder;
+  }
+  throw new Error('vendor/basis/basis_transcoder.wasm is missing from the installation');
+}
+
+let ktx2: Promise<Ktx2Transcoder> | null = null;
+
+/**
+ * The Basis Universal transcoder (vendor/basis/, Apache-2.0, Binomial LLC; from
+ * three.js) and ktx-parse's container reader, loaded once.
+ */
+export function nodeKtx2Transcoder(): Promise<Ktx2Transcoder> {
+  ktx2 ??= (async () => {
+    const folder = basisFolder();
+    const require = createRequire(import.meta.url);
+    const factory = require(folder + 'basis_transcoder.js') as (options: {
+      wasmBinary: Uint8Array;
+    }) => Promise<BasisModule & { initializeBasis(): void }>;
+    const basis = await factory({
+      wasmBinary: new Uint8Array(await readFile(folder + 'basis_transcoder.wasm')),
+    });
+    basis.initializeBasis();
+    const { read } = await importAtRunTime<{ read: Ktx2ContainerReader }>('ktx-parse');
+    return basisKtx2Transcoder(basis, read);
+  })();
+  return ktx2;
+}
+
+/** The decoders of compressed glTF data in Node; each is loaded on its first call. */
+export const NODE_GLTF_DECODERS: GltfDecoders = {
+  webp: nodeWebpDecoder,
+  ktx2: nodeKtx2Transcoder,
+};
+
 /**
  * Loader options for a model whose relative paths resolve against `baseDir`, read as
  * the command line reads a scene's files: inside that folder (or `allowRead`), bounded.
@@ -38,5 +123,6 @@ export async function nodeGltfOptions(
     reader: nodeSceneFiles(baseDir, { allowRead }),
     decodeImage: decodeImageJs,
     generateTangents: await nodeTangentGenerator(),
+    decoders: NODE_GLTF_DECODERS,
   };
 }

@@ -44,8 +44,8 @@ export async function loadSceneFile(path: string, options: SceneFileOptions = {}
     // MikkTSpace's WebAssembly is read only for glTF: a scene of spheres,
     // quads and meshes needs nothing beyond the bundle itself.
     const tangents = async () => {
-      const { nodeTangentGenerator } = await import('./gltf-node.ts');
-      return { generateTangents: await nodeTangentGenerator() };
+      const { nodeTangentGenerator, NODE_GLTF_DECODERS } = await import('./gltf-node.ts');
+      return { generateTangents: await nodeTangentGenerator(), decoders: NODE_GLTF_DECODERS };
     };
     if (model) {
       testStage('load');

@@ -35,6 +35,7 @@ import { isGlb, parseGlb } from './glb.ts';
 import { compileGltfMaterials } from './materials.ts';
 import type {
   GltfCamera,
+  GltfDecoders,
   GltfFileReader,
   GltfModel,
   TangentGenerator,
@@ -45,8 +46,9 @@ import { validateGltfBuffers } from './validate-buffers.ts';
 import { checkPrimitiveCounts } from './validate-attributes.ts';
 import { validateSparseIndices } from './validate-sparse.ts';
 import { positionBoundsNotes } from './validate-bounds.ts';
-import { validateGltfJson } from './validate.ts';
+import { SUPPORTED_REQUIRED, validateGltfJson } from './validate.ts';
 import { dropSourcelessTextures } from './sourceless.ts';
+import { prepareTextureExtensions, TEXTURE_EXTENSION_NAMES } from './texture-extensions.ts';
 
 /** Extensions whose content is used (everything else is reported as ignored). */
 export const HONOURED_EXTENSIONS = new Set([
@@ -80,6 +82,8 @@ export interface GltfLoadOptions {
    * before any geometry is read.
    */
   maxTriangles?: number;
+  /** Lazy decoders of compressed data (WebP, KTX2), called only for a file that uses them. */
+  decoders?: GltfDecoders;
   onProgress?: (stage: GltfStage, done: number, total: number) => void;
 }
 
@@ -122,7 +126,11 @@ export async function loadGltf(
   } catch (e) {
     throw new GltfError(`JSON: ${messageOf(e)}`);
   }
-  const summary = validateGltfJson(json);
+  const textureExtensions = prepareTextureExtensions(json, options.decoders, warn);
+  const summary = validateGltfJson(
+    json,
+    new Set([...SUPPORTED_REQUIRED, ...textureExtensions.honoured]),
+  );
   if (options.maxTriangles !== undefined && summary.triangles > options.maxTriangles) {
     throw new GltfError(
       `scene: instances ${summary.triangles} triangles, more than the ${options.maxTriangles} ` +
@@ -137,9 +145,14 @@ export async function loadGltf(
     warn(`asset.version: ${quote(asset.version as string)} is read as glTF 2.0`);
     json.asset = { ...asset, version: '2.0' };
   }
-  dropSourcelessTextures(json, summary.sourceless, warn);
+  dropSourcelessTextures(json, summary.sourceless, warn, textureExtensions.reasons);
   for (const name of (json.extensionsUsed as unknown[] | undefined) ?? []) {
-    if (typeof name === 'string' && !HONOURED_EXTENSIONS.has(name)) {
+    // WebP and KTX2 without a decoder are said per texture (texture-extensions.ts).
+    if (
+      typeof name === 'string' &&
+      !HONOURED_EXTENSIONS.has(name) &&
+      !TEXTURE_EXTENSION_NAMES.has(name)
+    ) {
       warn(`extension ${quote(name)} is not supported; its content is ignored`);
     }
   }
@@ -200,7 +213,9 @@ export async function loadGltf(
 
   let doc: Document;
   try {
-    const io = new PreloadedIO().setLogger(QUIET_LOGGER).registerExtensions(EXTENSIONS);
+    const io = new PreloadedIO()
+      .setLogger(QUIET_LOGGER)
+      .registerExtensions([...EXTENSIONS, ...textureExtensions.classes]);
     doc = await io.readJSON({ json, resources } as unknown as JSONDocument);
   } catch (e) {
     if (e instanceof GltfError) throw e;
@@ -236,6 +251,7 @@ async function build(
     requests,
     table,
     options.decodeImage,
+    options.decoders,
     options.textureLimitBytes ?? DEFAULT_TEXTURE_LIMIT_BYTES,
     options.sharedTextures ?? false,
     warn,

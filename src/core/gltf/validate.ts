@@ -136,13 +136,16 @@ function checkAsset(json: Json): void {
 /**
  * Checks everything that does not need the buffers' bytes. Throws GltfError.
  */
-export function validateGltfJson(json: unknown): GltfSummary {
+export function validateGltfJson(
+  json: unknown,
+  supportedRequired: ReadonlySet<string> = SUPPORTED_REQUIRED,
+): GltfSummary {
   if (!isObject(json)) fail('document', 'the glTF JSON must be an object');
   checkAsset(json);
   const req = json.extensionsRequired ?? [];
   if (!Array.isArray(req)) fail('extensionsRequired', 'must be an array');
   for (const name of req) {
-    if (typeof name !== 'string' || !SUPPORTED_REQUIRED.has(name)) {
+    if (typeof name !== 'string' || !supportedRequired.has(name)) {
       fail(
         'extensionsRequired',
         `the file requires ${typeof name === 'string' ? quote(name) : 'a non-string'}, which pathwise does not support`,

@@ -5,7 +5,28 @@
  * declarations need a newer lib than ES2022). The modules that use glTF-Transform
  * (flatten.ts, io.ts, tangents.ts) re-export them.
  */
+import type { DecodedImage } from '../../texture/decoded-image.ts';
+import type { Ktx2Transcoder } from '../../texture/ktx2-transcode.ts';
 import type { TextureStore } from '../../texture/texture-store.ts';
+
+export type { Ktx2Transcoder };
+
+/** Decodes one WebP image to RGBA8 (libwebp in Node, the browser's own decoder). */
+export type WebpDecoder = (bytes: Uint8Array) => Promise<DecodedImage>;
+
+/**
+ * Decoders for compressed glTF data, each behind a lazy getter that the loader calls
+ * only when a file holds such data (a plain file calls none), so that their
+ * WebAssembly is read only then. A platform without one leaves it out: the file's
+ * fallback is used, or the loader says what it cannot read. Structural, so that the
+ * core imports none of the packages.
+ */
+export interface GltfDecoders {
+  /** EXT_texture_webp. */
+  webp?(): Promise<WebpDecoder>;
+  /** KHR_texture_basisu: KTX2 files of Basis Universal data. */
+  ktx2?(): Promise<Ktx2Transcoder>;
+}
 
 export interface GltfCamera {
   position: [number, number, number];

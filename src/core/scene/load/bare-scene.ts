@@ -73,6 +73,7 @@ export async function loadBareModel(
       reader: files,
       decodeImage: options.decodeImage ?? decodeImageJs,
       generateTangents: options.generateTangents ?? null,
+      decoders: options.decoders,
       sharedTextures: options.sharedTextures,
       maxTriangles: LIMITS.triangles,
       onProgress: progress,

@@ -11,7 +11,7 @@
  */
 import { buildMeshData } from '../../geometry/mesh-data.ts';
 import { GLTF_FILE_BYTES, type GltfStage, loadGltf } from '../../gltf/load.ts';
-import type { TangentGenerator } from '../format/gltf-model.ts';
+import type { GltfDecoders, TangentGenerator } from '../format/gltf-model.ts';
 import { decodeImageJs } from '../../texture/decode-js.ts';
 import type { ImageDecoder } from '../../texture/decoded-image.ts';
 import { decodeHdr } from '../../io/hdr.ts';
@@ -57,6 +57,8 @@ export interface ResolveOptions {
   decodeImage?: ImageDecoder;
   /** MikkTSpace for normal-mapped primitives without tangents; without it such normal maps are ignored (with a warning). */
   generateTangents?: TangentGenerator | null;
+  /** Lazy decoders of compressed glTF data (WebP, KTX2); without one, such data is not read. */
+  decoders?: GltfDecoders;
   /** Texels in a SharedArrayBuffer where the platform has one. */
   sharedTextures?: boolean;
   onProgress?: (stage: LoadStage, done: number, total: number) => void;
@@ -103,6 +105,7 @@ export async function resolveSceneFiles(
           reader: files,
           decodeImage: options.decodeImage ?? decodeImageJs,
           generateTangents: options.generateTangents ?? null,
+          decoders: options.decoders,
           transform: shape.transform,
           sharedTextures: options.sharedTextures,
           maxTriangles: LIMITS.triangles - triangles,
