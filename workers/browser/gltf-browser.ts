@@ -2,14 +2,22 @@
  * What loading glTF needs in the browser (page or worker): images decoded by
  * the platform's createImageBitmap (no colour-space conversion, no
  * premultiplication, so the texels are the file's sRGB codes that the core
- * converts to linear once), and MikkTSpace's WebAssembly fetched from the
- * bundle's assets.
+ * converts to linear once), WebP included, MikkTSpace's WebAssembly fetched from the
+ * bundle's assets, and the Basis Universal transcoder (vendor/basis/) fetched the
+ * same way, only when a file has a KTX2 texture.
  */
 import mikktspaceWasmUrl from 'mikktspace/dist/module/mikktspace_module_bg.wasm?url';
+import basisJsUrl from '../../vendor/basis/basis_transcoder.js?url';
+import basisWasmUrl from '../../vendor/basis/basis_transcoder.wasm?url';
 // Deep imports: these are the browser host's own tools, not part of the core's public
 // entries (whose published declarations a consumer compiles).
 import { createMikkTSpace } from '../../src/core/gltf/mikktspace-wasm.ts';
-import type { TangentGenerator } from '../../src/core/scene/format/gltf-model.ts';
+import type {
+  GltfDecoders,
+  Ktx2Transcoder,
+  TangentGenerator,
+} from '../../src/core/scene/format/gltf-model.ts';
+import { basisKtx2Transcoder, type BasisModule } from '../../src/core/texture/ktx2-transcode.ts';
 import { DEFAULT_MAX_TEXELS, type DecodedImage } from '../../src/core/texture/decoded-image.ts';
 import { imageDecodeError, libraryMessage } from '../../src/core/texture/image-error.ts';
 import { notPngOrJpeg, sniffImageType } from '../../src/core/texture/image-header.ts';
@@ -42,6 +50,19 @@ export async function decodeImageBrowser(
   } catch (e) {
     throw imageDecodeError(e);
   }
+  const pixels = await bitmapPixels(bytes, type, type === 'image/png' ? 'PNG' : 'JPEG');
+  return pixels ?? decodeImageJs(bytes, mimeType, maxTexels);
+}
+
+/**
+ * The RGBA8 texels of an image the browser decodes; null where there is no 2D context.
+ * Failures read "cannot decode <format>: the browser could not decode it (…)".
+ */
+async function bitmapPixels(
+  bytes: Uint8Array,
+  type: string,
+  format: string,
+): Promise<DecodedImage | null> {
   const blob = new Blob([bytes as Uint8Array<ArrayBuffer>], { type });
   let bitmap: ImageBitmap;
   try {
@@ -51,14 +72,13 @@ export async function decodeImageBrowser(
     });
   } catch (e) {
     throw new Error(
-      `cannot decode ${type === 'image/png' ? 'PNG' : 'JPEG'}: the browser could not decode it ` +
-        `(${libraryMessage(e)})`,
+      `cannot decode ${format}: the browser could not decode it (${libraryMessage(e)})`,
     );
   }
   try {
     const canvas = new OffscreenCanvas(bitmap.width, bitmap.height);
     const ctx = canvas.getContext('2d', { willReadFrequently: true });
-    if (ctx === null) return decodeImageJs(bytes, mimeType, maxTexels);
+    if (ctx === null) return null;
     ctx.drawImage(bitmap, 0, 0);
     const data = ctx.getImageData(0, 0, bitmap.width, bitmap.height).data;
     return { width: bitmap.width, height: bitmap.height, data, channels: 4, depth: 8 };
@@ -66,6 +86,60 @@ export async function decodeImageBrowser(
     bitmap.close();
   }
 }
+
+/**
+ * WebP (EXT_texture_webp) by the browser's own decoder; the core checked the header's
+ * size against the texture budget before this is called.
+ */
+async function decodeWebpBrowser(bytes: Uint8Array): Promise<DecodedImage> {
+  const pixels = await bitmapPixels(bytes, 'image/webp', 'WebP');
+  if (pixels === null) throw new Error('cannot decode WebP: no 2D canvas in this browser');
+  return pixels;
+}
+
+async function fetchBytes(url: string, what: string): Promise<ArrayBuffer> {
+  const r = await fetch(url);
+  if (!r.ok) throw new Error(`cannot load ${what} (${r.status} ${r.statusText})`);
+  return r.arrayBuffer();
+}
+
+let ktx2: Promise<Ktx2Transcoder> | null = null;
+
+/**
+ * The Basis Universal transcoder, loaded once per page or worker (its heap, which never
+ * shrinks, goes with the scene worker). Its glue is CommonJS, so it is run as a function
+ * body with `module` given (as three.js's KTX2Loader does; a page whose
+ * Content-Security-Policy forbids that gets the error, and the file's fallback images
+ * are not used then).
+ */
+function browserKtx2Transcoder(): Promise<Ktx2Transcoder> {
+  ktx2 ??= (async () => {
+    const [glue, wasm, ktxParse] = await Promise.all([
+      fetchBytes(basisJsUrl, 'the Basis Universal transcoder'),
+      fetchBytes(basisWasmUrl, 'the Basis Universal transcoder'),
+      import('ktx-parse'),
+    ]);
+    const module = { exports: {} as unknown };
+    new Function('module', 'exports', new TextDecoder().decode(glue))(module, module.exports);
+    const factory = module.exports as (options: {
+      wasmBinary: Uint8Array;
+    }) => Promise<BasisModule & { initializeBasis(): void }>;
+    const basis = await factory({ wasmBinary: new Uint8Array(wasm) });
+    basis.initializeBasis();
+    return basisKtx2Transcoder(basis, ktxParse.read);
+  })();
+  return ktx2;
+}
+
+/** The decoders of compressed glTF data in the browser; each is loaded on its first call. */
+export const BROWSER_GLTF_DECODERS: GltfDecoders = {
+  webp: async () => {
+    if (typeof createImageBitmap !== 'function' || typeof OffscreenCanvas !== 'function')
+      throw new Error('this browser has no createImageBitmap and OffscreenCanvas');
+    return decodeWebpBrowser;
+  },
+  ktx2: browserKtx2Transcoder,
+};
 
 /**
  * What the loader takes from the browser, on the page and in the scene worker alike:
@@ -81,6 +155,7 @@ export async function browserGltfPlatform(
     // Without it, normal maps of primitives that have no tangents are ignored with a
     // warning (the loader says so) rather than failing the whole model.
     generateTangents: await browserTangentGenerator().catch(() => null),
+    decoders: BROWSER_GLTF_DECODERS,
     sharedTextures,
     onProgress,
   };
