@@ -232,10 +232,15 @@ describe('glTF files with compressed textures', () => {
 describe('hostile compressed textures: one error naming the image, no decoder loaded', () => {
   const what = 'images[0] (materials[0].baseColorTexture)';
   /** The fixture with `edit` applied, in a file that requires its extension. */
-  async function hostile(name: string, ext: 'webp' | 'ktx2', edit: (b: Uint8Array) => Uint8Array) {
+  async function hostile(
+    name: string,
+    ext: 'webp' | 'ktx2',
+    edit: (b: Uint8Array) => Uint8Array,
+    decoders = THROWING,
+  ) {
     const bytes = edit(fixture(name).slice());
     const { files, json } = await quadFiles(bytes, `image/${ext}`, ext);
-    return load(files, json, THROWING);
+    return load(files, json, decoders);
   }
   const setU32 = (b: Uint8Array, at: number, v: number) =>
     new DataView(b.buffer).setUint32(at, v, true);
@@ -290,5 +295,22 @@ describe('hostile compressed textures: one error naming the image, no decoder lo
         return b;
       }),
     ).rejects.toThrow(`${what}: cannot decode KTX2: level 0's slices`);
+  });
+
+  it('damaged data behind a sound header: the decoder error, naming the image', async () => {
+    const wipe = (from: number) => (b: Uint8Array) => b.fill(0xff, from);
+    await expect(
+      hostile('pattern-lossless.webp', 'webp', wipe(30), NODE_GLTF_DECODERS),
+    ).rejects.toThrow(`${what}: cannot decode WebP: the decoder stopped (Decoding error)`);
+    await expect(
+      hostile(
+        '2d_etc1s.ktx2',
+        'ktx2',
+        (b) => b.map((v, i) => (i >= 895 ? v ^ 0xa5 : v)),
+        NODE_GLTF_DECODERS,
+      ),
+    ).rejects.toThrow(
+      `${what}: cannot decode KTX2: level 0 does not transcode (damaged ETC1S data)`,
+    );
   });
 });
