@@ -71,24 +71,28 @@ export async function decodeGltfTextures(
       warn(`${what}: has no image data; the texture is ignored`);
       continue;
     }
+    const declared = r.texture.getMimeType();
     const mime = sniffTextureType(bytes);
-    if (mime === null) {
-      // Another image format (GIF, AVIF) is honestly ignored; bytes that are no
-      // image at all, though declared PNG or JPEG, are a damaged file.
-      const other = otherImageFormat(bytes, r.texture.getMimeType());
-      if (other === null) {
-        throw new GltfError(`${what}: ${notPngOrJpeg(bytes, r.texture.getMimeType())}`);
-      }
-      warn(`${what}: ${other} is not PNG, JPEG, WebP or KTX2; the texture is ignored`);
-      continue;
-    }
-    if (mime === 'image/webp' || mime === 'image/ktx2') {
-      if ((mime === 'image/webp' ? decoders?.webp : decoders?.ktx2) === undefined) {
+    // WebP or KTX2 (by their bytes, or declared so) where this platform cannot decode
+    // them: ignored, said once per image.
+    const compressed =
+      mime ?? (declared === 'image/webp' || declared === 'image/ktx2' ? declared : null);
+    if (compressed === 'image/webp' || compressed === 'image/ktx2') {
+      if ((compressed === 'image/webp' ? decoders?.webp : decoders?.ktx2) === undefined) {
         warn(
-          `${what}: a ${FORMAT[mime]} image, and this platform has no ${FORMAT[mime]} decoder; the texture is ignored`,
+          `${what}: ${compressed} needs a ${FORMAT[compressed]} decoder, which this platform ` +
+            `lacks; the texture is ignored`,
         );
         continue;
       }
+    }
+    if (mime === null) {
+      // Another image format (GIF, AVIF) is honestly ignored; bytes that are no
+      // image at all, though declared PNG, JPEG, WebP or KTX2, are a damaged file.
+      const other = compressed === null ? otherImageFormat(bytes, declared) : null;
+      if (other === null) throw new GltfError(`${what}: ${notPngOrJpeg(bytes, declared)}`);
+      warn(`${what}: ${other} is not PNG, JPEG, WebP or KTX2; the texture is ignored`);
+      continue;
     }
     let info;
     try {
