@@ -3,21 +3,14 @@
  * the platform's createImageBitmap (no colour-space conversion, no
  * premultiplication, so the texels are the file's sRGB codes that the core
  * converts to linear once), WebP included, MikkTSpace's WebAssembly fetched from the
- * bundle's assets, and the Basis Universal transcoder (vendor/basis/) fetched the
- * same way, only when a file has a KTX2 texture.
+ * bundle's assets, and the Basis Universal transcoder (ktx2-browser.ts), loaded only
+ * when a file has a KTX2 texture.
  */
 import mikktspaceWasmUrl from 'mikktspace/dist/module/mikktspace_module_bg.wasm?url';
-import basisJsUrl from '../../vendor/basis/basis_transcoder.js?url';
-import basisWasmUrl from '../../vendor/basis/basis_transcoder.wasm?url';
 // Deep imports: these are the browser host's own tools, not part of the core's public
 // entries (whose published declarations a consumer compiles).
 import { createMikkTSpace } from '../../src/core/gltf/mikktspace-wasm.ts';
-import type {
-  GltfDecoders,
-  Ktx2Transcoder,
-  TangentGenerator,
-} from '../../src/core/scene/format/gltf-model.ts';
-import { basisKtx2Transcoder, type BasisModule } from '../../src/core/texture/ktx2-transcode.ts';
+import type { GltfDecoders, TangentGenerator } from '../../src/core/scene/format/gltf-model.ts';
 import { DEFAULT_MAX_TEXELS, type DecodedImage } from '../../src/core/texture/decoded-image.ts';
 import { imageDecodeError, libraryMessage } from '../../src/core/texture/image-error.ts';
 import { notPngOrJpeg, sniffImageType } from '../../src/core/texture/image-header.ts';
@@ -97,40 +90,6 @@ async function decodeWebpBrowser(bytes: Uint8Array): Promise<DecodedImage> {
   return pixels;
 }
 
-async function fetchBytes(url: string, what: string): Promise<ArrayBuffer> {
-  const r = await fetch(url);
-  if (!r.ok) throw new Error(`cannot load ${what} (${r.status} ${r.statusText})`);
-  return r.arrayBuffer();
-}
-
-let ktx2: Promise<Ktx2Transcoder> | null = null;
-
-/**
- * The Basis Universal transcoder, loaded once per page or worker (its heap, which never
- * shrinks, goes with the scene worker). Its glue is CommonJS, so it is run as a function
- * body with `module` given (as three.js's KTX2Loader does; a page whose
- * Content-Security-Policy forbids that gets the error, and the file's fallback images
- * are not used then).
- */
-function browserKtx2Transcoder(): Promise<Ktx2Transcoder> {
-  ktx2 ??= (async () => {
-    const [glue, wasm, ktxParse] = await Promise.all([
-      fetchBytes(basisJsUrl, 'the Basis Universal transcoder'),
-      fetchBytes(basisWasmUrl, 'the Basis Universal transcoder'),
-      import('ktx-parse'),
-    ]);
-    const module = { exports: {} as unknown };
-    new Function('module', 'exports', new TextDecoder().decode(glue))(module, module.exports);
-    const factory = module.exports as (options: {
-      wasmBinary: Uint8Array;
-    }) => Promise<BasisModule & { initializeBasis(): void }>;
-    const basis = await factory({ wasmBinary: new Uint8Array(wasm) });
-    basis.initializeBasis();
-    return basisKtx2Transcoder(basis, ktxParse.read);
-  })();
-  return ktx2;
-}
-
 /** The decoders of compressed glTF data in the browser; each is loaded on its first call. */
 export const BROWSER_GLTF_DECODERS: GltfDecoders = {
   webp: async () => {
@@ -138,7 +97,9 @@ export const BROWSER_GLTF_DECODERS: GltfDecoders = {
       throw new Error('this browser has no createImageBitmap and OffscreenCanvas');
     return decodeWebpBrowser;
   },
-  ktx2: browserKtx2Transcoder,
+  // A chunk of its own: the library build inlines the transcoder's 0.6 MB as base64,
+  // which is then fetched only for a file with a KTX2 texture.
+  ktx2: async () => (await import('./ktx2-browser.ts')).browserKtx2Transcoder(),
 };
 
 /**
