@@ -18,7 +18,8 @@ export default defineConfig({
   // Vite re-optimise and reload the page under a running render.
   // Only the demo page is scanned: examples/embed imports the published
   // package by name (`pathwise`), which exists only in a consumer's install.
-  optimizeDeps: { include: ['comlink'], entries: ['index.html'] },
+  // ktx-parse: imported by the lazy KTX2 chunk (workers/browser/ktx2-browser.ts).
+  optimizeDeps: { include: ['comlink', 'ktx-parse'], entries: ['index.html'] },
   // dist/cli holds the command line bundle; the web build must not empty it.
   build: { target: 'es2022', outDir: 'dist/web' },
 });
