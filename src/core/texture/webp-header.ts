@@ -38,7 +38,10 @@ function frameSize(b: Uint8Array, at: number, fail: (m: string) => never): WebpI
     if ((b[d] & 1) !== 0) fail(`the VP8 frame at byte ${d} is not a key frame`);
     if (b[d + 3] !== 0x9d || b[d + 4] !== 0x01 || b[d + 5] !== 0x2a)
       fail(`VP8 start code missing at byte ${d + 3}`);
-    return { width: u16(b, d + 6) & 0x3fff, height: u16(b, d + 8) & 0x3fff };
+    const size = { width: u16(b, d + 6) & 0x3fff, height: u16(b, d + 8) & 0x3fff };
+    if (size.width === 0 || size.height === 0)
+      fail(`VP8 frame size ${size.width}×${size.height} at byte ${d + 6}`);
+    return size;
   }
   if (tag === 'VP8L') {
     // RFC 9649 §3.2.1: the signature 0x2f, then 14 bits width − 1, 14 bits height − 1,
