@@ -20,9 +20,15 @@ export default defineConfig({
   // package by name (`pathwise`), which exists only in a consumer's install.
   // The decoders of compressed meshes are imported by the model worker only when a model
   // needs them (workers/browser/gltf-browser.ts); listed so that they too are pre-bundled
-  // at start-up rather than discovered under a running render.
+  // at start-up rather than discovered under a running render; ktx-parse likewise, for the
+  // lazy KTX2 chunk (workers/browser/ktx2-browser.ts).
   optimizeDeps: {
-    include: ['comlink', 'meshoptimizer/decoder', 'draco3dgltf/draco_decoder_gltf_nodejs.js'],
+    include: [
+      'comlink',
+      'ktx-parse',
+      'meshoptimizer/decoder',
+      'draco3dgltf/draco_decoder_gltf_nodejs.js',
+    ],
     entries: ['index.html'],
   },
   // dist/cli holds the command line bundle; the web build must not empty it.

@@ -11,6 +11,7 @@
  *
  * To add a format (OBJ, PLY, HDR, glTF/GLB, .film), append one entry: see README.md here.
  */
+import { readFileSync } from 'node:fs';
 import { expect } from 'vitest';
 import {
   Film,
@@ -33,6 +34,8 @@ import {
   decodePngBytes,
 } from '../../src/core/texture/decode-js.ts';
 import type { DecodedImage } from '../../src/core/texture/decoded-image.ts';
+import { readKtx2Info } from '../../src/core/texture/ktx2-header.ts';
+import { readWebpInfo } from '../../src/core/texture/webp-header.ts';
 import {
   IEND,
   ihdr,
@@ -714,3 +717,106 @@ function checkImage(value: unknown): void {
   const max = img.depth === 16 ? 65535 : 255;
   expect(img.data.every((v) => Number.isInteger(v) && v >= 0 && v <= max)).toBe(true);
 }
+
+/** A fixture of tests/fixtures/compressed-textures/ (read once). */
+const compressed = (name: string) =>
+  new Uint8Array(readFileSync(new URL(`../fixtures/compressed-textures/${name}`, import.meta.url)));
+
+/**
+ * A WebP or KTX2 header's size: positive integers the format can hold (24 bits in WebP,
+ * 32 in KTX2; an ETC1S level's length does not bound its size). The texture side and
+ * memory limits are TextureLayout's, applied to this size before any decoder runs.
+ */
+function checkSize(value: unknown): void {
+  const { width, height } = value as { width: number; height: number };
+  expect(Number.isInteger(width) && Number.isInteger(height)).toBe(true);
+  expect(width >= 1 && height >= 1 && width < 2 ** 32 && height < 2 ** 32).toBe(true);
+}
+
+/** The fixture with u32 `value` (little-endian) written at each of `at`. */
+function withU32(name: string, value: number, ...at: number[]): Uint8Array {
+  const b = compressed(name);
+  for (const a of at) new DataView(b.buffer).setUint32(a, value, true);
+  return b;
+}
+
+// The headers of EXT_texture_webp's and KHR_texture_basisu's images, read before any
+// decoder is loaded (src/core/texture/webp-header.ts, ktx2-header.ts).
+FORMATS.push(
+  {
+    name: 'WebP',
+    decode: (bytes) => readWebpInfo(bytes),
+    check: checkSize,
+    samples: () => [compressed('pattern-lossless.webp'), compressed('pattern-lossy.webp')],
+    lyingHeaders: () => [
+      {
+        name: 'a RIFF size past the end',
+        bytes: withU32('pattern-lossless.webp', 1 << 30, 4),
+        message: /truncated: the RIFF header says 1073741832 bytes/,
+      },
+      {
+        name: 'a VP8X canvas of 2^24 × 2^24 over a 24×16 frame',
+        bytes: (() => {
+          const b = compressed('pattern-lossy.webp');
+          b.fill(0xff, 24, 30);
+          return b;
+        })(),
+        message: /the frame at byte \d+ is 24×16, the canvas 16777216×16777216/,
+      },
+    ],
+    nonFinite: () => [],
+    others: () => [
+      {
+        name: 'an animation',
+        bytes: (() => {
+          const b = compressed('pattern-lossy.webp');
+          b[20] |= 0x02;
+          return b;
+        })(),
+        message: /animated WebP/,
+      },
+    ],
+  },
+  {
+    name: 'KTX2',
+    decode: (bytes) => readKtx2Info(bytes),
+    check: checkSize,
+    samples: () => [compressed('2d_etc1s.ktx2'), compressed('2d_uastc.ktx2')],
+    lyingHeaders: () => [
+      {
+        name: '2^31 × 2^31 texels over 40×40 of UASTC blocks',
+        bytes: withU32('2d_uastc.ktx2', 2 ** 31, 20, 24),
+        message: /^KTX2: 6 levels, more than|declares 1600 bytes of UASTC blocks/,
+      },
+      {
+        name: 'a level count of 2^32 − 1',
+        bytes: withU32('2d_uastc.ktx2', 2 ** 32 - 1, 40),
+        message: /4294967295 levels, more than the 6 of a full chain for 40×40/,
+      },
+      {
+        name: 'a level byteLength of 2^32 − 1',
+        bytes: withU32('2d_uastc.ktx2', 2 ** 32 - 1, 80 + 8),
+        message: /level 0 byteLength 4294967295 \(byte 88\) is past the end/,
+      },
+      {
+        name: 'BasisLZ global data longer than the file',
+        bytes: withU32('2d_etc1s.ktx2', 1 << 30, 72),
+        message:
+          /the BasisLZ global data \(1073741824 bytes at \d+\) is missing, short or past the end/,
+      },
+    ],
+    nonFinite: () => [],
+    others: () => [
+      {
+        name: 'plain RGBA8, not Basis Universal',
+        bytes: compressed('2d_rgba8.ktx2'),
+        message: /vkFormat 43 is not Basis Universal/,
+      },
+      {
+        name: 'a cube map',
+        bytes: withU32('2d_uastc.ktx2', 6, 36),
+        message: /faces 6\); glTF takes 2D/,
+      },
+    ],
+  },
+);

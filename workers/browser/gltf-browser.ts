@@ -3,8 +3,9 @@
  * What loading glTF needs in the browser (page or worker): images decoded by
  * the platform's createImageBitmap (no colour-space conversion, no
  * premultiplication, so the texels are the file's sRGB codes that the core
- * converts to linear once), and MikkTSpace's WebAssembly fetched from the
- * bundle's assets.
+ * converts to linear once), WebP included, MikkTSpace's WebAssembly fetched from the
+ * bundle's assets, and the Basis Universal transcoder (ktx2-browser.ts), loaded only
+ * when a file has a KTX2 texture.
  */
 import mikktspaceWasmUrl from 'mikktspace/dist/module/mikktspace_module_bg.wasm?url';
 // Deep imports: these are the browser host's own tools, not part of the core's public
@@ -48,6 +49,19 @@ export async function decodeImageBrowser(
   } catch (e) {
     throw imageDecodeError(e);
   }
+  const pixels = await bitmapPixels(bytes, type, type === 'image/png' ? 'PNG' : 'JPEG');
+  return pixels ?? decodeImageJs(bytes, mimeType, maxTexels);
+}
+
+/**
+ * The RGBA8 texels of an image the browser decodes; null where there is no 2D context.
+ * Failures read "cannot decode <format>: the browser could not decode it (…)".
+ */
+async function bitmapPixels(
+  bytes: Uint8Array,
+  type: string,
+  format: string,
+): Promise<DecodedImage | null> {
   const blob = new Blob([bytes as Uint8Array<ArrayBuffer>], { type });
   let bitmap: ImageBitmap;
   try {
@@ -57,20 +71,29 @@ export async function decodeImageBrowser(
     });
   } catch (e) {
     throw new Error(
-      `cannot decode ${type === 'image/png' ? 'PNG' : 'JPEG'}: the browser could not decode it ` +
-        `(${libraryMessage(e)})`,
+      `cannot decode ${format}: the browser could not decode it (${libraryMessage(e)})`,
     );
   }
   try {
     const canvas = new OffscreenCanvas(bitmap.width, bitmap.height);
     const ctx = canvas.getContext('2d', { willReadFrequently: true });
-    if (ctx === null) return decodeImageJs(bytes, mimeType, maxTexels);
+    if (ctx === null) return null;
     ctx.drawImage(bitmap, 0, 0);
     const data = ctx.getImageData(0, 0, bitmap.width, bitmap.height).data;
     return { width: bitmap.width, height: bitmap.height, data, channels: 4, depth: 8 };
   } finally {
     bitmap.close();
   }
+}
+
+/**
+ * WebP (EXT_texture_webp) by the browser's own decoder; the core checked the header's
+ * size against the texture budget before this is called.
+ */
+async function decodeWebpBrowser(bytes: Uint8Array): Promise<DecodedImage> {
+  const pixels = await bitmapPixels(bytes, 'image/webp', 'WebP');
+  if (pixels === null) throw new Error('cannot decode WebP: no 2D canvas in this browser');
+  return pixels;
 }
 
 /**
@@ -141,6 +164,14 @@ export function browserGltfDecoders(): GltfDecoders {
       });
       return draco;
     },
+    webp: async () => {
+      if (typeof createImageBitmap !== 'function' || typeof OffscreenCanvas !== 'function')
+        throw new Error('this browser has no createImageBitmap and OffscreenCanvas');
+      return decodeWebpBrowser;
+    },
+    // A chunk of its own: the library build inlines the transcoder's 0.6 MB as base64,
+    // which is then fetched only for a file with a KTX2 texture.
+    ktx2: async () => (await import('./ktx2-browser.ts')).browserKtx2Transcoder(),
   };
 }
 

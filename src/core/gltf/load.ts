@@ -57,9 +57,10 @@ import { validateGltfBuffers } from './validate-buffers.ts';
 import { checkPrimitiveCounts } from './validate-attributes.ts';
 import { validateSparseIndices } from './validate-sparse.ts';
 import { positionBoundsNotes } from './validate-bounds.ts';
-import { validateGltfJson } from './validate.ts';
+import { SUPPORTED_REQUIRED, validateGltfJson } from './validate.ts';
 import { dropSourcelessTextures } from './sourceless.ts';
 import { checkPunctualLights } from './punctual-lights.ts';
+import { prepareTextureExtensions, TEXTURE_EXTENSION_NAMES } from './texture-extensions.ts';
 
 /** Extensions whose content is used (everything else is reported as ignored). */
 export const HONOURED_EXTENSIONS = new Set([
@@ -92,7 +93,7 @@ export interface GltfLoadOptions {
   decodeImage: ImageDecoder;
   /** MikkTSpace, for normal-mapped primitives without TANGENT; null ignores such normal maps. */
   generateTangents?: TangentGenerator | null;
-  /** Decoders of compressed meshes, each called only when the file uses its extension. */
+  /** Decoders of compressed meshes and textures, each called only when the file uses its extension. */
   decoders?: GltfDecoders;
   /** Row-major affine 4×4 of the scene shape, applied on top of the node transforms. */
   transform?: number[] | null;
@@ -158,6 +159,8 @@ export async function loadGltf(
     throw new GltfError(`JSON: ${messageOf(e)}`);
   }
   const decodable = decodableExtensions(options.decoders);
+  const textureExtensions = prepareTextureExtensions(json, options.decoders, warn);
+  for (const name of textureExtensions.honoured) decodable.add(name);
   const summary = validateGltfJson(json, decodable);
   if (options.maxTriangles !== undefined && summary.triangles > options.maxTriangles) {
     throw new GltfError(
@@ -174,9 +177,15 @@ export async function loadGltf(
     warn(`asset.version: ${quote(asset.version as string)} is read as glTF 2.0`);
     json.asset = { ...asset, version: '2.0' };
   }
-  dropSourcelessTextures(json, summary.sourceless, warn);
+  dropSourcelessTextures(json, summary.sourceless, warn, textureExtensions.reasons);
   for (const name of (json.extensionsUsed as unknown[] | undefined) ?? []) {
-    if (typeof name === 'string' && !HONOURED_EXTENSIONS.has(name) && !decodable.has(name)) {
+    // WebP and KTX2 without a decoder are said per texture (texture-extensions.ts).
+    if (
+      typeof name === 'string' &&
+      !HONOURED_EXTENSIONS.has(name) &&
+      !decodable.has(name) &&
+      !TEXTURE_EXTENSION_NAMES.has(name)
+    ) {
       warn(`extension ${quote(name)} is not supported; its content is ignored`);
     }
   }
@@ -245,7 +254,9 @@ export async function loadGltf(
 
   let doc: Document;
   try {
-    const io = new PreloadedIO().setLogger(QUIET_LOGGER).registerExtensions(EXTENSIONS);
+    const io = new PreloadedIO()
+      .setLogger(QUIET_LOGGER)
+      .registerExtensions([...EXTENSIONS, ...textureExtensions.classes]);
     doc = await io.readJSON({ json, resources } as unknown as JSONDocument);
   } catch (e) {
     if (e instanceof GltfError) throw e;
@@ -282,6 +293,7 @@ async function build(
     requests,
     table,
     options.decodeImage,
+    options.decoders,
     options.textureLimitBytes ?? DEFAULT_TEXTURE_LIMIT_BYTES,
     options.sharedTextures ?? false,
     warn,

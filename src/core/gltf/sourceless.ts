@@ -28,11 +28,15 @@ function bindings(m: Json): [Json, string][] {
   return out;
 }
 
-/** Removes the bindings of the textures `sourceless` from the (validated) JSON's materials. */
+/**
+ * Removes the bindings of the textures `sourceless` from the (validated) JSON's materials;
+ * `reasons` says why a texture has no image, where it is known (texture-extensions.ts).
+ */
 export function dropSourcelessTextures(
   json: Json,
   sourceless: number[],
   warn: (message: string) => void,
+  reasons: ReadonlyMap<number, string> = new Map(),
 ): void {
   if (sourceless.length === 0) return;
   const set = new Set(sourceless);
@@ -48,5 +52,8 @@ export function dropSourcelessTextures(
     }
   }
   for (const t of [...used].sort((a, b) => a - b))
-    warn(`textures[${t}]: has no source image; the materials that use it use their factors alone`);
+    warn(
+      `textures[${t}]: ${reasons.get(t) ?? 'has no source image'}; the materials that use it ` +
+        `use their factors alone`,
+    );
 }

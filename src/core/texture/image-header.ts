@@ -2,14 +2,22 @@
  * Reads an image's size from its header without decoding it, so that the
  * texture memory limit is checked before a decoder allocates anything
  * (a 1 KB PNG can claim 65535 × 65535 texels). PNG: the IHDR chunk; JPEG:
- * the first start-of-frame marker (ITU T.81 §B.2.2).
+ * the first start-of-frame marker (ITU T.81 §B.2.2); WebP (EXT_texture_webp):
+ * the RIFF chunks (webp-header.ts); KTX2 (KHR_texture_basisu): the header and
+ * level index (ktx2-header.ts; level 0's size here).
  */
 import { sanitize } from '../util/message.ts';
+import { imageDecodeError } from './image-error.ts';
 import { checkJpeg } from './jpeg-check.ts';
+import { isKtx2, readKtx2Info } from './ktx2-header.ts';
 import { readPngChunks } from './png-check.ts';
+import { isWebp, readWebpInfo } from './webp-header.ts';
+
+/** The image formats a glTF texture may hold here: PNG and JPEG (core glTF), WebP and KTX2 (extensions). */
+export type TextureImageType = 'image/png' | 'image/jpeg' | 'image/webp' | 'image/ktx2';
 
 export interface ImageInfo {
-  mimeType: 'image/png' | 'image/jpeg';
+  mimeType: TextureImageType;
   width: number;
   height: number;
 }
@@ -25,15 +33,32 @@ export function sniffImageType(bytes: Uint8Array): 'image/png' | 'image/jpeg' | 
   return null;
 }
 
+/** The format from the bytes, WebP and KTX2 included (sniffImageType is PNG and JPEG only). */
+export function sniffTextureType(bytes: Uint8Array): TextureImageType | null {
+  const type = sniffImageType(bytes);
+  if (type !== null) return type;
+  if (isWebp(bytes)) return 'image/webp';
+  if (isKtx2(bytes)) return 'image/ktx2';
+  return null;
+}
+
 /**
- * Size and format of a PNG or JPEG; throws a clear error, prefixed by `what`
- * when given, when the header is broken.
+ * Size and format of a PNG, JPEG, WebP or KTX2 image; throws a clear error, prefixed
+ * by `what` when given, when the header is broken.
  */
 export function readImageInfo(bytes: Uint8Array, what = ''): ImageInfo {
   const fail = (message: string): never => {
     throw new Error(what === '' ? message : `${what}: ${message}`);
   };
-  const type = sniffImageType(bytes);
+  const type = sniffTextureType(bytes);
+  if (type === 'image/webp' || type === 'image/ktx2') {
+    try {
+      const { width, height } = type === 'image/webp' ? readWebpInfo(bytes) : readKtx2Info(bytes);
+      return { mimeType: type, width, height };
+    } catch (e) {
+      return fail(imageDecodeError(e).message);
+    }
+  }
   if (type === 'image/png') {
     // Signature, then the IHDR chunk: length (4), "IHDR", width, height.
     if (bytes.length < 24 || String.fromCharCode(...bytes.subarray(12, 16)) !== 'IHDR') {

@@ -29,11 +29,11 @@ describe('glTF textures: checked against their bytes', () => {
     );
   });
 
-  it('a WebP is another format, honestly ignored with a note', async () => {
+  it('a WebP where no WebP decoder is given: honestly ignored with a note', async () => {
     const webp = Uint8Array.from('RIFF\0\0\0\0WEBPVP8 ', (c) => c.charCodeAt(0));
     const m = await loadGlb(texturedDoc(webp, 'image/png'));
     expect(m.warnings).toContain(
-      'images[0] (materials[0].baseColorTexture): a WebP image is not PNG or JPEG; the texture is ignored',
+      'images[0] (materials[0].baseColorTexture): image/webp needs a WebP decoder, which this platform lacks; the texture is ignored',
     );
   });
 

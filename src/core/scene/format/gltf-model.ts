@@ -5,8 +5,15 @@
  * declarations need a newer lib than ES2022). The modules that use glTF-Transform
  * (flatten.ts, io.ts, tangents.ts) re-export them.
  */
+import type { DecodedImage } from '../../texture/decoded-image.ts';
+import type { Ktx2Transcoder } from '../../texture/ktx2-transcode.ts';
 import type { TextureStore } from '../../texture/texture-store.ts';
 import type { LightDesc } from './types.ts';
+
+export type { Ktx2Transcoder };
+
+/** Decodes one WebP image to RGBA8 (libwebp in Node, the browser's own decoder). */
+export type WebpDecoder = (bytes: Uint8Array) => Promise<DecodedImage>;
 
 export interface GltfCamera {
   position: [number, number, number];
@@ -70,13 +77,18 @@ export interface DracoDecoderModule {
  * Decoders of compressed glTF data, each a lazy getter: the loader calls one only when
  * the file uses its extension (a plain file calls none), and a platform caches what it
  * returns. A missing getter: the extension is not supported on this platform (the
- * fallback data is read when the file has some, else one error).
+ * fallback data is read when the file has some, else one error). Structural, so that
+ * the core imports none of the packages.
  */
 export interface GltfDecoders {
   /** EXT_meshopt_compression and KHR_meshopt_compression. */
   meshopt?(): Promise<MeshoptDecoderLike>;
   /** KHR_draco_mesh_compression. */
   draco?(): Promise<DracoDecoderModule>;
+  /** EXT_texture_webp. */
+  webp?(): Promise<WebpDecoder>;
+  /** KHR_texture_basisu: KTX2 files of Basis Universal data. */
+  ktx2?(): Promise<Ktx2Transcoder>;
 }
 
 /** Reads the file at `path` (relative to the scene), refusing files longer than maxBytes. */

@@ -57,7 +57,7 @@ export interface ResolveOptions {
   decodeImage?: ImageDecoder;
   /** MikkTSpace for normal-mapped primitives without tangents; without it such normal maps are ignored (with a warning). */
   generateTangents?: TangentGenerator | null;
-  /** Decoders of compressed meshes (meshopt, Draco), each loaded only when a model uses it. */
+  /** Lazy decoders of compressed glTF data (meshopt, Draco, WebP, KTX2), each loaded only when a model uses it; without one, such data is not read. */
   decoders?: GltfDecoders;
   /** Texels in a SharedArrayBuffer where the platform has one. */
   sharedTextures?: boolean;
