@@ -56,6 +56,7 @@ export const HONOURED_EXTENSIONS = new Set([
   'KHR_materials_transmission',
   'KHR_mesh_quantization',
   'KHR_texture_transform',
+  'EXT_mesh_gpu_instancing',
 ]);
 
 export { GLTF_FILE_BYTES };
