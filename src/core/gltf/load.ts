@@ -15,6 +15,7 @@
  */
 import { Document, type JSONDocument } from '@gltf-transform/core';
 import {
+  EXTMeshGPUInstancing,
   KHRMaterialsEmissiveStrength,
   KHRMaterialsIOR,
   KHRMaterialsSpecular,
@@ -87,6 +88,7 @@ export interface GltfLoadOptions {
 export type { GltfCamera, GltfModel };
 
 const EXTENSIONS = [
+  EXTMeshGPUInstancing,
   KHRMaterialsEmissiveStrength,
   KHRMaterialsIOR,
   KHRMaterialsSpecular,
