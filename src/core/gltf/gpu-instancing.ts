@@ -71,8 +71,9 @@ export function checkGpuInstancing(n: Json, p: string, accessors: Json[], cap: n
       );
   }
   if (count < 0) fail(`${ep}.attributes`, 'has none of TRANSLATION, ROTATION and SCALE');
-  if (typeof n.mesh !== 'number') fail(ep, 'is on a node without a mesh');
-  return count;
+  // Without a mesh there is nothing to draw: the rows are ignored (flatten.ts reads them
+  // only for nodes with a mesh).
+  return typeof n.mesh === 'number' ? count : 0;
 }
 
 /** Whether a (validated) node carries the extension. */
