@@ -213,11 +213,10 @@ export function flattenGltf(
       `scene: holds ${total} triangles once emissive instanced meshes are copied, more than the limit of ${GLTF_LIMITS.triangles}`,
     );
   }
-  return {
-    ...geometry,
-    instances: gatherInstances(split, blas, geometry.bounds),
-    cameras,
-  };
+  const gathered = gatherInstances(split, blas, geometry.bounds);
+  return gathered === null
+    ? { ...geometry, cameras }
+    : { ...geometry, instances: gathered, cameras };
 }
 
 /** Whether row m of the material table emits (the compiler's M_EMISSIVE test). */

@@ -65,9 +65,11 @@ export interface GltfGeometry {
   /**
    * Meshes the scene uses more than once, kept once in object space and drawn by
    * instances (accel/instances.ts; docs/gltf.md, Instancing); null when there are none.
-   * The arrays above then hold the other triangles only; `bounds` covers both.
+   * The arrays above then hold the other triangles only; `bounds` covers both. Absent
+   * rather than null without instances, so that a loaded scene without them hashes as
+   * before (a film's scene_sha256, src/cli/film-file.ts).
    */
-  instances: GltfInstances | null;
+  instances?: GltfInstances;
 }
 
 /** One set of triangles (GltfGeometry's arrays) without cameras or instances of its own. */
