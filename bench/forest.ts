@@ -4,8 +4,8 @@
  * — 1,000 nodes sharing one mesh (`nodes`), and one node with EXT_mesh_gpu_instancing
  * (`gpu`) — then, in this process, loads it as the command line does (loadBareModel:
  * parse, validate, flatten) and compiles it (the tree's BLAS, the TLAS), and reports
- * the seconds and the process's peak resident memory (maxRSS, which includes Node
- * itself). One variant per process, so each peak is its own.
+ * the seconds (wall and CPU) and the process's peak resident memory (maxRSS, which
+ * includes Node itself). One variant per process, so each peak is its own.
  *
  * Run: node scripts/run-ts.mjs bench/forest.ts nodes|gpu [--write DIR] [--render]
  * (--write also saves forest-nodes.glb / forest-gpu.glb; --render traces one 64×64
@@ -132,11 +132,13 @@ const glb = await forestGlb(variant);
 const wi = args.indexOf('--write');
 if (wi >= 0) writeFileSync(join(args[wi + 1], `forest-${variant}.glb`), glb);
 const rssBefore = process.resourceUsage().maxRSS / 1024;
+const cpu0 = process.cpuUsage();
 const t0 = performance.now();
 const scene = await loadBareModel(glb, `forest-${variant}.glb`, null);
 const t1 = performance.now();
 const compiled = compileScene(scene);
 const t2 = performance.now();
+const cpu = process.cpuUsage(cpu0);
 const peakMB = process.resourceUsage().maxRSS / 1024;
 let rendered = null;
 if (args.includes('--render')) {
@@ -167,6 +169,9 @@ console.log(
     loadSeconds: +((t1 - t0) / 1000).toFixed(3),
     compileSeconds: +((t2 - t1) / 1000).toFixed(3),
     totalSeconds: +((t2 - t0) / 1000).toFixed(3),
+    // CPU seconds of the loading thread and any helpers (user + system): on a shared,
+    // loaded machine the wall time above includes waiting for a core.
+    totalCpuSeconds: +((cpu.user + cpu.system) / 1e6).toFixed(3),
     peakRssMB: Math.round(peakMB),
     rssBeforeLoadMB: Math.round(rssBefore),
     instanceRecordBytes: instanceBytes / compiled.instanceCount,
