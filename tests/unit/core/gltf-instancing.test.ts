@@ -11,6 +11,8 @@ import { EXTMeshGPUInstancing } from '@gltf-transform/extensions';
 import { describe, expect, it } from 'vitest';
 import { compileScene, type Scene } from '../../../src/core/index.ts';
 import { GltfError } from '../../../src/core/gltf/errors.ts';
+import { intersectScene, occluded } from '../../../src/core/accel/trace.ts';
+import { Hit, Ray } from '../../../src/core/geometry/ray.ts';
 import { loadGltf } from '../../../src/core/gltf/load.ts';
 import { parseGlb } from '../../../src/core/gltf/glb.ts';
 import { GLTF_LIMITS } from '../../../src/core/gltf/validate.ts';
@@ -74,6 +76,49 @@ describe('instanced scene against its flattened copy', () => {
       expect(lit).toBeGreaterThan(ia.mean.length / 2);
     });
   }
+});
+
+describe('ray queries through instances', () => {
+  it('nearest hits and occlusion as in the flattened copy (SimpleInstancing, 4,000 rays)', async () => {
+    const bytes = fixture('SimpleInstancing.glb');
+    const ca = compileScene(await loadBareModel(bytes, 'a.glb', null));
+    const cb = compileScene(await loadBareModel(flattenedCopy(bytes), 'b.glb', null));
+    const ray = new Ray();
+    const ha = new Hit();
+    const hb = new Hit();
+    let seed = 7;
+    const rand = (): number => (seed = (seed * 1103515245 + 12345) >>> 0) / 2 ** 32;
+    let hits = 0;
+    for (let i = 0; i < 4000; i++) {
+      // From points around and inside the 10-unit block of cubes, in every direction.
+      const o = [rand() * 16 - 3, rand() * 16 - 3, rand() * 16 - 3];
+      const z = 2 * rand() - 1;
+      const phi = 2 * Math.PI * rand();
+      const s = Math.sqrt(1 - z * z);
+      const d = [s * Math.cos(phi), s * Math.sin(phi), z];
+      const tMax = i % 2 === 0 ? Infinity : 1 + 8 * rand();
+      const set = (): void => {
+        [ray.ox, ray.oy, ray.oz] = o;
+        [ray.dx, ray.dy, ray.dz] = d;
+        ray.tMax = tMax;
+      };
+      set();
+      const fa = intersectScene(ca, ray, ha);
+      set();
+      const fb = intersectScene(cb, ray, hb);
+      expect(fa).toBe(fb);
+      if (fa) {
+        hits++;
+        expect(Math.abs(ha.t - hb.t)).toBeLessThan(1e-12 * (1 + hb.t) * 16);
+        expect(ha.instance).toBeGreaterThanOrEqual(0);
+      }
+      set();
+      const oa = occluded(ca, ray);
+      set();
+      expect(oa).toBe(occluded(cb, ray));
+    }
+    expect(hits).toBeGreaterThan(1000);
+  });
 });
 
 /** A document of one quad mesh drawn by EXT_mesh_gpu_instancing rows (edited after). */
