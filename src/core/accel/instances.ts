@@ -4,7 +4,7 @@
  * a transform and the BLAS — and the scene's one BVH (bvh.ts) holds the instances as
  * primitives of kind PRIM_INSTANCE beside the spheres, quads and world-space triangles:
  * it is the top-level BVH (TLAS). A ray reaching an instance in a TLAS leaf is carried
- * into object space and traverses the BLAS (traverse-instanced.ts).
+ * into object space and traverses the BLAS (traverse-instanced.ts, blas-traverse.ts).
  *
  * The instance record, 104 bytes:
  *   f64 ×12  instXform: the world-to-object affine 3×4, column-major (w00 w10 w20,
