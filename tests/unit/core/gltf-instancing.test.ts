@@ -18,7 +18,7 @@ import { parseGlb } from '../../../src/core/gltf/glb.ts';
 import { GLTF_LIMITS } from '../../../src/core/gltf/validate.ts';
 import { loadBareModel } from '../../../src/core/scene/load/bare-scene.ts';
 import { flattenedCopy, writeGlb } from '../../helpers/gltf-copies.ts';
-import { io, memoryOptions, meshPrimitive } from '../../helpers/gltf.ts';
+import { io, memoryOptions, meshPrimitive, sceneWithFiles } from '../../helpers/gltf.ts';
 import { renderSampled, ROOT } from '../../helpers/render.ts';
 
 const fixture = (name: string): Uint8Array =>
@@ -76,6 +76,39 @@ describe('instanced scene against its flattened copy', () => {
       expect(lit).toBeGreaterThan(ia.mean.length / 2);
     });
   }
+});
+
+describe('instances of several models in one scene', () => {
+  it('two gltf shapes of one file, moved apart: each keeps its BLAS and instances', async () => {
+    const files = new Map([['m.glb', fixture('SimpleInstancing.glb')]]);
+    const move = (x: number) => [1, 0, 0, x, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
+    const scene = await sceneWithFiles(
+      {
+        format: 'pathwise-scene/1',
+        camera: { position: [30, 20, 60], target: [30, 5, 5], up: [0, 1, 0], fovY: 50 },
+        settings: { width: 16, height: 8, maxBounces: 3, spp: 2 },
+        materials: {},
+        shapes: [
+          { type: 'gltf', file: 'm.glb' },
+          { type: 'gltf', file: 'm.glb', transform: move(40) },
+        ],
+        environment: [1, 1, 1],
+      },
+      files,
+    );
+    const c = compileScene(scene);
+    expect(c.instanceCount).toBe(250);
+    expect(c.triCount).toBe(24);
+    // The second model's instances draw its own BLAS (triangles 12–23), 40 units along x.
+    const ray = new Ray();
+    const hit = new Hit();
+    Object.assign(ray, { ox: 45.5, oy: 0.5, oz: -5, dx: 0, dy: 0, dz: 1, tMax: Infinity });
+    expect(intersectScene(c, ray, hit)).toBe(true);
+    expect(hit.instance).toBeGreaterThanOrEqual(125);
+    expect(hit.index).toBeGreaterThanOrEqual(12);
+    const img = renderSampled(scene, { spp: 2 });
+    for (const v of img.mean) expect(Number.isFinite(v)).toBe(true);
+  });
 });
 
 describe('ray queries through instances', () => {
