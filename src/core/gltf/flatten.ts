@@ -196,23 +196,26 @@ export function flattenGltf(
       if (plan !== null) work.push({ plan, matrix: inst.matrix, node: inst.node });
     }
   }
-  const geometry = fillWork(work, table, warn);
+  // Copies of emissive meshes drawn many times count against the limit of triangles held
+  // (validate.ts counted each mesh once): checked before anything is allocated for them.
+  let total = 0;
+  for (const w of work) total += w.plan.triangles.length / 3;
+  for (const m of split.blasMeshes)
+    for (const plan of planOf(m)) total += plan === null ? 0 : plan.triangles.length / 3;
+  if (total > GLTF_LIMITS.triangles) {
+    throw new GltfError(
+      `scene: holds ${total} triangles once emissive meshes drawn several times are copied, more than the limit of ${GLTF_LIMITS.triangles}`,
+    );
+  }
+  const geometry = fillWork(work, table);
   const blas = split.blasMeshes.map((m, b) =>
     fillWork(
       planOf(m)
         .filter((plan): plan is Plan => plan !== null)
         .map((plan) => ({ plan, matrix: identity(), node: split.blasNode[b] })),
       table,
-      warn,
     ),
   );
-  let total = geometry.triangleMaterial.length;
-  for (const g of blas) total += g.triangleMaterial.length;
-  if (total > GLTF_LIMITS.triangles) {
-    throw new GltfError(
-      `scene: holds ${total} triangles once emissive instanced meshes are copied, more than the limit of ${GLTF_LIMITS.triangles}`,
-    );
-  }
   const gathered = gatherInstances(split, blas, geometry.bounds);
   return gathered === null
     ? { ...geometry, cameras }
@@ -233,9 +236,7 @@ function emissiveRow(table: Float64Array, m: number): boolean {
 function fillWork(
   work: { plan: Plan; matrix: Mat4; node: number }[],
   table: Float64Array,
-  warn: (message: string) => void,
 ): GltfTriangles {
-  void warn;
   let vertexTotal = 0;
   let triangleTotal = 0;
   const has = { normal: false, uv0: false, uv1: false, color: false, tangent: false };

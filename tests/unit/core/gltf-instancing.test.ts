@@ -339,6 +339,31 @@ describe('EXT_mesh_gpu_instancing', () => {
 });
 
 describe('limits: distinct triangles and instances', () => {
+  it('copies of an emissive mesh drawn many times are refused past the limit, before allocating', async () => {
+    // 20,000 emissive triangles × 600 nodes: 12 M copied triangles (emissive meshes are
+    // not instanced), over the 10 M limit although the file holds 20,000.
+    const doc = new Document();
+    doc.createBuffer();
+    const pos: number[] = [];
+    const idx: number[] = [];
+    for (let k = 0; k < 20_000; k++) {
+      pos.push(k, 0, 0, k + 1, 0, 0, k, 1, 0);
+      idx.push(3 * k, 3 * k + 1, 3 * k + 2);
+    }
+    const prim = meshPrimitive(doc, pos, idx).setMaterial(
+      doc.createMaterial().setEmissiveFactor([1, 1, 1]),
+    );
+    const mesh = doc.createMesh().addPrimitive(prim);
+    const scene = doc.createScene();
+    for (let k = 0; k < 600; k++) scene.addChild(doc.createNode().setMesh(mesh));
+    doc.getRoot().setDefaultScene(scene);
+    await expect(
+      loadGltf(await io().writeBinary(doc), 'm.glb', await memoryOptions()),
+    ).rejects.toThrow(
+      /^glTF: scene: holds 12000000 triangles once emissive meshes drawn several times are copied, more than the limit of 10000000$/,
+    );
+  });
+
   it('a mesh used by many nodes counts its triangles once', async () => {
     // 40,000 triangles × 300 nodes = 12 M drawn, over the 10 M limit of distinct ones.
     const doc = new Document();
