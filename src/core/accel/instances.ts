@@ -6,14 +6,13 @@
  * it is the top-level BVH (TLAS). A ray reaching an instance in a TLAS leaf is carried
  * into object space and traverses the BLAS (traverse-instanced.ts, blas-traverse.ts).
  *
- * The instance record, 104 bytes:
+ * The instance record, 100 bytes:
  *   f64 ×12  instXform: the world-to-object affine 3×4, column-major (w00 w10 w20,
  *            w01 w11 w21, w02 w12 w22, wx wy wz). The ray is transformed by it; normals
  *            transform by its transpose ((M⁻¹)ᵀ, pbr-book 4e §3.10.1), so one matrix
  *            serves both. The object-to-world matrix is not stored: a hit needs it once
  *            (instance-surface.ts), and inverts this one.
- *   i32      instBlas: the BLAS's root node in blasNodes;
- *   i32      instFirst: the BLAS's first triangle (for messages and tests).
+ *   i32      instBlas: the BLAS's root node in blasNodes.
  * In f64 like every other coordinate: the triangle test's robustness (geometry/exact.ts)
  * is exact arithmetic on the doubles it is given, and an f32 transform would move the
  * object-space ray by far more than the boxes' one-ulp padding (bvh.ts f32Below).
@@ -36,7 +35,6 @@ export const INSTANCE_XFORM = 12;
 export interface InstanceArrays {
   instXform: Float64Array;
   instBlas: Int32Array;
-  instFirst: Int32Array;
   blasNodes: Int32Array;
   blasRefs: Int32Array;
   /** [depth of the deepest BLAS] (its traversal stack needs depth + 1), or empty. */
@@ -46,7 +44,6 @@ export interface InstanceArrays {
 export const NO_INSTANCES: InstanceArrays = {
   instXform: new Float64Array(0),
   instBlas: new Int32Array(0),
-  instFirst: new Int32Array(0),
   blasNodes: new Int32Array(0),
   blasRefs: new Int32Array(0),
   blasDepth: new Int32Array(0),
@@ -129,12 +126,10 @@ export function buildInstances(
   const count = instanceBlas.length;
   const instXform = new Float64Array(count * INSTANCE_XFORM);
   const instBlas = new Int32Array(count);
-  const instFirst = new Int32Array(count);
   const boxes = new Float64Array(count * 6);
   for (let k = 0; k < count; k++) {
     const b = instanceBlas[k];
     instBlas[k] = root[b];
-    instFirst[k] = blasTriangles[b];
     invertAffine(objectToWorld, 12 * k, instXform, 12 * k);
     transformBox(objectToWorld, 12 * k, objectBox, 6 * b, boxes, 6 * k);
   }
@@ -142,7 +137,6 @@ export function buildInstances(
     arrays: {
       instXform,
       instBlas,
-      instFirst,
       blasNodes,
       blasRefs,
       blasDepth: Int32Array.of(depth),

@@ -146,7 +146,6 @@ export const SCENE_ARRAYS = [
   'bvhRefs',
   'instXform',
   'instBlas',
-  'instFirst',
   'blasNodes',
   'blasRefs',
   'blasDepth',
