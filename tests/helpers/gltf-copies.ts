@@ -59,6 +59,12 @@ function floats(json: Json, bin: Uint8Array, i: number): number[] {
 export function flattenedCopy(glb: Uint8Array): Uint8Array {
   const { json: jsonBytes, bin } = parseGlb(glb);
   const json = JSON.parse(new TextDecoder().decode(jsonBytes)) as Json;
+  flattenJson(json, bin);
+  return writeGlb(json, bin);
+}
+
+/** The flattened copy of a glTF's JSON, in place (`bin`: the GLB chunk, for instancing rows). */
+export function flattenJson(json: Json, bin: Uint8Array | null): void {
   const meshes: Json[] = json.meshes;
   const uses = new Map<number, number>();
   const ownMesh = (m: number): number => {
@@ -95,5 +101,4 @@ export function flattenedCopy(glb: Uint8Array): Uint8Array {
     delete n.mesh;
     delete n.extensions.EXT_mesh_gpu_instancing;
   }
-  return writeGlb(json, bin);
 }

@@ -5,7 +5,7 @@
  * EXT_mesh_gpu_instancing row a node: tests/helpers/gltf-copies.ts), on two public
  * models, and against hostile extension content and the split triangle limits.
  */
-import { readFileSync } from 'node:fs';
+import { readdirSync, readFileSync } from 'node:fs';
 import { Document } from '@gltf-transform/core';
 import { EXTMeshGPUInstancing } from '@gltf-transform/extensions';
 import { describe, expect, it } from 'vitest';
@@ -17,7 +17,7 @@ import { loadGltf } from '../../../src/core/gltf/load.ts';
 import { parseGlb } from '../../../src/core/gltf/glb.ts';
 import { GLTF_LIMITS } from '../../../src/core/gltf/validate.ts';
 import { loadBareModel } from '../../../src/core/scene/load/bare-scene.ts';
-import { flattenedCopy, writeGlb } from '../../helpers/gltf-copies.ts';
+import { flattenedCopy, flattenJson, writeGlb } from '../../helpers/gltf-copies.ts';
 import { io, memoryOptions, meshPrimitive, sceneWithFiles } from '../../helpers/gltf.ts';
 import { renderSampled, ROOT } from '../../helpers/render.ts';
 
@@ -128,6 +128,27 @@ describe('what is instanced', () => {
     const ia = renderSampled(a, options);
     expect(maxRelative(ia.mean, renderSampled(b, options).mean)).toBeLessThan(1e-5);
     // The camera frames the quads: the image is not the bare environment.
+    expect(Math.max(...ia.mean) - Math.min(...ia.mean)).toBeGreaterThan(0.05);
+  });
+});
+
+describe('textures through instances', () => {
+  it('TextureTransformTest (.gltf, meshes shared by 3 and 2 nodes): the image of the copy', async () => {
+    const dir = `${ROOT}tests/fixtures/gltf-instancing/TextureTransformTest/`;
+    const files = new Map<string, Uint8Array>();
+    for (const f of readdirSync(dir)) files.set(f, new Uint8Array(readFileSync(dir + f)));
+    const gltf = files.get('TextureTransformTest.gltf')!;
+    const json = JSON.parse(new TextDecoder().decode(gltf));
+    flattenJson(json, null);
+    const copy = new TextEncoder().encode(JSON.stringify(json));
+    const { reader } = await memoryOptions(files);
+    const a = await loadBareModel(gltf, 'TextureTransformTest.gltf', reader);
+    const b = await loadBareModel(copy, 'TextureTransformTest.gltf', reader);
+    expect(compileScene(a).instanceCount).toBe(5);
+    expect(compileScene(b).instanceCount).toBe(0);
+    const options = { width: 32, height: 24, spp: 2 };
+    const ia = renderSampled(a, options);
+    expect(maxRelative(ia.mean, renderSampled(b, options).mean)).toBeLessThan(1e-5);
     expect(Math.max(...ia.mean) - Math.min(...ia.mean)).toBeGreaterThan(0.05);
   });
 });
