@@ -72,6 +72,8 @@ export function buildInstances(
   for (let b = 0; b < blasCount; b++) {
     const first = blasTriangles[b];
     const n = blasTriangles[b + 1] - first;
+    // A mesh left without triangles (points and lines only) has no instances either.
+    if (n === 0) continue;
     const boxes = new Float32Array(n * 6);
     const refs = new Int32Array(n);
     const box = objectBox.subarray(6 * b, 6 * b + 6);

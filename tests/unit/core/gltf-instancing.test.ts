@@ -114,6 +114,22 @@ describe('what is instanced', () => {
     expect(m.indices.length).toBe(3 * 6);
   });
 
+  it('a mesh of points drawn twice: its instances and BLAS are dropped', async () => {
+    const doc = twoUses((d) => d.createMaterial());
+    const shared = doc.getRoot().listMeshes()[0];
+    shared.listPrimitives()[0].setMode(0); // POINTS
+    // The floor drawn twice too: one BLAS with triangles beside one without.
+    const floor = doc.getRoot().listMeshes()[1];
+    doc
+      .getRoot()
+      .listScenes()[0]
+      .addChild(doc.createNode().setMesh(floor).setTranslation([0, 0, -1]));
+    const scene = await loadBareModel(await io().writeBinary(doc), 'm.glb', null);
+    const c = compileScene(scene);
+    expect(c.instanceCount).toBe(2);
+    expect(c.triCount).toBe(2);
+  });
+
   it('alpha (BLEND) through instances: paths and shadow rays as through the copies', async () => {
     const glb = await io().writeBinary(
       twoUses((doc) =>
