@@ -401,7 +401,7 @@ export const FORMATS: FormatEntry[] = [
         bytes: quadGlb({
           edit: (j) => ((j.accessors as { count: number }[])[3].count = 60_000_000),
         }),
-        message: /^glTF: scene: instances more than 10,000,000 triangles, the limit$/,
+        message: /^glTF: scene: uses meshes of more than 10,000,000 distinct triangles, the limit$/,
       },
       {
         name: 'a texture claiming 16000 x 16000 texels',

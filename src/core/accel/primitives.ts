@@ -130,3 +130,11 @@ export function triangleBoxes(
     );
   }
 }
+
+/** Instances' world boxes (accel/instances.ts), as references of kind PRIM_INSTANCE (3). */
+export function instanceBoxesInto(boxes: Float64Array, count: number, out: PrimitiveBoxes): void {
+  for (let k = 0; k < count; k++) {
+    const o = 6 * k;
+    out.add(3, k, boxes[o], boxes[o + 1], boxes[o + 2], boxes[o + 3], boxes[o + 4], boxes[o + 5]);
+  }
+}

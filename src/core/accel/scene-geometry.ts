@@ -26,4 +26,19 @@ export interface SceneGeometry {
   readonly stack: Int32Array;
   readonly stackT: Float64Array;
   readonly ray: Float64Array;
+  /**
+   * Instances (accel/instances.ts): their count, world-to-object matrices and BLAS root
+   * nodes; the BLASes' nodes (as boxes and as words) and references; the BLAS stack and
+   * the object-space ray record and triangle constants. Empty without instances.
+   */
+  readonly instanceCount: number;
+  readonly instXform: Float64Array;
+  readonly instBlas: Int32Array;
+  readonly blasBoxes: Float32Array;
+  readonly blasNodes: Int32Array;
+  readonly blasRefs: Int32Array;
+  readonly blasStack: Int32Array;
+  readonly blasStackT: Float64Array;
+  readonly objRay: Float64Array;
+  readonly objTriRay: TriangleRay;
 }

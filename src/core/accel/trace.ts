@@ -16,6 +16,7 @@
  * the heap at every call.
  */
 import { intersectBvh, occludedBvh } from './traverse.ts';
+import { intersectInstanced } from './traverse-instanced.ts';
 import type { SceneGeometry } from './scene-geometry.ts';
 import { intersectSphere } from '../geometry/intersect.ts';
 import {
@@ -37,7 +38,12 @@ export function intersectScene(scene: SceneGeometry, ray: Ray, hit: Hit): boolea
   // Two small functions rather than one big one: V8 optimises (and inlines
   // the primitive tests into) each far better.
   if (scene.triCount > 0) setTriangleRay(r[0], r[1], r[2], r[3], r[4], r[5], scene.triRay);
-  const found = scene.bvh === null ? intersectList(scene, r, hit) : intersectBvh(scene, r, hit);
+  const found =
+    scene.bvh === null
+      ? intersectList(scene, r, hit)
+      : scene.instanceCount === 0
+        ? intersectBvh(scene, r, hit)
+        : intersectInstanced(scene, r, hit);
   if (found) {
     hit.t = r[6];
     if (hit.kind === SHAPE_TRIANGLE) triangleBarycentrics(scene, hit);
@@ -45,14 +51,17 @@ export function intersectScene(scene: SceneGeometry, ray: Ray, hit: Hit): boolea
   return found;
 }
 
-/** Barycentrics of the kept triangle hit, recomputed once with the same ray constants. */
+/**
+ * Barycentrics of the kept triangle hit, recomputed once with the same ray constants
+ * (an instance's object-space ones, which intersectInstanced left for its hit).
+ */
 function triangleBarycentrics(scene: SceneGeometry, hit: Hit): void {
   const th = scene.triHit;
   intersectTriangleBary(
     scene.triPositions,
     scene.triIndices,
     hit.index,
-    scene.triRay,
+    hit.instance < 0 ? scene.triRay : scene.objTriRay,
     Infinity,
     th,
   );

@@ -29,6 +29,7 @@ import {
   type Ray,
 } from '../geometry/ray.ts';
 import { hitTriangle, setTriangleRay } from '../geometry/triangle.ts';
+import { occludedInstanced } from './traverse-instanced.ts';
 
 /**
  * Nearest hit through the BVH (layout in accel/bvh.ts). The loop visits
@@ -267,6 +268,8 @@ export function intersectBvh(scene: SceneGeometry, r: Float64Array, hit: Hit): b
  * `occluded`, which stays small enough to be inlined; see there).
  */
 export function occludedBvh(scene: SceneGeometry, ray: Ray): boolean {
+  // Instances: the same loop with one more leaf case (traverse-instanced.ts).
+  if (scene.instanceCount !== 0) return occludedInstanced(scene, ray);
   const bvh = scene.bvh!;
   const r = scene.ray;
   loadRay(r, ray);

@@ -23,6 +23,11 @@ export class Hit {
   b0 = 0;
   b1 = 0;
   b2 = 0;
+  /**
+   * The instance (accel/instances.ts) whose object-space triangle `index` was hit, or −1
+   * for a world-space shape; written only by scenes with instances.
+   */
+  instance = -1;
 }
 
 export const SHAPE_SPHERE = 0;

@@ -26,6 +26,7 @@ import type { GltfCamera } from '../scene/format/gltf-model.ts';
 import { triangleList } from './triangles.ts';
 import { GltfError } from './errors.ts';
 import {
+  GM_EMISSIVE,
   GM_STRIDE,
   GM_TEXTURES,
   BINDING_STRIDE,
@@ -35,10 +36,12 @@ import {
   hasTexture,
 } from '../gltf-material/material-table.ts';
 import { usesAnisotropy } from './materials.ts';
-import type { GltfGeometry, TangentGenerator } from '../scene/format/gltf-model.ts';
+import type { GltfGeometry, GltfTriangles, TangentGenerator } from '../scene/format/gltf-model.ts';
 import { generatePrimitiveTangents, weldCorners } from './tangents.ts';
 import { det3, identity, type Mat4, multiply, nodeMatrix, normalMatrix } from './transforms.ts';
-import { MODE_TRIANGLE_FAN, MODE_TRIANGLE_STRIP, MODE_TRIANGLES } from './validate.ts';
+import { GLTF_LIMITS, MODE_TRIANGLE_FAN, MODE_TRIANGLE_STRIP, MODE_TRIANGLES } from './validate.ts';
+import { hasGpuInstancing, instanceMatrices } from './gpu-instancing.ts';
+import { gatherInstances, splitInstances } from './instance-split.ts';
 import {
   areaOverflow,
   checkWorldMatrix,
@@ -101,7 +104,16 @@ export function flattenGltf(
       const n = nodes[node];
       const world = multiply(parent, nodeMatrix(n));
       checkWorldMatrix(world, node);
-      if (typeof n.mesh === 'number') instances.push({ mesh: n.mesh, matrix: world, node });
+      if (typeof n.mesh === 'number') {
+        const mesh = n.mesh;
+        // EXT_mesh_gpu_instancing: the mesh at each instance, never at the node itself.
+        if (hasGpuInstancing(n))
+          instanceMatrices(doc, json, node, world, (matrix, k) => {
+            checkWorldMatrix(matrix, node, k);
+            instances.push({ mesh, matrix, node });
+          });
+        else instances.push({ mesh, matrix: world, node });
+      }
       if (typeof n.camera === 'number') {
         const where = `cameras[${n.camera}] (at nodes[${node}])`;
         const cam = readCamera(jsonCameras[n.camera], world);
@@ -193,27 +205,76 @@ export function flattenGltf(
     }
     return plan;
   };
-  let vertexTotal = 0;
-  let triangleTotal = 0;
+  // Which meshes become instances of one object-space copy (instances.ts): those used
+  // more than once, unless emissive (a mesh light is sampled by world area).
   const work: { plan: Plan; matrix: Mat4; node: number }[] = [];
-  const has = { normal: false, uv0: false, uv1: false, color: false, tangent: false };
-  for (const inst of instances) {
+  const split = splitInstances(instances, meshes.length, (m) => {
+    const p = planOf(m);
+    return p.some((plan) => plan !== null && emissiveRow(table, plan.material));
+  });
+  for (const inst of split.world) {
     for (const plan of planOf(inst.mesh)) {
-      if (plan === null) continue;
-      work.push({ plan, matrix: inst.matrix, node: inst.node });
-      vertexTotal += plan.vertexCount;
-      triangleTotal += plan.triangles.length / 3;
-      const p = plan.prim;
-      has.normal ||= p.getAttribute('NORMAL') !== null;
-      has.uv0 ||= p.getAttribute('TEXCOORD_0') !== null;
-      has.uv1 ||= p.getAttribute('TEXCOORD_1') !== null;
-      has.color ||= p.getAttribute('COLOR_0') !== null;
-      has.tangent ||=
-        hasTexture(table, plan.material, TEX_NORMAL) || usesAnisotropy(table, plan.material);
+      if (plan !== null) work.push({ plan, matrix: inst.matrix, node: inst.node });
     }
   }
+  // Copies of emissive meshes drawn many times count against the limit of triangles held
+  // (validate.ts counted each mesh once): checked before anything is allocated for them.
+  let total = 0;
+  for (const w of work) total += w.plan.triangles.length / 3;
+  for (const m of split.blasMeshes)
+    for (const plan of planOf(m)) total += plan === null ? 0 : plan.triangles.length / 3;
+  if (total > GLTF_LIMITS.triangles) {
+    throw new GltfError(
+      `scene: holds ${total} triangles once emissive meshes drawn several times are copied, more than the limit of ${GLTF_LIMITS.triangles}`,
+    );
+  }
+  const geometry = fillWork(work, table);
+  const blas = split.blasMeshes.map((m, b) =>
+    fillWork(
+      planOf(m)
+        .filter((plan): plan is Plan => plan !== null)
+        .map((plan) => ({ plan, matrix: identity(), node: split.blasNode[b] })),
+      table,
+    ),
+  );
+  const gathered = gatherInstances(split, blas, geometry.bounds);
+  // Lights only when there are some: a model without lights hashes as before (cli/film-file.ts).
+  const extra = lights.length > 0 ? { lights } : {};
+  return gathered === null
+    ? { ...geometry, cameras, ...extra }
+    : { ...geometry, instances: gathered, cameras, ...extra };
+}
 
-  // Pass 2: allocate once, fill.
+/** Whether row m of the material table emits (the compiler's M_EMISSIVE test). */
+function emissiveRow(table: Float64Array, m: number): boolean {
+  const o = m * GM_STRIDE + GM_EMISSIVE;
+  return table[o] > 0 || table[o + 1] > 0 || table[o + 2] > 0;
+}
+
+/**
+ * The primitives of `work` with their transforms applied, in one set of arrays (the
+ * world-space triangles, or one instanced mesh in object space with identity
+ * transforms). Two passes: count, then allocate once and fill.
+ */
+function fillWork(
+  work: { plan: Plan; matrix: Mat4; node: number }[],
+  table: Float64Array,
+): GltfTriangles {
+  let vertexTotal = 0;
+  let triangleTotal = 0;
+  const has = { normal: false, uv0: false, uv1: false, color: false, tangent: false };
+  for (const { plan } of work) {
+    vertexTotal += plan.vertexCount;
+    triangleTotal += plan.triangles.length / 3;
+    const p = plan.prim;
+    has.normal ||= p.getAttribute('NORMAL') !== null;
+    has.uv0 ||= p.getAttribute('TEXCOORD_0') !== null;
+    has.uv1 ||= p.getAttribute('TEXCOORD_1') !== null;
+    has.color ||= p.getAttribute('COLOR_0') !== null;
+    has.tangent ||=
+      hasTexture(table, plan.material, TEX_NORMAL) || usesAnisotropy(table, plan.material);
+  }
+
   const positions = new Float64Array(vertexTotal * 3);
   const normals = has.normal ? new Float32Array(vertexTotal * 3) : null;
   const uv0 = has.uv0 ? new Float32Array(vertexTotal * 2) : null;
@@ -389,8 +450,5 @@ export function flattenGltf(
       t === triangleMaterial.length ? triangleMaterial : triangleMaterial.slice(0, t),
     skipped,
     bounds,
-    cameras,
-    // Only when there are some: a model without lights hashes as before (cli/film-file.ts).
-    ...(lights.length > 0 ? { lights } : {}),
   };
 }

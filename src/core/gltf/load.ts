@@ -15,6 +15,7 @@
  */
 import { Document, type JSONDocument } from '@gltf-transform/core';
 import {
+  EXTMeshGPUInstancing,
   KHRLightsPunctual,
   KHRMaterialsAnisotropy,
   KHRMaterialsClearcoat,
@@ -80,6 +81,7 @@ export const HONOURED_EXTENSIONS = new Set([
   'KHR_materials_volume',
   'KHR_mesh_quantization',
   'KHR_texture_transform',
+  'EXT_mesh_gpu_instancing',
 ]);
 
 export { GLTF_FILE_BYTES };
@@ -112,6 +114,7 @@ export interface GltfLoadOptions {
 export type { GltfCamera, GltfDecoders, GltfModel };
 
 const EXTENSIONS = [
+  EXTMeshGPUInstancing,
   KHRLightsPunctual,
   KHRMaterialsAnisotropy,
   KHRMaterialsClearcoat,

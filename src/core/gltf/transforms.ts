@@ -99,8 +99,12 @@ export function normalMatrix(m: Mat4): Float64Array {
     h = m[6] / s0,
     i = m[10] / s0;
   const s = det3(m) < 0 ? -1 : 1;
-  // Cofactor matrix of the 3×3 (= det · inverse transpose), column-major.
-  const out = cofactors3(a, b, c, d, e, f, g, h, i);
-  for (let k = 0; k < 9; k++) out[k] *= s;
+  // Cofactor matrix of the 3×3 (= det · inverse transpose). cofactors3 gives it row by
+  // row; the callers read it column-major (out[3 * col + row]), so it is transposed here.
+  // (It was not until the instancing work compared copies with instances: a rotated node
+  // turned its normals by the inverse rotation.)
+  const c3 = cofactors3(a, b, c, d, e, f, g, h, i);
+  const out = new Float64Array(9);
+  for (let r = 0; r < 3; r++) for (let k = 0; k < 3; k++) out[3 * k + r] = c3[3 * r + k] * s;
   return out;
 }

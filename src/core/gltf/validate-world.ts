@@ -14,13 +14,14 @@ import type { Mat4 } from './transforms.ts';
 const AXES = ['x', 'y', 'z'];
 
 /** The world matrix of nodes[node], refused when a product left the double range. */
-export function checkWorldMatrix(m: Mat4, node: number): void {
+export function checkWorldMatrix(m: Mat4, node: number, instance = -1): void {
   for (let k = 0; k < 16; k++) {
     if (!Number.isFinite(m[k])) {
       const what =
         k >= 12 ? `its world translation ${AXES[k - 12] ?? 'w'}` : `entry ${k} of its world matrix`;
+      const of = instance < 0 ? '' : ` (EXT_mesh_gpu_instancing instance ${instance})`;
       throw new GltfError(
-        `nodes[${node}]: ${what} is ${m[k]}: the transforms of the node and its parents overflow the double range`,
+        `nodes[${node}]${of}: ${what} is ${m[k]}: the transforms of the node and its parents overflow the double range`,
       );
     }
   }

@@ -44,6 +44,8 @@ import {
   type Json,
 } from './validate-values.ts';
 
+import { checkGpuInstancing } from './gpu-instancing.ts';
+
 export { fail, list };
 
 /** Extensions a file may require: those pathwise reads (see docs/gltf.md). */
@@ -63,11 +65,18 @@ export const SUPPORTED_REQUIRED = new Set([
   'KHR_materials_volume',
   'KHR_mesh_quantization',
   'KHR_texture_transform',
+  'EXT_mesh_gpu_instancing',
 ]);
 
 export const GLTF_LIMITS = {
-  /** Triangles one glTF file may instance (the scene format's per-scene limit). */
+  /**
+   * Distinct triangles one glTF file may hold in memory (the scene format's per-scene
+   * limit): a mesh used by several nodes counts once, since its uses become instances
+   * of one copy (accel/instances.ts).
+   */
   triangles: 10_000_000,
+  /** Mesh instances of the scene: nodes with a mesh plus EXT_mesh_gpu_instancing rows. */
+  instances: 1_000_000,
   /** Elements of one accessor. */
   accessorCount: 1 << 28,
   /** Nodes, meshes, accessors… of one kind. */
@@ -101,8 +110,10 @@ export const MODE_TRIANGLE_FAN = 6;
 export interface GltfSummary {
   /** Index of the scene to instance, or −1 when the file has none. */
   scene: number;
-  /** Triangles the scene instances (before zero-area ones are dropped). */
+  /** Distinct triangles of the meshes the scene uses (before zero-area ones are dropped). */
   triangles: number;
+  /** Mesh instances of the scene (nodes with a mesh, EXT_mesh_gpu_instancing rows). */
+  instances: number;
   /** Indices of textures without an image source (§5.29: `source` is optional); ignored. */
   sourceless: number[];
   /** Notes for what is valid but not rendered (texture coordinate sets beyond 1). */
@@ -314,6 +325,7 @@ export function validateGltfJson(
   const skins = checkSkins(json, arrays);
   checkAnimations(json, arrays);
   const parent = new Int32Array(nodes.length).fill(-1);
+  const gpuInstances = new Float64Array(nodes.length);
   nodes.forEach((n, i) => {
     const p = `nodes[${i}]`;
     index(n, 'mesh', p, meshes.length, 'meshes');
@@ -330,6 +342,7 @@ export function validateGltfJson(
     }
     finiteArray(n, 'scale', p, 3);
     checkNodeFeatures(n, p, arrays, skins);
+    gpuInstances[i] = checkGpuInstancing(n, p, accessors, GLTF_LIMITS.instances);
     for (const c of indexArray(n, 'children', p, nodes.length, 'nodes')) {
       if (c === i) fail(`${p}.children`, 'contains the node itself');
       if (parent[c] !== -1)
@@ -363,9 +376,13 @@ export function validateGltfJson(
   });
   const scene =
     scenes.length === 0 ? -1 : (index(json, 'scene', 'document', scenes.length, 'scenes') ?? 0);
+  const counts =
+    scene < 0
+      ? { triangles: 0, instances: 0 }
+      : countTriangles(scenes[scene], nodes, meshes, accessors, gpuInstances);
   return {
     scene,
-    triangles: scene < 0 ? 0 : countTriangles(json, scenes[scene], nodes, meshes, accessors),
+    ...counts,
     sourceless,
     notes,
   };
@@ -386,31 +403,47 @@ export function primitiveTriangles(pr: Json, accessors: Json[]): number {
   return 0;
 }
 
+/**
+ * Distinct triangles and instances of the meshes the scene reaches, refused past
+ * GLTF_LIMITS: a mesh counts its triangles once however many nodes use it.
+ */
 function countTriangles(
-  json: Json,
   scene: Json,
   nodes: Json[],
   meshes: Json[],
   accessors: Json[],
-): number {
+  gpuInstances: Float64Array,
+): { triangles: number; instances: number } {
   const perMesh = meshes.map((m) =>
     (m.primitives as Json[]).reduce((s, pr) => s + primitiveTriangles(pr, accessors), 0),
   );
-  let total = 0;
+  const counted = new Uint8Array(meshes.length);
+  let triangles = 0;
+  let instances = 0;
   const stack = ((scene.nodes as number[] | undefined) ?? []).slice();
   while (stack.length > 0) {
-    const n = nodes[stack.pop()!];
+    const k = stack.pop()!;
+    const n = nodes[k];
     if (typeof n.mesh === 'number') {
-      total += perMesh[n.mesh];
-      if (total > GLTF_LIMITS.triangles) {
+      instances += gpuInstances[k] > 0 ? gpuInstances[k] : 1;
+      if (instances > GLTF_LIMITS.instances) {
         fail(
           'scene',
-          `instances more than ${GLTF_LIMITS.triangles.toLocaleString('en-US')} triangles, the limit`,
+          `has more than ${GLTF_LIMITS.instances.toLocaleString('en-US')} mesh instances, the limit`,
         );
+      }
+      if (counted[n.mesh] === 0) {
+        counted[n.mesh] = 1;
+        triangles += perMesh[n.mesh];
+        if (triangles > GLTF_LIMITS.triangles) {
+          fail(
+            'scene',
+            `uses meshes of more than ${GLTF_LIMITS.triangles.toLocaleString('en-US')} distinct triangles, the limit`,
+          );
+        }
       }
     }
     for (const c of (n.children as number[] | undefined) ?? []) stack.push(c);
   }
-  void json;
-  return total;
+  return { triangles, instances };
 }

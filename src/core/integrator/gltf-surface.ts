@@ -36,7 +36,8 @@ import {
 import { triangleNormal } from '../lights/mesh-light.ts';
 import type { CompiledScene } from '../scene/compile/compile.ts';
 import type { GltfScene } from '../scene/compile/gltf-scene.ts';
-import type { TriangleSurface } from './triangle-surface.ts';
+import { TriangleSurface } from './triangle-surface.ts';
+import { completeInstanceHit, instanceTangent } from './instance-surface.ts';
 
 /**
  * Shadow rays give up after crossing this many alpha surfaces and count as blocked:
@@ -55,6 +56,8 @@ export class GltfWork {
   readonly geometric = { nx: 0, ny: 0, nz: 1 };
   /** World direction of KHR_materials_anisotropy at the hit (when sp.anisotropy > 0). */
   readonly anisotropy = { x: 1, y: 0, z: 0 };
+  /** An instance hit of the shadow ray, completed (instance-surface.ts). */
+  readonly surface = new TriangleSurface();
 }
 
 /** Row of the glTF material table of scene material m. */
@@ -90,6 +93,7 @@ export function shadeGltfHit(
   if (tangents !== null && (sp.nx !== 0 || sp.ny !== 0 || sp.nz !== 1)) {
     const tg = work.tangent;
     interpolateTangent(tangents, i0, i1, i2, b1, b2, tg);
+    if (ts.instance >= 0) instanceTangent(ts, tg);
     const n = work.normal;
     if (
       applyNormalMap(
@@ -119,7 +123,10 @@ export function shadeGltfHit(
   // where it cannot).
   if (sp.anisotropy > 0) {
     const tg = work.tangent;
-    if (tangents !== null) interpolateTangent(tangents, i0, i1, i2, b1, b2, tg);
+    if (tangents !== null) {
+      interpolateTangent(tangents, i0, i1, i2, b1, b2, tg);
+      if (ts.instance >= 0) instanceTangent(ts, tg);
+    }
     if (tangents === null || !anisotropyToWorld(tg, ts.snx, ts.sny, ts.snz, sp, work.anisotropy))
       sp.anisotropy = 0;
   }
@@ -150,6 +157,7 @@ function coatNormalToWorld(
   if (tangents !== null && (sp.ccnx !== 0 || sp.ccny !== 0 || sp.ccnz !== 1)) {
     const tg = work.tangent;
     interpolateTangent(tangents, i0, i1, i2, b1, b2, tg);
+    if (ts.instance >= 0) instanceTangent(ts, tg);
     applyNormalMap(
       ts.snx,
       ts.sny,
@@ -231,13 +239,25 @@ export function shadowTransmittance(
     const b0 = hit.b0,
       b1 = hit.b1,
       b2 = hit.b2;
-    const x = b0 * p[3 * i0] + b1 * p[3 * i1] + b2 * p[3 * i2];
-    const y = b0 * p[3 * i0 + 1] + b1 * p[3 * i1 + 1] + b2 * p[3 * i2 + 1];
-    const z = b0 * p[3 * i0 + 2] + b1 * p[3 * i1 + 2] + b2 * p[3 * i2 + 2];
-    const g = work.geometric;
-    triangleNormal(p, 3 * i0, 3 * i1, 3 * i2, g);
-    const scale =
-      Math.max(Math.abs(x), Math.abs(y), Math.abs(z), meshes.triangleScale(t)) * OFFSET_SCALE;
+    let x: number, y: number, z: number, scale: number;
+    let g: { nx: number; ny: number; nz: number } = work.geometric;
+    if (hit.instance < 0) {
+      x = b0 * p[3 * i0] + b1 * p[3 * i1] + b2 * p[3 * i2];
+      y = b0 * p[3 * i0 + 1] + b1 * p[3 * i1 + 1] + b2 * p[3 * i2 + 1];
+      z = b0 * p[3 * i0 + 2] + b1 * p[3 * i1 + 2] + b2 * p[3 * i2 + 2];
+      triangleNormal(p, 3 * i0, 3 * i1, 3 * i2, g);
+      scale = meshes.triangleScale(t);
+    } else {
+      // An instance's triangle is in object space: its world point and normal.
+      const s = work.surface;
+      completeInstanceHit(scene, hit, s);
+      x = s.x;
+      y = s.y;
+      z = s.z;
+      g = s;
+      scale = s.scale;
+    }
+    scale = Math.max(Math.abs(x), Math.abs(y), Math.abs(z), scale) * OFFSET_SCALE;
     const lift = ray.dx * g.nx + ray.dy * g.ny + ray.dz * g.nz >= 0 ? scale : -scale;
     ray.ox = x + g.nx * lift;
     ray.oy = y + g.ny * lift;

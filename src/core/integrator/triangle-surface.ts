@@ -8,6 +8,7 @@
 import type { Hit } from '../geometry/ray.ts';
 import { triangleNormal } from '../lights/mesh-light.ts';
 import type { CompiledScene } from '../scene/compile/compile.ts';
+import { completeInstanceHit } from './instance-surface.ts';
 
 /** What `completeTriangleHit` writes. */
 export class TriangleSurface {
@@ -27,9 +28,19 @@ export class TriangleSurface {
   light = -1;
   /** Coordinate magnitude of the triangle, for ray offsets. */
   scale = 0;
+  /** The hit's instance (hit.instance), −1 for a world-space triangle. */
+  instance = -1;
+  /** An instance's object-to-world 3×4 and whether it mirrors (instance-surface.ts). */
+  readonly objectToWorld = new Float64Array(12);
+  mirrors = false;
 }
 
 export function completeTriangleHit(scene: CompiledScene, hit: Hit, out: TriangleSurface): void {
+  out.instance = hit.instance;
+  if (hit.instance >= 0) {
+    completeInstanceHit(scene, hit, out);
+    return;
+  }
   const meshes = scene.meshes!;
   const p = scene.triPositions;
   const ix = scene.triIndices;

@@ -81,14 +81,25 @@ describe('glTF geometry', () => {
     const other = doc.createNode().setMesh(mesh).setTranslation([0, 0, -5]);
     sceneWith(doc, parent, other);
     const m = await loadGlb(doc);
-    expect(m.indices.length).toBe(12);
+    // A mesh used twice is kept once, in object space, and drawn by two instances
+    // (docs/gltf.md, Instancing): no world-space copies.
+    expect(m.indices.length).toBe(0);
+    const inst = m.instances!;
+    expect(Array.from(inst.mesh)).toEqual([0, 0]);
+    const obj = inst.meshes[0];
+    expect(Array.from(obj.indices)).toEqual([0, 1, 2, 0, 2, 3]);
+    const at = (k: number, v: number): number[] => {
+      const a = inst.matrices.subarray(12 * k, 12 * k + 12);
+      const [x, y, z] = obj.positions.subarray(3 * v, 3 * v + 3);
+      return [0, 1, 2].map((r) => a[r] * x + a[3 + r] * y + a[6 + r] * z + a[9 + r]);
+    };
     // Corner (1, 0, 0) → scale (2, 0, 0) → rotate (0, 2, 0) → translate (10, 2, 0).
-    close(m.positions.subarray(3, 6), [10, 2, 0]);
-    close(m.positions.subarray(6, 9), [8, 2, 0]);
-    // The second instance, after the first, translated only.
-    close(m.positions.subarray(12 + 6, 12 + 9), [1, 1, -5]);
-    expect(Array.from(m.indices.subarray(6))).toEqual([4, 5, 6, 4, 6, 7]);
-    close(m.normals!.subarray(0, 3), [0, 0, 1]);
+    close(at(0, 1), [10, 2, 0]);
+    close(at(0, 2), [8, 2, 0]);
+    // The second instance, translated only.
+    close(at(1, 2), [1, 1, -5]);
+    close(obj.normals!.subarray(0, 3), [0, 0, 1]);
+    close(m.bounds, [0, 0, -5, 10, 2, 0]);
   });
 
   it('a mirroring node keeps the front side: winding swapped, normals and tangent handedness right', async () => {

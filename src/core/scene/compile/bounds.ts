@@ -12,6 +12,8 @@ export function sceneRadius(
   quads: Float64Array,
   quadCount: number,
   positions: Float64Array,
+  /** Instances' world boxes, six numbers each (accel/instances.ts). */
+  boxes: Float64Array = new Float64Array(0),
 ): number {
   const lo = [Infinity, Infinity, Infinity];
   const hi = [-Infinity, -Infinity, -Infinity];
@@ -42,6 +44,10 @@ export function sceneRadius(
   }
   for (let i = 0; i < positions.length; i += 3) {
     add(positions[i], positions[i + 1], positions[i + 2], 0);
+  }
+  for (let i = 0; i < boxes.length; i += 6) {
+    add(boxes[i], boxes[i + 1], boxes[i + 2], 0);
+    add(boxes[i + 3], boxes[i + 4], boxes[i + 5], 0);
   }
   if (!(hi[0] >= lo[0])) return 0;
   return Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) / 2;

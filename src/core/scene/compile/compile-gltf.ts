@@ -42,6 +42,7 @@ import {
 } from '../../texture/texture-store.ts';
 import type { MeshInput } from './compile-meshes.ts';
 import type { GltfDesc } from '../format/types.ts';
+import type { GltfTriangles } from '../format/gltf-model.ts';
 
 export interface CompiledGltf {
   /** One mesh per (model, material) with triangles. */
@@ -51,6 +52,15 @@ export interface CompiledGltf {
   /** GM_STRIDE numbers per row: every model's glTF material table, one after another. */
   table: Float64Array;
   textures: TextureStore;
+  /**
+   * Instanced meshes (object space), each split by material like `meshes`: the meshes
+   * of BLAS b are blasMeshes[blasFirst[b], blasFirst[b + 1]). Empty without instances.
+   */
+  blasMeshes: MeshInput[];
+  blasFirst: number[];
+  /** Per instance: its BLAS and object-to-world 3×4 (12 numbers, gltf-model.ts). */
+  instanceBlas: number[];
+  instanceMatrices: Float64Array;
 }
 
 /** Whether row m of a glTF table reads texture-coordinate set `set`. */
@@ -90,6 +100,10 @@ export function compileGltfShapes(shapes: GltfDesc[], firstMaterial: number): Co
     textures = { texels: new Uint16Array(texels), info: new Int32Array(images * INFO_STRIDE) };
   }
   const meshes: MeshInput[] = [];
+  const blasMeshes: MeshInput[] = [];
+  const blasFirst: number[] = [0];
+  const instanceBlas: number[] = [];
+  const matrixParts: Float64Array[] = [];
   let row = 0;
   let image = 0;
   let texel = 0;
@@ -140,23 +154,56 @@ export function compileGltfShapes(shapes: GltfDesc[], firstMaterial: number): Co
     }
     const keepUv0 = usesSet(model.materials, n, 0);
     const keepUv1 = usesSet(model.materials, n, 1);
-    for (const g of groupByMaterial(model)) {
-      meshes.push({
-        data: { positions: g.positions, indices: g.indices, normals: g.normals, skipped: 0 },
-        material: firstMaterial + row + g.material,
-        attributes: {
-          uv0: keepUv0 ? g.uv0 : null,
-          uv1: keepUv1 ? g.uv1 : null,
-          colors: g.colors,
-          tangents: g.tangents,
-        },
-      });
+    const groups = (g: GltfTriangles, out: MeshInput[]): void => {
+      for (const grp of groupByMaterial(g)) {
+        out.push({
+          data: {
+            positions: grp.positions,
+            indices: grp.indices,
+            normals: grp.normals,
+            skipped: 0,
+          },
+          material: firstMaterial + row + grp.material,
+          attributes: {
+            uv0: keepUv0 ? grp.uv0 : null,
+            uv1: keepUv1 ? grp.uv1 : null,
+            colors: grp.colors,
+            tangents: grp.tangents,
+          },
+        });
+      }
+    };
+    groups(model, meshes);
+    const inst = model.instances ?? null;
+    if (inst !== null) {
+      const base = blasFirst.length - 1;
+      for (const g of inst.meshes) {
+        groups(g, blasMeshes);
+        blasFirst.push(blasMeshes.length);
+      }
+      for (const b of inst.mesh) instanceBlas.push(base + b);
+      matrixParts.push(inst.matrices);
     }
     row += n;
     image += ownImages;
     texel += own.texels.length;
   }
-  return { meshes, materials, table, textures };
+  const instanceMatrices = new Float64Array(instanceBlas.length * 12);
+  let at = 0;
+  for (const m of matrixParts) {
+    instanceMatrices.set(m, at);
+    at += m.length;
+  }
+  return {
+    meshes,
+    materials,
+    table,
+    textures,
+    blasMeshes,
+    blasFirst,
+    instanceBlas,
+    instanceMatrices,
+  };
 }
 
 /** Whether any row of a glTF table is not opaque (MASK or BLEND). */

@@ -7,7 +7,14 @@
 import type { SceneGeometry } from '../../accel/scene-geometry.ts';
 import { BVH_NODE_WORDS, Bvh, buildBvh } from '../../accel/bvh.ts';
 import { QuadList } from '../../geometry/quad-list.ts';
-import { PrimitiveBoxes, quadBoxes, sphereBoxes, triangleBoxes } from '../../accel/primitives.ts';
+import {
+  instanceBoxesInto,
+  PrimitiveBoxes,
+  quadBoxes,
+  sphereBoxes,
+  triangleBoxes,
+} from '../../accel/primitives.ts';
+import { buildInstances, NO_INSTANCES, type InstanceArrays } from '../../accel/instances.ts';
 import { compileMaterials, MATERIAL_STRIDE, M_EMISSION, M_EMISSIVE } from '../../bsdf/materials.ts';
 import { LIGHT_ENVIRONMENT, SHAPE_QUAD, SHAPE_SPHERE, SHAPE_TRIANGLE } from '../../geometry/ray.ts';
 import { RAY_RECORD_WORDS } from '../../geometry/ray.ts';
@@ -52,7 +59,7 @@ export interface CompileOptions {
  * every worker (pack.ts) instead of being parsed and compiled again there.
  * A new primitive kind adds its arrays here and in SCENE_ARRAYS.
  */
-export interface SceneData extends MeshArrays {
+export interface SceneData extends MeshArrays, InstanceArrays {
   materials: Float64Array;
   spheres: Float64Array;
   sphereMaterial: Int32Array;
@@ -141,6 +148,11 @@ export const SCENE_ARRAYS = [
   'textureInfo',
   'bvhNodes',
   'bvhRefs',
+  'instXform',
+  'instBlas',
+  'blasNodes',
+  'blasRefs',
+  'blasDepth',
 ] as const satisfies readonly (keyof SceneData)[];
 
 export class CompiledScene implements SceneGeometry {
@@ -192,6 +204,17 @@ export class CompiledScene implements SceneGeometry {
   readonly stack: Int32Array;
   readonly stackT: Float64Array;
   readonly ray = new Float64Array(RAY_RECORD_WORDS);
+  /** Instances and their BLASes (accel/instances.ts; SceneGeometry). */
+  readonly instanceCount: number;
+  readonly instXform: Float64Array;
+  readonly instBlas: Int32Array;
+  readonly blasBoxes: Float32Array;
+  readonly blasNodes: Int32Array;
+  readonly blasRefs: Int32Array;
+  readonly blasStack: Int32Array;
+  readonly blasStackT: Float64Array;
+  readonly objRay = new Float64Array(RAY_RECORD_WORDS);
+  readonly objTriRay = new TriangleRay();
 
   /** From compiled arrays, which it keeps (views, not copies): see compileScene and unpackScene. */
   constructor(data: SceneData) {
@@ -270,6 +293,15 @@ export class CompiledScene implements SceneGeometry {
         : null;
     this.stack = new Int32Array(data.bvhDepth + 2);
     this.stackT = new Float64Array(this.stack.length);
+    this.instanceCount = data.instBlas.length;
+    this.instXform = data.instXform;
+    this.instBlas = data.instBlas;
+    const bn = data.blasNodes;
+    this.blasNodes = bn;
+    this.blasBoxes = new Float32Array(bn.buffer, bn.byteOffset, bn.length);
+    this.blasRefs = data.blasRefs;
+    this.blasStack = new Int32Array((data.blasDepth[0] ?? 0) + 2);
+    this.blasStackT = new Float64Array(this.blasStack.length);
   }
 }
 
@@ -311,12 +343,45 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
   const quadScale = new Float64Array(quadCount);
   for (let i = 0; i < quadCount; i++) quadScale[i] = quadScaleOf(quads, i);
 
-  const mesh = compileMeshArrays([
+  const worldMeshes = [
     ...meshDescs.map((m) => ({ data: m.data!, material: materialIndex.get(m.material)! })),
     ...(gltf?.meshes ?? []),
-  ]);
+  ];
+  // Instanced meshes (object space) after every world-space one: triangles
+  // [worldTriangles, triCount) are theirs, and only the instances enter the BVH.
+  const blasMeshes = gltf?.blasMeshes ?? [];
+  const mesh = compileMeshArrays([...worldMeshes, ...blasMeshes]);
   const meshCount = mesh.meshMaterial.length;
   const triCount = mesh.triIndices.length / 3;
+  let worldTriangles = 0;
+  let worldVertices = 0;
+  for (const m of worldMeshes) {
+    if (m.data.indices.length === 0) continue;
+    worldTriangles += m.data.indices.length / 3;
+    worldVertices += m.data.positions.length / 3;
+  }
+  let instances = NO_INSTANCES;
+  let instanceBoxes: Float64Array = new Float64Array(0);
+  if (gltf !== null && gltf.instanceBlas.length > 0) {
+    const blasTriangles = new Array<number>(gltf.blasFirst.length);
+    let t = worldTriangles;
+    for (let b = 0; b + 1 < gltf.blasFirst.length; b++) {
+      blasTriangles[b] = t;
+      for (let k = gltf.blasFirst[b]; k < gltf.blasFirst[b + 1]; k++)
+        t += blasMeshes[k].data.indices.length / 3;
+    }
+    blasTriangles[gltf.blasFirst.length - 1] = t;
+    const built = buildInstances(
+      mesh.triPositions,
+      mesh.triIndices,
+      blasTriangles,
+      gltf.instanceBlas,
+      gltf.instanceMatrices,
+    );
+    instances = built.arrays;
+    instanceBoxes = built.boxes;
+  }
+  const instanceCount = instances.instBlas.length;
   const meshLight = new Int32Array(meshCount).fill(-1);
 
   const kinds: number[] = [];
@@ -397,7 +462,14 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
     if (integral > 0) {
       // The map's power through the scene's bounding disc, in the units of the area
       // lights' luminance × area: ∫ L dω × r² (the π of both cancels).
-      const r = sceneRadius(spheres, sphereCount, quads, quadCount, mesh.triPositions);
+      const r = sceneRadius(
+        spheres,
+        sphereCount,
+        quads,
+        quadCount,
+        instanceCount === 0 ? mesh.triPositions : mesh.triPositions.subarray(0, worldVertices * 3),
+        instanceBoxes,
+      );
       kinds.push(LIGHT_ENVIRONMENT);
       shapes.push(0);
       power.push(integral * r * r);
@@ -412,7 +484,16 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
   if (lightDescs.length > 0) {
     const directional = lightDescs.some((l) => l.type === 'directional');
     const r = directional
-      ? sceneRadius(spheres, sphereCount, quads, quadCount, mesh.triPositions)
+      ? sceneRadius(
+          spheres,
+          sphereCount,
+          quads,
+          quadCount,
+          instanceCount === 0
+            ? mesh.triPositions
+            : mesh.triPositions.subarray(0, worldVertices * 3),
+          instanceBoxes,
+        )
       : 0;
     const p = compilePunctualLights(lightDescs, r);
     punctual = p.data;
@@ -425,15 +506,17 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
       material.push(-1);
     });
   }
-  const total = sphereCount + quadCount + triCount;
-  const useBvh = options.bvh ?? total >= BVH_THRESHOLD;
+  const total = sphereCount + quadCount + worldTriangles + instanceCount;
+  // Instances are reached only through the BVH (traverse-instanced.ts).
+  const useBvh = instanceCount > 0 || (options.bvh ?? total >= BVH_THRESHOLD);
   let bvh: Bvh | null = null;
   if (useBvh && total > 0) {
-    // One hierarchy over every primitive, whatever its kind.
+    // One hierarchy over every primitive, whatever its kind (with instances, the TLAS).
     const prims = new PrimitiveBoxes(total);
     sphereBoxes(spheres, sphereCount, prims);
     quadBoxes(quads, quadCount, prims);
-    triangleBoxes(mesh.triPositions, mesh.triIndices, triCount, prims);
+    triangleBoxes(mesh.triPositions, mesh.triIndices, worldTriangles, prims);
+    instanceBoxesInto(instanceBoxes, instanceCount, prims);
     // Meshes: a node cost of 2 makes leaves of 2–4 triangles, 42 rather than 68 bytes of
     // hierarchy per triangle for a million of them (docs/performance.md; bench/mesh-bvh.ts).
     bvh = buildBvh(prims.boxes, prims.refs, total, triCount > 0 ? 2 : undefined);
@@ -465,5 +548,6 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
     bvhNodes: bvh ? bvh.words : new Int32Array(0),
     bvhRefs: bvh ? bvh.refs : new Int32Array(0),
     bvhDepth: bvh ? bvh.depth : 0,
+    ...instances,
   });
 }

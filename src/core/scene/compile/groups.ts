@@ -5,7 +5,7 @@
  * shared by two materials are duplicated at their boundary only; nothing
  * else is copied twice.
  */
-import type { GltfGeometry } from '../../gltf/flatten.ts';
+import type { GltfTriangles } from '../format/gltf-model.ts';
 
 export interface GltfGroup {
   /** Row of the model's material table. */
@@ -29,7 +29,7 @@ function pick(src: Float32Array | null, size: number, order: Uint32Array): Float
   return out;
 }
 
-export function groupByMaterial(g: GltfGeometry): GltfGroup[] {
+export function groupByMaterial(g: GltfTriangles): GltfGroup[] {
   const triCount = g.triangleMaterial.length;
   const vertexCount = g.positions.length / 3;
   if (triCount === 0) return [];

@@ -133,6 +133,29 @@ export interface GltfGeometry {
    * (gltf/punctual-lights.ts); absent when there are none.
    */
   lights?: LightDesc[];
+  /**
+   * Meshes the scene uses more than once, kept once in object space and drawn by
+   * instances (accel/instances.ts; docs/gltf.md, Instancing); null when there are none.
+   * The arrays above then hold the other triangles only; `bounds` covers both. Absent
+   * rather than null without instances, so that a loaded scene without them hashes as
+   * before (a film's scene_sha256, src/cli/film-file.ts).
+   */
+  instances?: GltfInstances;
+}
+
+/** One set of triangles (GltfGeometry's arrays) without cameras or instances of its own. */
+export type GltfTriangles = Omit<GltfGeometry, 'cameras' | 'instances' | 'lights'>;
+
+export interface GltfInstances {
+  /** Each instanced mesh in object space (its primitives' triangles, in file order). */
+  meshes: GltfTriangles[];
+  /** Per instance: the mesh it draws (index into `meshes`). */
+  mesh: Uint32Array;
+  /**
+   * Per instance: the object-to-world affine transform, 12 numbers, column-major 3×4
+   * (m00 m10 m20, m01 m11 m21, m02 m12 m22, tx ty tz), times the scene shape's transform.
+   */
+  matrices: Float64Array;
 }
 
 export interface GltfModel extends GltfGeometry {
