@@ -6,6 +6,7 @@
  * JSON path, and the selection reaching the loader from a scene's gltf shape and from a
  * bare model.
  */
+import { createRequire } from 'node:module';
 import { describe, expect, it } from 'vitest';
 import { loadGltf, type GltfLoadOptions } from '../../../src/core/gltf/load.ts';
 import { loadBareModel } from '../../../src/core/scene/load/bare-scene.ts';
@@ -13,6 +14,18 @@ import { validateScene } from '../../../src/core/scene/validate/validate.ts';
 import { memoryOptions, sceneWithFiles } from '../../helpers/gltf.ts';
 
 const EXT = 'KHR_materials_variants';
+
+/** Khronos's reference validator (npm gltf-validator): its error codes for a file. */
+const validator = createRequire(import.meta.url)('gltf-validator') as {
+  validateBytes(
+    data: Uint8Array,
+    options?: Record<string, unknown>,
+  ): Promise<{ issues: { messages: { code: string; severity: number }[] } }>;
+};
+async function validatorErrors(bytes: Uint8Array): Promise<string[]> {
+  const report = await validator.validateBytes(bytes, { maxIssues: 50 });
+  return report.issues.messages.filter((m) => m.severity === 0).map((m) => m.code);
+}
 
 /** One triangle in the z = 0 plane, as a data URI buffer (positions only). */
 const TRIANGLE = `data:application/octet-stream;base64,${Buffer.from(
@@ -89,6 +102,8 @@ describe('KHR_materials_variants', () => {
     expect(model.warnings).toEqual([]);
     expect(Array.from(model.triangleMaterial)).toEqual([0, 1]);
     expect(await materials(null)).toEqual([0, 1]);
+    // The file is valid by Khronos's validator too (as is the next test's repeated name).
+    expect(await validatorErrors(file(NAMES, MAPPINGS))).toEqual([]);
   });
 
   it('selects a variant by name: mapped primitives change, the others keep their default', async () => {
@@ -106,6 +121,7 @@ describe('KHR_materials_variants', () => {
   it('selects every variant of a repeated name, the first matching mapping winning', async () => {
     const bytes = file([{ name: 'a' }, { name: 'b' }, { name: 'b' }], MAPPINGS);
     expect(await materials('b', bytes)).toEqual([3, 2]);
+    expect(await validatorErrors(bytes)).toEqual([]);
   });
 
   it('refuses an unknown name, listing the file’s names', async () => {
@@ -183,6 +199,12 @@ describe('KHR_materials_variants', () => {
       `${P}.mappings[0].variants[0]: must be an integer index into extensions.${EXT}.variants, got the string "red"`,
     ],
     [
+      'a variant listed twice in one mapping',
+      NAMES,
+      [[{ material: 1, variants: [0, 0] }]],
+      `${P}.mappings[0].variants: lists extensions.${EXT}.variants[0] twice`,
+    ],
+    [
       'a variant mapped twice in one primitive',
       NAMES,
       [
@@ -210,6 +232,9 @@ describe('KHR_materials_variants', () => {
     // Refused whether a variant is selected or not: a broken file is broken either way.
     await expect(load(bytes)).rejects.toThrow(message);
     await expect(load(bytes, { variant: 'red' })).rejects.toThrow(message);
+    // Each is an error for Khronos's validator as well (checked: schema, reference or
+    // KHR_MATERIALS_VARIANTS_NON_UNIQUE_VARIANT), so no valid file is refused here.
+    expect(await validatorErrors(bytes)).not.toEqual([]);
   });
 
   it('reaches the loader from a scene’s gltf shape and from a bare model', async () => {
