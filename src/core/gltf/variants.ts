@@ -31,6 +31,8 @@ import {
 
 export const VARIANTS_EXTENSION = 'KHR_materials_variants';
 const ROOT = `extensions.${VARIANTS_EXTENSION}`;
+/** Variant names an error lists before it counts the rest. */
+const LISTED = 12;
 
 /** One primitive's checked mappings: its JSON, its path and, per mapping, material and variants. */
 interface PrimitiveMappings {
@@ -124,11 +126,15 @@ export function selectMaterialVariant(json: Json, name: string | null): void {
     );
   const selected = new Set<number>();
   names.forEach((n, i) => n === name && selected.add(i));
-  if (selected.size === 0)
+  if (selected.size === 0) {
+    // One line however many variants the file has: the first LISTED, then a count.
+    const listed = names.slice(0, LISTED).map((n) => quote(n));
+    if (names.length > LISTED) listed.push(`and ${names.length - LISTED} more`);
     fail(
       `${ROOT}.variants`,
-      `has no variant ${quote(name)}; the file's variants are ${names.map((n) => quote(n)).join(', ')}`,
+      `has no variant ${quote(name)}; the file's variants are ${listed.join(', ')}`,
     );
+  }
   const materials = list(json, 'materials');
   for (const { primitive, path, mappings } of prims) {
     const k = mappings.findIndex((m) => m.variants.some((v) => selected.has(v)));

@@ -128,6 +128,10 @@ describe('KHR_materials_variants', () => {
     await expect(load(file(NAMES, MAPPINGS), { variant: 'Purple' })).rejects.toThrow(
       `extensions.${EXT}.variants: has no variant "Purple"; the file's variants are "red", "blue", "green"`,
     );
+    const many = Array.from({ length: 30 }, (_, i) => ({ name: `v${i}` }));
+    await expect(load(file(many, MAPPINGS), { variant: 'v30' })).rejects.toThrow(
+      '"v9", "v10", "v11", and 18 more',
+    );
     await expect(load(file(undefined, [undefined, undefined]), { variant: 'red' })).rejects.toThrow(
       `extensions: the file has no material variants (${EXT}) to select "red" from`,
     );
