@@ -39,6 +39,8 @@ export interface RenderArgs {
   allowRead: string[];
   /** `--environment studio|none`: a bare model's environment (core/scene/load/bare-scene.ts). */
   environment?: BareEnvironment;
+  /** `--variant NAME`: a bare model's KHR_materials_variants variant (core/gltf/variants.ts). */
+  variant?: string;
 }
 
 export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png|FILE.film [options]
@@ -58,6 +60,8 @@ export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png|
   --json              print one JSON line of statistics on stdout (a switch: no value)
   --environment studio|none  a glTF model's environment: the studio (default), or none
                       to see only the model's own lights (not for scene files)
+  --variant NAME      a glTF model's material variant (KHR_materials_variants), by name
+                      (default: its default materials; not for scene files)
   --allow-read DIR    files may also be read from DIR (repeatable); by default a scene and its
                       models read only files inside the scene's folder (a bare model's folder)
 ${BATCH_USAGE}`;
@@ -128,6 +132,7 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     'estimator',
     'sampler',
     'environment',
+    'variant',
     'json',
     'help',
     ...BATCH_OPTION_NAMES,
@@ -195,5 +200,6 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     batch: parseBatchOptions(options),
     allowRead,
     environment: environment as BareEnvironment | undefined,
+    variant: options.get('variant') as string | undefined,
   };
 }

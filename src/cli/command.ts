@@ -46,6 +46,7 @@ async function renderScene(args: RenderArgs, early: EarlyWorkers): Promise<void>
     height: args.height,
     allowRead: args.allowRead,
     environment: args.environment,
+    variant: args.variant,
   });
   for (const w of sceneWarnings(scene)) {
     process.stderr.write(`pathwise: note: ${printableLine(w)}\n`);

@@ -21,6 +21,8 @@ export interface SceneFileOptions {
   allowRead?: readonly string[];
   /** A bare model's environment (`--environment`); a scene file sets its own, so it refuses it. */
   environment?: BareEnvironment;
+  /** A bare model's material variant (`--variant`); a scene file names it per shape, so it refuses it. */
+  variant?: string;
 }
 
 /**
@@ -58,11 +60,17 @@ export async function loadSceneFile(path: string, options: SceneFileOptions = {}
         width: options.width,
         height: options.height,
         environment: options.environment,
+        variant: options.variant,
       });
     }
     if (options.environment !== undefined) {
       throw new CliError(
         `${showPath(path)}: --environment applies to a glTF model; a scene file sets its own environment`,
+      );
+    }
+    if (options.variant !== undefined) {
+      throw new CliError(
+        `${showPath(path)}: --variant applies to a glTF model; in a scene file, a gltf shape names its own variant`,
       );
     }
     testStage('parse');

@@ -231,6 +231,7 @@ export class SceneRequests {
           width,
           height,
           environment: this.host.options.environment,
+          variant: this.host.options.variant,
           shared: this.host.shared(),
         },
         owned ? handOver(bytes) : [],
@@ -242,6 +243,7 @@ export class SceneRequests {
       width,
       height,
       environment: this.host.options.environment,
+      variant: this.host.options.variant,
     });
     return { scene };
   }
@@ -372,8 +374,16 @@ export class SceneRequests {
       this.progressLoad(stage, done, total);
     if (typeof Worker !== 'undefined') {
       const { width, height } = this.framing();
-      const environment = this.host.options.environment;
-      const request = { kind: 'url', url: href, label: url, width, height, environment } as const;
+      const { environment, variant } = this.host.options;
+      const request = {
+        kind: 'url',
+        url: href,
+        label: url,
+        width,
+        height,
+        environment,
+        variant,
+      } as const;
       const loaded = await this.inWorker({ ...request, shared: this.host.shared() }, []);
       if (loaded !== null) return loaded;
     }

@@ -97,6 +97,11 @@ export interface PathTracerOptions {
    * own lights only (docs/gltf.md, Punctual lights); read when a model loads.
    */
   environment?: BareEnvironment;
+  /**
+   * A bare glTF model's material variant (KHR_materials_variants), by name; absent: its
+   * default materials (docs/gltf.md, Material variants); read when a model loads.
+   */
+  variant?: string;
 }
 
 /** A stage of loading a scene or model (core/scene/load/load.ts LoadStage), `done` of `total`. */

@@ -344,6 +344,9 @@ export class PathwiseViewElement extends ElementBase {
     if (this.seed !== null) options.seed = this.seed;
     // A bare model's environment (docs/gltf.md, Punctual lights): read when it loads.
     if (this.getAttribute('environment') === 'none') options.environment = 'none';
+    // A bare model's material variant (docs/gltf.md, Material variants): read when it loads.
+    const variant = this.getAttribute('variant');
+    if (variant !== null) options.variant = variant;
     // A worker URL goes to the pool as is: it starts one on another origin
     // through a same-origin shim, and reports a URL it cannot start as an
     // `error` event (shown here) rather than throwing at this point.

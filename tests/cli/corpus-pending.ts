@@ -8,19 +8,15 @@
  * message no longer appears: as decoders and extensions land, their entries are
  * removed, until the table is empty and every model renders with nothing ignored.
  * First filled on the branch `corpus` (main at 142dd49, before any issue-25 feature
- * was merged: 25 entries over 11 models); emptied as the decoders, materials, lights
- * and instancing landed. FILE_NOTES below are notes about faults of the files
+ * was merged: 25 entries over 11 models); emptied as the decoders, materials, lights,
+ * instancing and material variants landed. FILE_NOTES below are notes about faults of the files
  * themselves, which stay.
  */
 
 /** A note that a still image rightly ignores: the rest pose of an animated model. */
 export const REST_POSE = /rendered in its rest pose$/;
 
-const ignored = (ext: string) => `extension "${ext}" is not supported; its content is ignored`;
-
-export const PENDING: Record<string, string[]> = {
-  GlamVelvetSofa: [ignored('KHR_materials_variants')],
-};
+export const PENDING: Record<string, string[]> = {};
 
 /**
  * Notes about the files themselves, not about pathwise: declared accessor bounds that

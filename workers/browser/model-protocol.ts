@@ -32,6 +32,8 @@ export interface ModelRequest extends Common {
   height: number;
   /** The model's environment (bare-scene.ts); the studio when absent. */
   environment?: BareEnvironment;
+  /** The model's material variant (bare-scene.ts); the default materials when absent. */
+  variant?: string;
 }
 
 /** A pathwise-scene/1 scene: its bytes or text, or a scene object (validated there). */
@@ -60,6 +62,8 @@ export interface UrlRequest extends Common {
   height: number;
   /** A model's environment (bare-scene.ts); the studio when absent. */
   environment?: BareEnvironment;
+  /** A model's material variant (bare-scene.ts); the default materials when absent. */
+  variant?: string;
 }
 
 export type LoadRequest = ModelRequest | SceneRequest | UrlRequest;

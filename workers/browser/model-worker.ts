@@ -108,6 +108,7 @@ async function readModel(
     width: req.width,
     height: req.height,
     environment: req.environment,
+    variant: req.variant,
   });
 }
 

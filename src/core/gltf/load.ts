@@ -61,6 +61,7 @@ import { positionBoundsNotes } from './validate-bounds.ts';
 import { SUPPORTED_REQUIRED, validateGltfJson } from './validate.ts';
 import { dropSourcelessTextures } from './sourceless.ts';
 import { checkPunctualLights } from './punctual-lights.ts';
+import { selectMaterialVariant } from './variants.ts';
 import { prepareTextureExtensions, TEXTURE_EXTENSION_NAMES } from './texture-extensions.ts';
 
 /** Extensions whose content is used (everything else is reported as ignored). */
@@ -78,6 +79,7 @@ export const HONOURED_EXTENSIONS = new Set([
   'KHR_materials_specular',
   'KHR_materials_transmission',
   'KHR_materials_unlit',
+  'KHR_materials_variants',
   'KHR_materials_volume',
   'KHR_mesh_quantization',
   'KHR_texture_transform',
@@ -108,6 +110,11 @@ export interface GltfLoadOptions {
    * before any geometry is read.
    */
   maxTriangles?: number;
+  /**
+   * The KHR_materials_variants variant to render, by name (variants.ts); absent or null:
+   * every primitive's default material. A name the file lacks is an error.
+   */
+  variant?: string | null;
   onProgress?: (stage: GltfStage, done: number, total: number) => void;
 }
 
@@ -173,6 +180,7 @@ export async function loadGltf(
   }
   for (const note of summary.notes) warn(note);
   checkPunctualLights(json);
+  selectMaterialVariant(json, options.variant ?? null);
   const asset = json.asset as Record<string, unknown>;
   if (asset.version !== '2.0') {
     // §3.2: a 2.x file whose minVersion (checked above) is at most 2.0 is meant to load

@@ -62,6 +62,7 @@ export const SUPPORTED_REQUIRED = new Set([
   'KHR_materials_specular',
   'KHR_materials_transmission',
   'KHR_materials_unlit',
+  'KHR_materials_variants',
   'KHR_materials_volume',
   'KHR_mesh_quantization',
   'KHR_texture_transform',

@@ -108,6 +108,11 @@ export interface GltfDesc {
   file: string;
   /** Row-major affine 4×4 applied on top of the file's node transforms, or null. */
   transform: number[] | null;
+  /**
+   * The file's KHR_materials_variants variant to render, by name (pathwise's addition,
+   * docs/scene-format.md, "In pathwise: material variants"); absent: the default materials.
+   */
+  variant?: string;
   data: GltfModel | null;
 }
 

@@ -34,6 +34,11 @@ export interface BareSceneOptions {
    * lights (KHR_lights_punctual, emissive materials). The command line's `--environment`.
    */
   environment?: BareEnvironment;
+  /**
+   * The model's KHR_materials_variants variant, by name (gltf/variants.ts); absent: its
+   * default materials. The command line's `--variant`, the widget's `variant` attribute.
+   */
+  variant?: string;
 }
 
 /** The scene of a loaded model (`file`: its name, for the shape and the scene's name). */
@@ -51,7 +56,15 @@ export function bareModelScene(
     camera: frameModel(model.bounds, model.cameras, width / height),
     settings: { ...DEFAULT_SETTINGS, width, height },
     materials: {},
-    shapes: [{ type: 'gltf', file, transform: null, data: model }],
+    shapes: [
+      {
+        type: 'gltf',
+        file,
+        transform: null,
+        ...(options.variant !== undefined && { variant: options.variant }),
+        data: model,
+      },
+    ],
     environment: [0, 0, 0],
     environmentMap: options.environment === 'none' ? null : studioEnvironment(),
   });
@@ -83,6 +96,7 @@ export async function loadBareModel(
       decoders: options.decoders,
       sharedTextures: options.sharedTextures,
       maxTriangles: LIMITS.triangles,
+      variant: options.variant ?? null,
       onProgress: progress,
     });
   } catch (e) {

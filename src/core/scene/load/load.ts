@@ -107,6 +107,7 @@ export async function resolveSceneFiles(
           generateTangents: options.generateTangents ?? null,
           decoders: options.decoders,
           transform: shape.transform,
+          variant: shape.variant ?? null,
           sharedTextures: options.sharedTextures,
           maxTriangles: LIMITS.triangles - triangles,
           onProgress: progress,

@@ -7,7 +7,7 @@ import { checkTransform } from './mesh-desc.ts';
 import type { GltfDesc } from '../format/types.ts';
 import { describe, expectString, type Problems } from './validate-helpers.ts';
 
-export const GLTF_KEYS = ['type', 'file', 'transform'];
+export const GLTF_KEYS = ['type', 'file', 'transform', 'variant'];
 
 /** Whether a file name is a glTF model by its extension. */
 export function isGltfFile(file: string): boolean {
@@ -31,6 +31,15 @@ export function checkGltfShape(
   if (file !== undefined && !isGltfFile(file)) {
     problems.push(`${path}.file must name a .gltf or .glb file, got ${describe(file)}`);
   }
+  // pathwise's addition (docs/scene-format.md, In pathwise: material variants).
+  const variant =
+    obj.variant === undefined ? undefined : expectString(obj.variant, `${path}.variant`, problems);
   if (problems.length > before) return undefined;
-  return { type: 'gltf', file: file!, transform, data: null };
+  return {
+    type: 'gltf',
+    file: file!,
+    transform,
+    ...(variant !== undefined && { variant }),
+    data: null,
+  };
 }
