@@ -13,6 +13,7 @@ import {
 } from './batch-args.ts';
 import { UsageError } from './errors.ts';
 import { BARE_ENVIRONMENTS, type BareEnvironment } from '../core/lights/studio.ts';
+import type { BareModelChoices } from '../core/scene/load/bare-scene.ts';
 import {
   POSITIVE_DECIMAL,
   parseDecimalValue,
@@ -37,10 +38,8 @@ export interface RenderArgs {
   batch: BatchOptions;
   /** `--allow-read DIR`, repeatable: folders beyond the scene's whose files may be read. */
   allowRead: string[];
-  /** `--environment studio|none`: a bare model's environment (core/scene/load/bare-scene.ts). */
-  environment?: BareEnvironment;
-  /** `--variant NAME`: a bare model's KHR_materials_variants variant (core/gltf/variants.ts). */
-  variant?: string;
+  /** `--environment studio|none`, `--variant NAME`: a bare model's choices (core/scene/load/bare-scene.ts). */
+  bare: BareModelChoices;
 }
 
 export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png|FILE.film [options]
@@ -199,7 +198,9 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     stripeRows: int('stripe-rows', 1, 1 << 24),
     batch: parseBatchOptions(options),
     allowRead,
-    environment: environment as BareEnvironment | undefined,
-    variant: options.get('variant') as string | undefined,
+    bare: {
+      environment: environment as BareEnvironment | undefined,
+      variant: options.get('variant') as string | undefined,
+    },
   };
 }

@@ -45,8 +45,7 @@ async function renderScene(args: RenderArgs, early: EarlyWorkers): Promise<void>
     width: args.width,
     height: args.height,
     allowRead: args.allowRead,
-    environment: args.environment,
-    variant: args.variant,
+    bare: args.bare,
   });
   for (const w of sceneWarnings(scene)) {
     process.stderr.write(`pathwise: note: ${printableLine(w)}\n`);

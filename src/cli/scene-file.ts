@@ -11,7 +11,7 @@ import { CliError } from './errors.ts';
 import { ReadLimitError, readBounded, showPath } from './read-bounded.ts';
 import { nodeSceneFiles } from './scene-files.ts';
 import { testStage } from './test-stages.ts';
-import type { BareEnvironment } from '../core/lights/studio.ts';
+import type { BareModelChoices } from '../core/scene/load/bare-scene.ts';
 
 export interface SceneFileOptions {
   /** Image size asked for on the command line: a bare model's camera frames it at this aspect. */
@@ -19,10 +19,11 @@ export interface SceneFileOptions {
   height?: number;
   /** Folders beyond the scene's whose files may be read (`--allow-read`; scene-files.ts). */
   allowRead?: readonly string[];
-  /** A bare model's environment (`--environment`); a scene file sets its own, so it refuses it. */
-  environment?: BareEnvironment;
-  /** A bare model's material variant (`--variant`); a scene file names it per shape, so it refuses it. */
-  variant?: string;
+  /**
+   * A bare model's choices (`--environment`, `--variant`); a scene file sets its own
+   * environment and names a variant per shape, so it refuses them.
+   */
+  bare?: BareModelChoices;
 }
 
 /**
@@ -59,16 +60,15 @@ export async function loadSceneFile(path: string, options: SceneFileOptions = {}
         ...(await tangents()),
         width: options.width,
         height: options.height,
-        environment: options.environment,
-        variant: options.variant,
+        ...options.bare,
       });
     }
-    if (options.environment !== undefined) {
+    if (options.bare?.environment !== undefined) {
       throw new CliError(
         `${showPath(path)}: --environment applies to a glTF model; a scene file sets its own environment`,
       );
     }
-    if (options.variant !== undefined) {
+    if (options.bare?.variant !== undefined) {
       throw new CliError(
         `${showPath(path)}: --variant applies to a glTF model; in a scene file, a gltf shape names its own variant`,
       );

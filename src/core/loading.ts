@@ -17,8 +17,10 @@ export type {
   MeshoptDecoderLike,
 } from './scene/format/gltf-model.ts';
 export {
+  bareChoices,
   bareModelScene,
   isGlbBytes,
   loadBareModel,
+  type BareModelChoices,
   type BareSceneOptions,
 } from './scene/load/bare-scene.ts';

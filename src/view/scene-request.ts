@@ -8,6 +8,7 @@
  * (its fetch aborted, its model load stopped).
  */
 import {
+  bareChoices,
   type CompiledScene,
   compileScene,
   countSkippedTriangles,
@@ -230,8 +231,7 @@ export class SceneRequests {
           source,
           width,
           height,
-          environment: this.host.options.environment,
-          variant: this.host.options.variant,
+          bare: bareChoices(this.host.options),
           shared: this.host.shared(),
         },
         owned ? handOver(bytes) : [],
@@ -242,8 +242,7 @@ export class SceneRequests {
       ...(await this.gltfPlatform()),
       width,
       height,
-      environment: this.host.options.environment,
-      variant: this.host.options.variant,
+      ...bareChoices(this.host.options),
     });
     return { scene };
   }
@@ -374,15 +373,13 @@ export class SceneRequests {
       this.progressLoad(stage, done, total);
     if (typeof Worker !== 'undefined') {
       const { width, height } = this.framing();
-      const { environment, variant } = this.host.options;
       const request = {
         kind: 'url',
         url: href,
         label: url,
         width,
         height,
-        environment,
-        variant,
+        bare: bareChoices(this.host.options),
       } as const;
       const loaded = await this.inWorker({ ...request, shared: this.host.shared() }, []);
       if (loaded !== null) return loaded;

@@ -4,7 +4,7 @@
  * PathTracerController. This file is the contract; src/view implements it.
  */
 import type {
-  BareEnvironment,
+  BareModelChoices,
   CameraDesc,
   LoadStage,
   Scene,
@@ -48,7 +48,11 @@ export interface RenderStatsInfo extends ProgressInfo {
   paused: boolean;
 }
 
-export interface PathTracerOptions {
+/**
+ * The options of createPathTracer. A bare glTF model's choices (`environment`,
+ * `variant`: core's BareModelChoices, docs/gltf.md) are read when a model loads.
+ */
+export interface PathTracerOptions extends BareModelChoices {
   /** A scene object (validated on load) or a URL to fetch. */
   scene?: unknown;
   src?: string;
@@ -92,16 +96,6 @@ export interface PathTracerOptions {
   autoplay?: boolean;
   /** Orbit on drag, dolly on wheel. */
   cameraControls?: boolean;
-  /**
-   * A bare glTF model's environment: the studio (default) or 'none', to see it by its
-   * own lights only (docs/gltf.md, Punctual lights); read when a model loads.
-   */
-  environment?: BareEnvironment;
-  /**
-   * A bare glTF model's material variant (KHR_materials_variants), by name; absent: its
-   * default materials (docs/gltf.md, Material variants); read when a model loads.
-   */
-  variant?: string;
 }
 
 /** A stage of loading a scene or model (core/scene/load/load.ts LoadStage), `done` of `total`. */

@@ -5,7 +5,7 @@
  * tangents), then compiles and packs it (the BVH build), so that none of that blocks the
  * page however large or degenerate the scene.
  */
-import type { BareEnvironment, LoadStage, PackedScene, Scene } from '../../src/core/index.ts';
+import type { BareModelChoices, LoadStage, PackedScene, Scene } from '../../src/core/index.ts';
 import type { FileSource } from './scene-files.ts';
 
 interface Common {
@@ -30,10 +30,8 @@ export interface ModelRequest extends Common {
   /** Image size whose aspect ratio the framing camera takes. */
   width: number;
   height: number;
-  /** The model's environment (bare-scene.ts); the studio when absent. */
-  environment?: BareEnvironment;
-  /** The model's material variant (bare-scene.ts); the default materials when absent. */
-  variant?: string;
+  /** The user's choices for the model (bare-scene.ts), whole. */
+  bare: BareModelChoices;
 }
 
 /** A pathwise-scene/1 scene: its bytes or text, or a scene object (validated there). */
@@ -60,10 +58,8 @@ export interface UrlRequest extends Common {
   /** Image size whose aspect ratio a model's framing camera takes. */
   width: number;
   height: number;
-  /** A model's environment (bare-scene.ts); the studio when absent. */
-  environment?: BareEnvironment;
-  /** A model's material variant (bare-scene.ts); the default materials when absent. */
-  variant?: string;
+  /** The user's choices for a model (bare-scene.ts), whole. */
+  bare: BareModelChoices;
 }
 
 export type LoadRequest = ModelRequest | SceneRequest | UrlRequest;

@@ -107,8 +107,7 @@ async function readModel(
     ...(await platform(req, onProgress)),
     width: req.width,
     height: req.height,
-    environment: req.environment,
-    variant: req.variant,
+    ...req.bare,
   });
 }
 

@@ -25,10 +25,12 @@ export function isGlbBytes(bytes: Uint8Array): boolean {
   return isGlb(bytes);
 }
 
-export interface BareSceneOptions {
-  /** Image size; the format's defaults (512 × 512) when absent. */
-  width?: number;
-  height?: number;
+/**
+ * What a user chooses for a bare model, declared once here: the command line
+ * (`--environment`, `--variant`), the view's options and the widget's attributes hold
+ * one, and pass it whole to the model worker and to loadBareModel.
+ */
+export interface BareModelChoices {
   /**
    * The environment: the studio (the default), or none, to see only the model's own
    * lights (KHR_lights_punctual, emissive materials). The command line's `--environment`.
@@ -39,6 +41,17 @@ export interface BareSceneOptions {
    * default materials. The command line's `--variant`, the widget's `variant` attribute.
    */
   variant?: string;
+}
+
+/** The bare-model choices among a larger set of options (the view's), as one record. */
+export function bareChoices(options: BareModelChoices): BareModelChoices {
+  return { environment: options.environment, variant: options.variant };
+}
+
+export interface BareSceneOptions extends BareModelChoices {
+  /** Image size; the format's defaults (512 × 512) when absent. */
+  width?: number;
+  height?: number;
 }
 
 /** The scene of a loaded model (`file`: its name, for the shape and the scene's name). */
