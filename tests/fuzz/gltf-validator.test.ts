@@ -344,11 +344,12 @@ const mutations: Case[] = [
   {
     name: 'a rotation that is not unit length',
     bytes: edit((j) => (j.nodes[0].rotation = [0, 0, 0, 0.5])),
-    differs: {
-      pathwise: 'loads',
-      codes: ['ROTATION_NON_UNIT'],
-      why: 'pathwise normalises the quaternion (transforms.ts), which is what the writer meant; a zero quaternion is read as the identity',
-    },
+    code: 'ROTATION_NON_UNIT',
+  },
+  {
+    // Both load it: pathwise normalises a quaternion within 1e-2 of unit length.
+    name: 'a rotation 1e-3 off unit length',
+    bytes: edit((j) => (j.nodes[0].rotation = [0.0447, 0, 0, 1])),
   },
   {
     name: 'POSITION without min and max',
