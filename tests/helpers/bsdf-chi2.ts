@@ -60,8 +60,14 @@ function setDirections(wo: Vec3, wi: Vec3): void {
   [q.wix, q.wiy, q.wiz] = wi;
 }
 
-/** Draws sample i of a run into q's random numbers (wo set too). */
-function draw(wox: number, woy: number, woz: number, key: number): void {
+/** Sets q's wo, and its random numbers to hashToUnit(key, 0…2): a sample's query. */
+export function setSampleQuery(
+  q: BsdfQuery,
+  wox: number,
+  woy: number,
+  woz: number,
+  key: number,
+): void {
   q.wox = wox;
   q.woy = woy;
   q.woz = woz;
@@ -156,7 +162,7 @@ export function bsdfChi2(o: Chi2Options): Chi2Run {
   let weightErr = 0;
   let pdfErr = 0;
   for (let i = 0; i < n; i++) {
-    draw(wox, woy, woz, sampleKey(o.seed, i, o.stream ?? 0));
+    setSampleQuery(q, wox, woy, woz, sampleKey(o.seed, i, o.stream ?? 0));
     if (!lobe.sample(sp, q, out) || out.isDelta) {
       observed[failed]++;
       continue;
@@ -226,7 +232,7 @@ export function furnace(
   let bad = 0;
   let notGrey = 0;
   for (let i = 0; i < n; i++) {
-    draw(wo[0], wo[1], wo[2], sampleKey(seed, i, stream));
+    setSampleQuery(q, wo[0], wo[1], wo[2], sampleKey(seed, i, stream));
     if (!lobe.sample(sp, q, out)) continue;
     const w = [out.weightR * out.etaScale, out.weightG * out.etaScale, out.weightB * out.etaScale];
     if (!w.every((v) => Number.isFinite(v) && v >= 0)) bad++;

@@ -22,7 +22,7 @@ import { fresnelDielectric, schlickWeight } from '../../src/core/bsdf/fresnel.ts
 import { gltfSample } from '../../src/core/bsdf/gltf-pbr.ts';
 import { BsdfQuery, BsdfSample } from '../../src/core/bsdf/records.ts';
 import { ShadingParams } from '../../src/core/bsdf/shading.ts';
-import { hashToUnit, sampleKey } from '../../src/core/rng/pcg.ts';
+import { sampleKey } from '../../src/core/rng/pcg.ts';
 import {
   bsdfChi2,
   direction,
@@ -30,6 +30,7 @@ import {
   furnace,
   gltfLobe,
   lobeWidth,
+  setSampleQuery,
 } from '../helpers/bsdf-chi2.ts';
 import { chi2Test } from '../helpers/chi2.ts';
 
@@ -168,13 +169,7 @@ describe('glTF BSDF: smooth (Dirac) lobes', () => {
           let refused = 0;
           let notMirror = 0;
           for (let i = 0; i < n; i++) {
-            const key = sampleKey(500 + k, i, thetaO + (inside ? 1 : 0));
-            q.wox = x;
-            q.woy = y;
-            q.woz = woz;
-            q.u0 = hashToUnit(key, 0);
-            q.u1 = hashToUnit(key, 1);
-            q.u2 = hashToUnit(key, 2);
+            setSampleQuery(q, x, y, woz, sampleKey(500 + k, i, thetaO + (inside ? 1 : 0)));
             if (!gltfSample(sp, q, out)) refused++;
             else if (!out.isDelta) observed[2]++;
             else if (out.wz * woz > 0) {
@@ -229,13 +224,7 @@ describe('glTF BSDF: white furnace (energy ≤ 1)', () => {
     let sum2 = 0;
     const n = 100_000;
     for (let i = 0; i < n; i++) {
-      const key = sampleKey(31, i, 0);
-      q.wox = ox;
-      q.woy = oy;
-      q.woz = oz;
-      q.u0 = hashToUnit(key, 0);
-      q.u1 = hashToUnit(key, 1);
-      q.u2 = hashToUnit(key, 2);
+      setSampleQuery(q, ox, oy, oz, sampleKey(31, i, 0));
       const e = gltfSample(sp, q, out) ? out.weightR : 0;
       sum += e;
       sum2 += e * e;

@@ -32,6 +32,7 @@ import {
   gltfLobe,
   lobeWidth,
   relErr,
+  setSampleQuery,
 } from '../helpers/bsdf-chi2.ts';
 
 interface Params {
@@ -210,13 +211,7 @@ describe('glTF transmission lobes: reductions', () => {
     const sp = setParams(p);
     const [x, y, z] = direction((i * 7) % 90);
     const inside = i % 2 === 1;
-    q.wox = x;
-    q.woy = y;
-    q.woz = inside ? -z : z;
-    const k = sampleKey(key, i, 0);
-    q.u0 = hashToUnit(k, 0);
-    q.u1 = hashToUnit(k, 1);
-    q.u2 = hashToUnit(k, 2);
+    setSampleQuery(q, x, y, inside ? -z : z, sampleKey(key, i, 0));
     const ok = gltfSample(sp, q, out);
     q.wix = -y;
     q.wiy = x;
@@ -283,13 +278,7 @@ describe('glTF transmission lobes: reductions', () => {
           [1, b],
         ] as const) {
           const sp = setParams({ ...p, thickness });
-          q.wox = x;
-          q.woy = y;
-          q.woz = z;
-          const k = sampleKey(6, i, roughness * 10);
-          q.u0 = hashToUnit(k, 0);
-          q.u1 = hashToUnit(k, 1);
-          q.u2 = hashToUnit(k, 2);
+          setSampleQuery(q, x, y, z, sampleKey(6, i, roughness * 10));
           // A refusal leaves the record as it was: mark it.
           if (!gltfSample(sp, q, out)) out.pdf = -1;
         }
