@@ -14,19 +14,11 @@ import { join } from 'node:path';
 import { Document } from '@gltf-transform/core';
 import { EXTTextureWebP, KHRTextureBasisu } from '@gltf-transform/extensions';
 import { describe, expect, it } from 'vitest';
-import { nodeGltfDecoders, nodeTangentGenerator } from '../../src/cli/gltf-node.ts';
-import { nodeSceneFiles } from '../../src/cli/scene-files.ts';
-import {
-  Film,
-  PathTracer,
-  RenderStats,
-  compileScene,
-  loadBareModel,
-} from '../../src/core/index.ts';
-import { docWith, quadPrimitive, toGlb } from '../helpers/gltf.ts';
+import { addFloor, docWith, quadPrimitive, toGlb } from '../helpers/gltf.ts';
 import { ROOT } from '../helpers/render.ts';
 import { PASSES, SEED, SIZE, fixed, useDemo } from './context.ts';
 import { bitDifferences, openDemo, readLinear, waitForSpp } from './harness.ts';
+import { nodeModelRender } from './node-reference.ts';
 
 const ctx = useDemo();
 const fixture = (name: string) =>
@@ -42,13 +34,7 @@ function model(): Document {
   const quad = doc.createMaterial().setBaseColorTexture(webp).setMetallicFactor(0);
   const floor = doc.createMaterial().setBaseColorTexture(ktx2).setMetallicFactor(0);
   docWith(doc, quadPrimitive(doc).setMaterial(quad));
-  const node = doc
-    .createNode()
-    .setMesh(doc.createMesh().addPrimitive(quadPrimitive(doc).setMaterial(floor)))
-    .setTranslation([-1, 0, 1])
-    .setRotation([-Math.SQRT1_2, 0, 0, Math.SQRT1_2])
-    .setScale([3, 2, 1]);
-  doc.getRoot().listScenes()[0].addChild(node);
+  addFloor(doc, floor);
   return doc;
 }
 
@@ -74,22 +60,8 @@ describe('compressed glTF textures in the demo (Chromium)', () => {
     await waitForSpp(page, PASSES);
     expect(await page.textContent('#error')).toBe('');
     expect(await page.evaluate(() => (window as any).warnings)).toBe(null);
-    const scene = await loadBareModel(glb, 'tiles.glb', nodeSceneFiles(dir), {
-      generateTangents: await nodeTangentGenerator(),
-      decoders: nodeGltfDecoders(),
-      width: SIZE,
-      height: SIZE,
-    });
-    const tracer = new PathTracer(compileScene(scene), {
-      width: SIZE,
-      height: SIZE,
-      maxBounces: scene.settings.maxBounces,
-      seed: SEED,
-      camera: scene.camera,
-    });
-    const film = new Film(SIZE, SIZE);
-    tracer.renderRows(film, 0, SIZE, 0, PASSES, new RenderStats());
-    expect(bitDifferences((await readLinear(page)).rgb, film.mean())).toBe(0);
+    const reference = await nodeModelRender(glb, 'tiles.glb', dir, SIZE, SIZE, SEED, PASSES);
+    expect(bitDifferences((await readLinear(page)).rgb, reference)).toBe(0);
     await page.close();
   });
 });

@@ -9,45 +9,24 @@
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
-import { nodeGltfDecoders, nodeTangentGenerator } from '../../src/cli/gltf-node.ts';
-import { nodeSceneFiles } from '../../src/cli/scene-files.ts';
-import {
-  Film,
-  PathTracer,
-  RenderStats,
-  compileScene,
-  loadBareModel,
-} from '../../src/core/index.ts';
 import { ROOT } from '../helpers/render.ts';
 import { PASSES, SEED, SIZE, fixed, useDemo } from './context.ts';
 import { bitDifferences, openDemo, readLinear, startPreviewServer, waitForSpp } from './harness.ts';
+import { nodeModelRender } from './node-reference.ts';
 
 const ctx = useDemo();
 const FIXTURES = join(ROOT, 'tests/fixtures/compressed');
 
-async function nodeReference(file: string): Promise<Float32Array> {
-  const scene = await loadBareModel(
+const nodeReference = (file: string): Promise<Float32Array> =>
+  nodeModelRender(
     new Uint8Array(readFileSync(join(FIXTURES, file))),
     file,
-    nodeSceneFiles(FIXTURES),
-    {
-      generateTangents: await nodeTangentGenerator(),
-      decoders: nodeGltfDecoders(),
-      width: SIZE,
-      height: SIZE,
-    },
+    FIXTURES,
+    SIZE,
+    SIZE,
+    SEED,
+    PASSES,
   );
-  const tracer = new PathTracer(compileScene(scene), {
-    width: SIZE,
-    height: SIZE,
-    maxBounces: scene.settings.maxBounces,
-    seed: SEED,
-    camera: scene.camera,
-  });
-  const film = new Film(SIZE, SIZE);
-  tracer.renderRows(film, 0, SIZE, 0, PASSES, new RenderStats());
-  return film.mean();
-}
 
 describe('compressed glTF in the demo (Chromium)', () => {
   it('a meshopt .glb and a Draco .gltf: the Node core image bit for bit', async () => {

@@ -16,19 +16,10 @@ import { Document } from '@gltf-transform/core';
 import { KHRXMP } from '@gltf-transform/extensions';
 import type { Page } from 'playwright-core';
 import { describe, expect, it } from 'vitest';
-import { nodeTangentGenerator } from '../../src/cli/gltf-node.ts';
-import { nodeSceneFiles } from '../../src/cli/scene-files.ts';
-import {
-  Film,
-  PathTracer,
-  RenderStats,
-  compileScene,
-  loadBareModel,
-  type Scene,
-} from '../../src/core/index.ts';
-import { docWith, png, quadPrimitive, toGlb, toGltfFiles } from '../helpers/gltf.ts';
+import { addFloor, docWith, png, quadPrimitive, toGlb, toGltfFiles } from '../helpers/gltf.ts';
 import { PASSES, SEED, SIZE, fixed, useDemo } from './context.ts';
 import { bitDifferences, openDemo, readLinear, startDemoServer, waitForSpp } from './harness.ts';
+import { nodeModelRender } from './node-reference.ts';
 
 const ctx = useDemo();
 
@@ -58,37 +49,8 @@ function model(): Document {
     .setExtension('KHR_xmp_json_ld', xmp);
   const floor = doc.createMaterial().setBaseColorFactor([0.7, 0.7, 0.7, 1]).setMetallicFactor(0);
   docWith(doc, quadPrimitive(doc).setMaterial(mat));
-  const node = doc
-    .createNode()
-    .setMesh(doc.createMesh().addPrimitive(quadPrimitive(doc).setMaterial(floor)))
-    .setTranslation([-1, 0, 1])
-    .setRotation([-Math.SQRT1_2, 0, 0, Math.SQRT1_2])
-    .setScale([3, 2, 1]);
-  doc.getRoot().listScenes()[0].addChild(node);
+  addFloor(doc, floor);
   return doc;
-}
-
-function render(scene: Scene): Float32Array {
-  const tracer = new PathTracer(compileScene(scene), {
-    width: SIZE,
-    height: SIZE,
-    maxBounces: scene.settings.maxBounces,
-    seed: SEED,
-    camera: scene.camera,
-  });
-  const film = new Film(SIZE, SIZE);
-  tracer.renderRows(film, 0, SIZE, 0, PASSES, new RenderStats());
-  return film.mean();
-}
-
-/** The Node core's render of the bare model `file` in `dir`, as the CLI loads it. */
-async function nodeReference(dir: string, file: string, bytes: Uint8Array) {
-  const scene = await loadBareModel(bytes, file, nodeSceneFiles(dir), {
-    generateTangents: await nodeTangentGenerator(),
-    width: SIZE,
-    height: SIZE,
-  });
-  return render(scene);
 }
 
 /** Records the controller's load stages and warnings on the page. */
@@ -144,7 +106,15 @@ describe('glTF models in the demo and the widget (Chromium)', () => {
     ).toBe(null);
     // Parsed, decoded and built off the page's thread: in the model worker.
     expect(workers.filter((u) => u.includes('model-worker')).length).toBe(2);
-    const reference = await nodeReference(dir, 'chair.gltf', files.get('chair.gltf')!);
+    const reference = await nodeModelRender(
+      files.get('chair.gltf')!,
+      'chair.gltf',
+      dir,
+      SIZE,
+      SIZE,
+      SEED,
+      PASSES,
+    );
     expect(bitDifferences((await readLinear(page)).rgb, reference)).toBe(0);
     await page.close();
   });

@@ -8,25 +8,14 @@ import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
-import { Film, PathTracer, RenderStats, compileScene, type Scene } from '../../src/core/index.ts';
+import type { Scene } from '../../src/core/index.ts';
 import { loadSceneWithFiles } from '../helpers/render.ts';
 import { PASSES, SEED, SIZE, fixed, useDemo } from './context.ts';
 import { bitDifferences, openDemo, readLinear, root, waitForSpp } from './harness.ts';
+import { nodeSceneRender } from './node-reference.ts';
 
 const ctx = useDemo();
-
-function render(scene: Scene): Float32Array {
-  const tracer = new PathTracer(compileScene(scene), {
-    width: SIZE,
-    height: SIZE,
-    maxBounces: scene.settings.maxBounces,
-    seed: SEED,
-    camera: scene.camera,
-  });
-  const film = new Film(SIZE, SIZE);
-  tracer.renderRows(film, 0, SIZE, 0, PASSES, new RenderStats());
-  return film.mean();
-}
+const render = (scene: Scene): Float32Array => nodeSceneRender(scene, SIZE, SIZE, SEED, PASSES);
 
 describe('meshes and environment maps in the demo (Chromium)', () => {
   it('renders the Sky preset (a mesh under a map) bit for bit like the Node core', async () => {

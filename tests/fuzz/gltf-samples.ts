@@ -116,9 +116,10 @@ export function quadGlb(
   return makeGlb(json, bin);
 }
 
-/** The quad as a .gltf whose buffer is a base64 data: URI. */
-export function quadGltfDataUri(): Uint8Array {
+/** The quad as a .gltf whose buffer is a base64 data: URI; `edit` may change its JSON first. */
+export function quadGltfDataUri(options: { edit?: (json: Json) => void } = {}): Uint8Array {
   const { json, bin } = quadBinary(null);
+  options.edit?.(json);
   (json.buffers as Json[])[0].uri =
     'data:application/octet-stream;base64,' + Buffer.from(bin).toString('base64');
   return new TextEncoder().encode(JSON.stringify(json));

@@ -156,6 +156,20 @@ export function docWith(
 }
 
 /**
+ * Adds to the default scene a floor of `material`: the unit quad (quadPrimitive)
+ * scaled to 3 × 2 and laid flat at (−1, 0, 1) by a TRS node, under docWith's quad.
+ */
+export function addFloor(doc: Document, material: ReturnType<Document['createMaterial']>): void {
+  const node = doc
+    .createNode()
+    .setMesh(doc.createMesh().addPrimitive(quadPrimitive(doc).setMaterial(material)))
+    .setTranslation([-1, 0, 1])
+    .setRotation([-Math.SQRT1_2, 0, 0, Math.SQRT1_2])
+    .setScale([3, 2, 1]);
+  doc.getRoot().listScenes()[0].addChild(node);
+}
+
+/**
  * A scene (pathwise-scene/1 JSON) whose files (`name` → bytes) are in memory, read
  * and resolved like the command line does (pure-JS images, MikkTSpace).
  */

@@ -1,8 +1,8 @@
 /**
  * Statistical tests of the glTF metallic–roughness BSDF (src/core/bsdf/gltf-pbr.ts):
  *
- * - χ² goodness of fit of `sample` against `pdf` (the machinery of
- *   bsdf-chi2.test.ts, tests/helpers/chi2.ts) over a grid of (metallic,
+ * - χ² goodness of fit of `sample` against `pdf` (the harness of
+ *   tests/helpers/bsdf-chi2.ts, as in bsdf-chi2.test.ts) over a grid of (metallic,
  *   roughness, transmission, base colour) and of wo, from outside and — for
  *   transmissive materials — from inside. The non-delta samples are binned
  *   on the sphere; delta samples (smooth reflection, refraction) and refused
@@ -19,12 +19,20 @@
  */
 import { describe, expect, it } from 'vitest';
 import { fresnelDielectric, schlickWeight } from '../../src/core/bsdf/fresnel.ts';
-import { gltfEval, gltfPdf, gltfSample } from '../../src/core/bsdf/gltf-pbr.ts';
-import { BsdfQuery, BsdfSample, BsdfValue } from '../../src/core/bsdf/records.ts';
-import type { ShadingParams } from '../../src/core/bsdf/shading.ts';
-import { hashToUnit, sampleKey } from '../../src/core/rng/pcg.ts';
+import { gltfSample } from '../../src/core/bsdf/gltf-pbr.ts';
+import { BsdfQuery, BsdfSample } from '../../src/core/bsdf/records.ts';
+import { ShadingParams } from '../../src/core/bsdf/shading.ts';
+import { sampleKey } from '../../src/core/rng/pcg.ts';
+import {
+  bsdfChi2,
+  direction,
+  expectChi2Fit,
+  furnace,
+  gltfLobe,
+  lobeWidth,
+  setSampleQuery,
+} from '../helpers/bsdf-chi2.ts';
 import { chi2Test } from '../helpers/chi2.ts';
-import { HemisphereGrid } from '../helpers/hemisphere-grid.ts';
 
 interface Params {
   base: [number, number, number];
@@ -39,8 +47,7 @@ interface Params {
 
 const q = new BsdfQuery();
 
-function setParams(p: Params): ShadingParams {
-  const sp = q.shading;
+function setParams(p: Params, sp = q.shading): ShadingParams {
   sp.reset();
   [sp.baseR, sp.baseG, sp.baseB] = p.base;
   sp.metallic = p.metallic;
@@ -50,14 +57,6 @@ function setParams(p: Params): ShadingParams {
   sp.specular = p.specular ?? 1;
   sp.thickness = p.thickness ?? 1;
   return sp;
-}
-
-const DEG = Math.PI / 180;
-const PHI_O = 0.7;
-
-function direction(thetaDeg: number, phi = PHI_O): [number, number, number] {
-  const t = thetaDeg * DEG;
-  return [Math.sin(t) * Math.cos(phi), Math.sin(t) * Math.sin(phi), Math.cos(t)];
 }
 
 interface Case {
@@ -96,116 +95,34 @@ for (const [metallic, transmission] of [
 const ALPHA = 1 - Math.pow(1 - 0.01, 1 / (CASES.length + 4));
 const N = 200_000;
 
-function relErr(a: number, b: number): number {
-  const m = Math.max(Math.abs(a), Math.abs(b));
-  return m === 0 ? 0 : Math.abs(a - b) / m;
-}
-
 describe('glTF BSDF sample vs pdf: χ² goodness of fit', () => {
   CASES.forEach((c, index) => {
     it(c.name, () => {
-      const sp = setParams(c.params);
-      const s = c.inside ? -1 : 1;
-      const [wox, woy, oz] = direction(c.thetaO);
-      const woz = s * oz;
-      const pdf = (x: number, y: number, z: number): number => {
-        q.wox = wox;
-        q.woy = woy;
-        q.woz = woz;
-        q.wix = x;
-        q.wiy = y;
-        q.wiz = s * z;
-        return gltfPdf(sp, q);
-      };
-      // The partition lives in the frame where wo is above: mirror z from inside.
-      const alpha = c.params.roughness ** 2;
-      const width = alpha === 0 ? 10 : Math.max(2.5 * alpha, 1e-3);
-      const grid = HemisphereGrid.around(oz < 1 ? Math.acos(oz) : 0, Math.atan2(-woy, -wox), width);
-      const expected = grid.integrate(pdf);
-      let mass = 0;
-      for (let i = 0; i < grid.below; i++) mass += expected[i];
-      for (let i = 0; i < grid.below; i++) expected[i] *= N;
-      // `failed` collects delta samples and refusals; `below` must stay empty.
-      expected[grid.failed] = N * Math.max(0, 1 - mass);
-      const observed = new Float64Array(grid.nCells);
-      const out = new BsdfSample();
-      const f = new BsdfValue();
-      let weightErr = 0;
-      let pdfErr = 0;
-      for (let i = 0; i < N; i++) {
-        const key = sampleKey(7000 + index, i, 0);
-        q.wox = wox;
-        q.woy = woy;
-        q.woz = woz;
-        q.u0 = hashToUnit(key, 0);
-        q.u1 = hashToUnit(key, 1);
-        q.u2 = hashToUnit(key, 2);
-        if (!gltfSample(sp, q, out) || out.isDelta) {
-          observed[grid.failed]++;
-          continue;
-        }
-        observed[grid.cellOf(out.wx, out.wy, s * out.wz)]++;
-        if (!(s * out.wz > 0)) continue;
-        q.wix = out.wx;
-        q.wiy = out.wy;
-        q.wiz = out.wz;
-        gltfEval(sp, q, f);
-        pdfErr = Math.max(pdfErr, relErr(out.pdf, f.pdf), relErr(f.pdf, gltfPdf(sp, q)));
-        const k = (s * out.wz) / out.pdf;
-        weightErr = Math.max(
-          weightErr,
-          relErr(out.weightR, f.r * k),
-          relErr(out.weightG, f.g * k),
-          relErr(out.weightB, f.b * k),
-        );
-      }
-      const r = chi2Test(observed, expected);
-      expect(r.impossible).toBeNull();
-      expect(mass).toBeLessThan(1 + 1e-6);
-      expect(r.dof).toBeGreaterThan(50);
-      expect(
-        r.pValue,
-        `χ² = ${r.stat.toFixed(1)} on ${r.dof} dof; rest ${observed[grid.failed]} vs ${expected[grid.failed].toFixed(1)}`,
-      ).toBeGreaterThan(ALPHA);
-      expect(weightErr).toBeLessThan(1e-9);
-      expect(pdfErr).toBeLessThan(1e-9);
+      const r = bsdfChi2({
+        lobe: gltfLobe,
+        sp: setParams(c.params),
+        wo: direction(c.thetaO),
+        inside: c.inside,
+        width: lobeWidth(c.params.roughness ** 2),
+        n: N,
+        seed: 7000 + index,
+      });
+      expectChi2Fit(r, ALPHA);
     });
   });
 
   it('has power: a sampler tested against a neighbouring roughness is rejected', () => {
     const p: Params = { base: COLOR, metallic: 0.5, roughness: 0.3, transmission: 0 };
-    const [wox, woy, woz] = direction(45);
-    const other = { ...p, roughness: 0.33 };
-    const grid = HemisphereGrid.around(45 * DEG, Math.atan2(-woy, -wox), 0.2);
-    const expected = grid.integrate((x, y, z) => {
-      setParams(other);
-      q.wox = wox;
-      q.woy = woy;
-      q.woz = woz;
-      q.wix = x;
-      q.wiy = y;
-      q.wiz = z;
-      return gltfPdf(q.shading, q);
+    const r = bsdfChi2({
+      lobe: gltfLobe,
+      sp: setParams(p, new ShadingParams()),
+      pdfSp: setParams({ ...p, roughness: 0.33 }, new ShadingParams()),
+      wo: direction(45),
+      width: 0.2,
+      n: 100_000,
+      seed: 99,
     });
-    let mass = 0;
-    for (let i = 0; i < grid.below; i++) mass += expected[i];
-    for (let i = 0; i < grid.below; i++) expected[i] *= 100_000;
-    expected[grid.failed] = 100_000 * (1 - mass);
-    const observed = new Float64Array(grid.nCells);
-    const sp = setParams(p);
-    const out = new BsdfSample();
-    for (let i = 0; i < 100_000; i++) {
-      const key = sampleKey(99, i, 0);
-      q.wox = wox;
-      q.woy = woy;
-      q.woz = woz;
-      q.u0 = hashToUnit(key, 0);
-      q.u1 = hashToUnit(key, 1);
-      q.u2 = hashToUnit(key, 2);
-      if (!gltfSample(sp, q, out) || out.isDelta) observed[grid.failed]++;
-      else observed[grid.cellOf(out.wx, out.wy, out.wz)]++;
-    }
-    expect(chi2Test(observed, expected).pValue).toBeLessThan(1e-6);
+    expect(r.pValue).toBeLessThan(1e-6);
   });
 });
 
@@ -252,13 +169,7 @@ describe('glTF BSDF: smooth (Dirac) lobes', () => {
           let refused = 0;
           let notMirror = 0;
           for (let i = 0; i < n; i++) {
-            const key = sampleKey(500 + k, i, thetaO + (inside ? 1 : 0));
-            q.wox = x;
-            q.woy = y;
-            q.woz = woz;
-            q.u0 = hashToUnit(key, 0);
-            q.u1 = hashToUnit(key, 1);
-            q.u2 = hashToUnit(key, 2);
+            setSampleQuery(q, x, y, woz, sampleKey(500 + k, i, thetaO + (inside ? 1 : 0)));
             if (!gltfSample(sp, q, out)) refused++;
             else if (!out.isDelta) observed[2]++;
             else if (out.wz * woz > 0) {
@@ -313,13 +224,7 @@ describe('glTF BSDF: white furnace (energy ≤ 1)', () => {
     let sum2 = 0;
     const n = 100_000;
     for (let i = 0; i < n; i++) {
-      const key = sampleKey(31, i, 0);
-      q.wox = ox;
-      q.woy = oy;
-      q.woz = oz;
-      q.u0 = hashToUnit(key, 0);
-      q.u1 = hashToUnit(key, 1);
-      q.u2 = hashToUnit(key, 2);
+      setSampleQuery(q, ox, oy, oz, sampleKey(31, i, 0));
       const e = gltfSample(sp, q, out) ? out.weightR : 0;
       sum += e;
       sum2 += e * e;
@@ -341,28 +246,11 @@ describe('glTF BSDF: white furnace (energy ≤ 1)', () => {
           for (const thetaO of [0, 30, 60, 80, 89]) {
             for (const inside of transmission > 0 ? [false, true] : [false]) {
               const [x, y, z] = direction(thetaO);
-              const out = new BsdfSample();
-              let sum = 0;
-              let sum2 = 0;
-              for (let i = 0; i < n; i++) {
-                const key = sampleKey(900 + thetaO, i, roughness * 100 + (inside ? 1 : 0));
-                q.wox = x;
-                q.woy = y;
-                q.woz = inside ? -z : z;
-                q.u0 = hashToUnit(key, 0);
-                q.u1 = hashToUnit(key, 1);
-                q.u2 = hashToUnit(key, 2);
-                let e = 0;
-                if (gltfSample(sp, q, out)) {
-                  // Energy: undo radiance mode's (n1/n2)² on refraction.
-                  e = out.weightR * out.etaScale;
-                  if (!(Number.isFinite(e) && e >= 0) || out.weightG !== out.weightR) bad++;
-                }
-                sum += e;
-                sum2 += e * e;
-              }
-              const mean = sum / n;
-              const se = Math.sqrt(Math.max(0, sum2 / n - mean * mean) / n);
+              const stream = roughness * 100 + (inside ? 1 : 0);
+              const e = furnace(gltfLobe, sp, [x, y, inside ? -z : z], n, 900 + thetaO, stream);
+              bad += e.bad + e.notGrey;
+              const [mean] = e.mean;
+              const [se] = e.se;
               const excess = (mean - 1) / Math.max(se, 1e-12);
               if (mean - 1 > 4 * se && excess > worst) {
                 worst = excess;

@@ -19,12 +19,21 @@
  * (Šidák-corrected per case).
  */
 import { describe, expect, it } from 'vitest';
-import { gltfEval, gltfPdf, gltfSample } from '../../src/core/bsdf/gltf-pbr.ts';
+import { gltfEval, gltfSample } from '../../src/core/bsdf/gltf-pbr.ts';
 import { BsdfQuery, BsdfSample, BsdfValue } from '../../src/core/bsdf/records.ts';
-import type { ShadingParams } from '../../src/core/bsdf/shading.ts';
+import { ShadingParams } from '../../src/core/bsdf/shading.ts';
 import { hashToUnit, sampleKey } from '../../src/core/rng/pcg.ts';
-import { chi2Test } from '../helpers/chi2.ts';
-import { HemisphereGrid } from '../helpers/hemisphere-grid.ts';
+import {
+  bsdfChi2,
+  DEG,
+  direction,
+  evalBothWays,
+  expectChi2Fit,
+  furnace,
+  gltfLobe,
+  lobeWidth,
+  relErr,
+} from '../helpers/bsdf-chi2.ts';
 
 interface Params {
   base?: [number, number, number];
@@ -41,8 +50,7 @@ interface Params {
 const q = new BsdfQuery();
 const COLOR: [number, number, number] = [0.9, 0.6, 0.3];
 
-function setParams(p: Params): ShadingParams {
-  const sp = q.shading;
+function setParams(p: Params, sp = q.shading): ShadingParams {
   sp.reset();
   [sp.baseR, sp.baseG, sp.baseB] = p.base ?? COLOR;
   sp.metallic = p.metallic;
@@ -58,17 +66,6 @@ function setParams(p: Params): ShadingParams {
   if (sp.anisotropy > 0 && sp.alpha === 0) sp.alpha = 1e-6;
   return sp;
 }
-
-const DEG = Math.PI / 180;
-function direction(thetaDeg: number, phi = 0.7): [number, number, number] {
-  const t = thetaDeg * DEG;
-  return [Math.sin(t) * Math.cos(phi), Math.sin(t) * Math.sin(phi), Math.cos(t)];
-}
-
-const relErr = (a: number, b: number): number => {
-  const m = Math.max(Math.abs(a), Math.abs(b));
-  return m === 0 ? 0 : Math.abs(a - b) / m;
-};
 
 interface Case {
   name: string;
@@ -121,98 +118,34 @@ describe('glTF BSDF with anisotropy and iridescence: sample vs pdf (χ²)', () =
   CASES.forEach((c, index) => {
     it(c.name, () => {
       const sp = setParams(c.p);
-      const s = c.inside ? -1 : 1;
-      const [wox, woy, oz] = direction(c.thetaO);
-      const woz = s * oz;
-      const pdf = (x: number, y: number, z: number): number => {
-        q.wox = wox;
-        q.woy = woy;
-        q.woz = woz;
-        q.wix = x;
-        q.wiy = y;
-        q.wiz = s * z;
-        return gltfPdf(sp, q);
-      };
-      const ax = sp.alpha + (1 - sp.alpha) * sp.anisotropy ** 2;
-      const width = sp.alpha === 0 ? 10 : Math.max(2.5 * ax, 1e-3);
-      const grid = HemisphereGrid.around(oz < 1 ? Math.acos(oz) : 0, Math.atan2(-woy, -wox), width);
-      const expected = grid.integrate(pdf, sp.alpha < 0.05 && sp.anisotropy > 0 ? 24 : 8);
-      let mass = 0;
-      for (let i = 0; i < grid.below; i++) mass += expected[i];
-      for (let i = 0; i < grid.below; i++) expected[i] *= N;
-      expected[grid.failed] = N * Math.max(0, 1 - mass);
-      const observed = new Float64Array(grid.nCells);
-      const out = new BsdfSample();
-      const f = new BsdfValue();
-      let weightErr = 0;
-      let pdfErr = 0;
-      for (let i = 0; i < N; i++) {
-        const key = sampleKey(8100 + index, i, 0);
-        q.wox = wox;
-        q.woy = woy;
-        q.woz = woz;
-        q.u0 = hashToUnit(key, 0);
-        q.u1 = hashToUnit(key, 1);
-        q.u2 = hashToUnit(key, 2);
-        if (!gltfSample(sp, q, out) || out.isDelta) {
-          observed[grid.failed]++;
-          continue;
-        }
-        observed[grid.cellOf(out.wx, out.wy, s * out.wz)]++;
-        if (!(s * out.wz > 0)) continue;
-        q.wix = out.wx;
-        q.wiy = out.wy;
-        q.wiz = out.wz;
-        gltfEval(sp, q, f);
-        pdfErr = Math.max(pdfErr, relErr(out.pdf, f.pdf), relErr(f.pdf, gltfPdf(sp, q)));
-        const k = (s * out.wz) / out.pdf;
-        weightErr = Math.max(
-          weightErr,
-          relErr(out.weightR, f.r * k),
-          relErr(out.weightG, f.g * k),
-          relErr(out.weightB, f.b * k),
-        );
-      }
-      const r = chi2Test(observed, expected);
-      expect(r.impossible).toBeNull();
-      expect(mass).toBeLessThan(1 + 1e-6);
-      expect(r.dof).toBeGreaterThan(50);
-      expect(
-        r.pValue,
-        `χ² = ${r.stat.toFixed(1)} on ${r.dof} dof; rest ${observed[grid.failed]} vs ${expected[grid.failed].toFixed(1)}`,
-      ).toBeGreaterThan(ALPHA);
-      expect(weightErr).toBeLessThan(1e-9);
-      expect(pdfErr).toBeLessThan(1e-9);
+      const r = bsdfChi2({
+        lobe: gltfLobe,
+        sp,
+        wo: direction(c.thetaO),
+        inside: c.inside,
+        width: lobeWidth(sp.alpha + (1 - sp.alpha) * sp.anisotropy ** 2),
+        n: N,
+        seed: 8100 + index,
+        quadrature: sp.alpha < 0.05 && sp.anisotropy > 0 ? 24 : 8,
+      });
+      expectChi2Fit(r, ALPHA);
     });
   });
 
   it('has power: the anisotropic sampler tested against the density of a rotated direction is rejected', () => {
     const p: Params = { metallic: 1, roughness: 0.3, strength: 0.8, rotation: 0.3 };
-    const [wox, woy, woz] = direction(45);
-    const grid = HemisphereGrid.around(45 * DEG, Math.atan2(-woy, -wox), 2);
-    const expected = grid.integrate((x, y, z) => {
-      setParams({ ...p, rotation: 0.45 });
-      Object.assign(q, { wox, woy, woz, wix: x, wiy: y, wiz: z });
-      return gltfPdf(q.shading, q);
+    // The refusals (~15% here) are expected at N·(1 − ∫pdf) like every case's: expected
+    // at 0, they alone would reject even the sampler's own density.
+    const r = bsdfChi2({
+      lobe: gltfLobe,
+      sp: setParams(p, new ShadingParams()),
+      pdfSp: setParams({ ...p, rotation: 0.45 }, new ShadingParams()),
+      wo: direction(45),
+      width: 2,
+      n: 100_000,
+      seed: 98,
     });
-    for (let i = 0; i < grid.below; i++) expected[i] *= 100_000;
-    const observed = new Float64Array(grid.nCells);
-    const sp = setParams(p);
-    const out = new BsdfSample();
-    for (let i = 0; i < 100_000; i++) {
-      const key = sampleKey(98, i, 0);
-      Object.assign(q, {
-        wox,
-        woy,
-        woz,
-        u0: hashToUnit(key, 0),
-        u1: hashToUnit(key, 1),
-        u2: hashToUnit(key, 2),
-      });
-      if (!gltfSample(sp, q, out) || out.isDelta) observed[grid.failed]++;
-      else observed[grid.cellOf(out.wx, out.wy, out.wz)]++;
-    }
-    expect(chi2Test(observed, expected).pValue).toBeLessThan(1e-6);
+    expect(r.pValue).toBeLessThan(1e-6);
   });
 });
 
@@ -253,13 +186,8 @@ describe('glTF BSDF with anisotropy and iridescence: reciprocity', () => {
             const side = transmission > 0 && i % 2 === 1 ? -1 : 1;
             const [ox, oy, zo] = direction(a / DEG, 2 * Math.PI * hashToUnit(key, 2));
             const [ix, iy, zi] = direction(b / DEG, 2 * Math.PI * hashToUnit(key, 3));
-            const oz = side * zo,
-              iz = side * zi;
-            Object.assign(q, { wox: ox, woy: oy, woz: oz, wix: ix, wiy: iy, wiz: iz });
-            gltfEval(sp, q, f1);
-            Object.assign(q, { wox: ix, woy: iy, woz: iz, wix: ox, wiy: oy, wiz: oz });
-            gltfEval(sp, q, f2);
-            const e = Math.max(relErr(f1.r, f2.r), relErr(f1.g, f2.g), relErr(f1.b, f2.b));
+            const wo: [number, number, number] = [ox, oy, side * zo];
+            const e = evalBothWays(gltfLobe, sp, wo, [ix, iy, side * zi], f1, f2);
             if (e > worst) {
               worst = e;
               where = `metallic ${metallic}, transmission ${transmission}, roughness ${roughness}, strength ${strength}, iridescence ${iridescence}`;
@@ -276,34 +204,10 @@ describe('glTF BSDF with anisotropy and iridescence: reciprocity', () => {
 describe('glTF BSDF with anisotropy and iridescence: white furnace (energy ≤ 1)', () => {
   const run = (p: Params, thetaO: number, n: number, seed: number): string => {
     const sp = setParams({ ...p, base: [1, 1, 1] });
-    const [x, y, z] = direction(thetaO);
-    const out = new BsdfSample();
-    const sum = [0, 0, 0];
-    const sum2 = [0, 0, 0];
-    let bad = 0;
-    for (let i = 0; i < n; i++) {
-      const key = sampleKey(seed, i, thetaO);
-      Object.assign(q, {
-        wox: x,
-        woy: y,
-        woz: z,
-        u0: hashToUnit(key, 0),
-        u1: hashToUnit(key, 1),
-        u2: hashToUnit(key, 2),
-      });
-      if (!gltfSample(sp, q, out)) continue;
-      const w = [out.weightR, out.weightG, out.weightB].map((v) => v * out.etaScale);
-      for (let k = 0; k < 3; k++) {
-        if (!(Number.isFinite(w[k]) && w[k] >= 0)) bad++;
-        sum[k] += w[k];
-        sum2[k] += w[k] * w[k];
-      }
-    }
-    if (bad > 0) return `${bad} non-finite or negative weights`;
+    const { mean, se, bad } = furnace(gltfLobe, sp, direction(thetaO), n, seed, thetaO);
+    if (bad > 0) return `${bad} samples of non-finite or negative weight`;
     for (let k = 0; k < 3; k++) {
-      const mean = sum[k] / n;
-      const se = Math.sqrt(Math.max(0, sum2[k] / n - mean * mean) / n);
-      if (mean - 1 > 4 * se) return `channel ${k}: ${mean} ± ${se}`;
+      if (mean[k] - 1 > 4 * se[k]) return `channel ${k}: ${mean[k]} ± ${se[k]}`;
     }
     return '';
   };

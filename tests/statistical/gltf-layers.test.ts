@@ -23,10 +23,18 @@ import { describe, expect, it } from 'vitest';
 import { layeredEval, layeredPdf, layeredSample } from '../../src/core/bsdf/gltf-layers.ts';
 import { gltfEval, gltfPdf, gltfSample } from '../../src/core/bsdf/gltf-pbr.ts';
 import { BsdfQuery, BsdfSample, BsdfValue } from '../../src/core/bsdf/records.ts';
-import type { ShadingParams } from '../../src/core/bsdf/shading.ts';
+import { ShadingParams } from '../../src/core/bsdf/shading.ts';
 import { hashToUnit, sampleKey } from '../../src/core/rng/pcg.ts';
-import { chi2Test } from '../helpers/chi2.ts';
-import { HemisphereGrid } from '../helpers/hemisphere-grid.ts';
+import {
+  bsdfChi2,
+  DEG,
+  direction,
+  evalBothWays,
+  expectChi2Fit,
+  furnace,
+  lobeWidth,
+  type Lobe,
+} from '../helpers/bsdf-chi2.ts';
 
 interface Params {
   base?: [number, number, number];
@@ -44,8 +52,7 @@ interface Params {
 
 const q = new BsdfQuery();
 
-function setParams(p: Params): ShadingParams {
-  const sp = q.shading;
+function setParams(p: Params, sp = q.shading): ShadingParams {
   sp.reset();
   [sp.baseR, sp.baseG, sp.baseB] = p.base ?? [0.9, 0.6, 0.3];
   sp.metallic = p.metallic;
@@ -65,17 +72,7 @@ function setParams(p: Params): ShadingParams {
   return sp;
 }
 
-const DEG = Math.PI / 180;
-
-function direction(thetaDeg: number, phi = 0.7): [number, number, number] {
-  const t = thetaDeg * DEG;
-  return [Math.sin(t) * Math.cos(phi), Math.sin(t) * Math.sin(phi), Math.cos(t)];
-}
-
-function relErr(a: number, b: number): number {
-  const m = Math.max(Math.abs(a), Math.abs(b));
-  return m === 0 ? 0 : Math.abs(a - b) / m;
-}
+const LAYERED: Lobe = { sample: layeredSample, pdf: layeredPdf, eval: layeredEval };
 
 const SHEEN: [number, number, number] = [0.9, 0.6, 0.3];
 const CASES: [string, Params][] = [
@@ -129,71 +126,17 @@ describe('layered glTF BSDF: sample vs pdf (χ²)', () => {
   CASES.forEach(([name, p], index) => {
     for (const thetaO of THETAS) {
       it(`${name}, wo at ${thetaO}°`, () => {
-        const sp = setParams(p);
-        const N = p.samples ?? N_DEFAULT;
-        const [wox, woy, woz] = direction(thetaO);
-        const pdf = (x: number, y: number, z: number): number => {
-          q.wox = wox;
-          q.woy = woy;
-          q.woz = woz;
-          q.wix = x;
-          q.wiy = y;
-          q.wiz = z;
-          return layeredPdf(sp, q);
-        };
         const alphas = [p.roughness ** 2, (p.coatRoughness ?? 0) ** 2].filter((a) => a > 0);
-        const alpha = alphas.length > 0 ? Math.min(...alphas) : 1;
-        const grid = HemisphereGrid.around(
-          woz < 1 ? Math.acos(woz) : 0,
-          Math.atan2(-woy, -wox),
-          Math.max(2.5 * alpha, 1e-3),
-        );
-        const expected = grid.integrate(pdf);
-        let mass = 0;
-        for (let i = 0; i < grid.below; i++) mass += expected[i];
-        for (let i = 0; i < grid.below; i++) expected[i] *= N;
-        expected[grid.failed] = N * Math.max(0, 1 - mass);
-        const observed = new Float64Array(grid.nCells);
-        const out = new BsdfSample();
-        const f = new BsdfValue();
-        let weightErr = 0;
-        let pdfErr = 0;
-        for (let i = 0; i < N; i++) {
-          const key = sampleKey(8100 + index, i, thetaO);
-          q.wox = wox;
-          q.woy = woy;
-          q.woz = woz;
-          q.u0 = hashToUnit(key, 0);
-          q.u1 = hashToUnit(key, 1);
-          q.u2 = hashToUnit(key, 2);
-          if (!layeredSample(sp, q, out) || out.isDelta) {
-            observed[grid.failed]++;
-            continue;
-          }
-          observed[grid.cellOf(out.wx, out.wy, out.wz)]++;
-          q.wix = out.wx;
-          q.wiy = out.wy;
-          q.wiz = out.wz;
-          layeredEval(sp, q, f);
-          pdfErr = Math.max(pdfErr, relErr(out.pdf, f.pdf));
-          const k = out.wz / out.pdf;
-          weightErr = Math.max(
-            weightErr,
-            relErr(out.weightR, f.r * k),
-            relErr(out.weightG, f.g * k),
-            relErr(out.weightB, f.b * k),
-          );
-        }
-        const r = chi2Test(observed, expected);
-        expect(r.impossible).toBeNull();
-        expect(mass).toBeLessThan(1 + 1e-6);
-        expect(r.dof).toBeGreaterThan(50);
-        expect(
-          r.pValue,
-          `χ² = ${r.stat.toFixed(1)} on ${r.dof} dof; rest ${observed[grid.failed]} vs ${expected[grid.failed].toFixed(1)}`,
-        ).toBeGreaterThan(ALPHA);
-        expect(weightErr).toBeLessThan(1e-9);
-        expect(pdfErr).toBeLessThan(1e-9);
+        const r = bsdfChi2({
+          lobe: LAYERED,
+          sp: setParams(p),
+          wo: direction(thetaO),
+          width: lobeWidth(alphas.length > 0 ? Math.min(...alphas) : 1),
+          n: p.samples ?? N_DEFAULT,
+          seed: 8100 + index,
+          stream: thetaO,
+        });
+        expectChi2Fit(r, ALPHA);
       });
     }
   });
@@ -207,37 +150,16 @@ describe('layered glTF BSDF: sample vs pdf (χ²)', () => {
       clearcoat: 1,
       coatRoughness: 0.3,
     };
-    const [wox, woy, woz] = direction(70);
-    const grid = HemisphereGrid.around(70 * DEG, Math.atan2(-woy, -wox), 0.2);
-    const expected = grid.integrate((x, y, z) => {
-      setParams({ ...p, coatRoughness: 0.36 });
-      q.wox = wox;
-      q.woy = woy;
-      q.woz = woz;
-      q.wix = x;
-      q.wiy = y;
-      q.wiz = z;
-      return layeredPdf(q.shading, q);
+    const r = bsdfChi2({
+      lobe: LAYERED,
+      sp: setParams(p, new ShadingParams()),
+      pdfSp: setParams({ ...p, coatRoughness: 0.36 }, new ShadingParams()),
+      wo: direction(70),
+      width: 0.2,
+      n: N_DEFAULT,
+      seed: 98,
     });
-    let mass = 0;
-    for (let i = 0; i < grid.below; i++) mass += expected[i];
-    for (let i = 0; i < grid.below; i++) expected[i] *= N_DEFAULT;
-    expected[grid.failed] = N_DEFAULT * (1 - mass);
-    const observed = new Float64Array(grid.nCells);
-    const sp = setParams(p);
-    const out = new BsdfSample();
-    for (let i = 0; i < N_DEFAULT; i++) {
-      const key = sampleKey(98, i, 0);
-      q.wox = wox;
-      q.woy = woy;
-      q.woz = woz;
-      q.u0 = hashToUnit(key, 0);
-      q.u1 = hashToUnit(key, 1);
-      q.u2 = hashToUnit(key, 2);
-      if (!layeredSample(sp, q, out) || out.isDelta) observed[grid.failed]++;
-      else observed[grid.cellOf(out.wx, out.wy, out.wz)]++;
-    }
-    expect(chi2Test(observed, expected).pValue).toBeLessThan(1e-6);
+    expect(r.pValue).toBeLessThan(1e-6);
   });
 });
 
@@ -250,65 +172,16 @@ describe('layered glTF BSDF: reciprocity', () => {
       const sp = setParams(p);
       for (let i = 0; i < 2000; i++) {
         const key = sampleKey(4200 + index, i, 0);
-        const [ox, oy, oz] = direction(
-          Math.acos(hashToUnit(key, 0)) / DEG,
-          2 * Math.PI * hashToUnit(key, 1),
-        );
-        const [ix, iy, iz] = direction(
-          Math.acos(hashToUnit(key, 2)) / DEG,
-          2 * Math.PI * hashToUnit(key, 3),
-        );
-        q.wox = ox;
-        q.woy = oy;
-        q.woz = oz;
-        q.wix = ix;
-        q.wiy = iy;
-        q.wiz = iz;
-        layeredEval(sp, q, a);
-        q.wox = ix;
-        q.woy = iy;
-        q.woz = iz;
-        q.wix = ox;
-        q.wiy = oy;
-        q.wiz = oz;
-        layeredEval(sp, q, b);
+        const wo = direction(Math.acos(hashToUnit(key, 0)) / DEG, 2 * Math.PI * hashToUnit(key, 1));
+        const wi = direction(Math.acos(hashToUnit(key, 2)) / DEG, 2 * Math.PI * hashToUnit(key, 3));
+        const e = evalBothWays(LAYERED, sp, wo, wi, a, b);
         expect(Number.isFinite(a.r + a.g + a.b)).toBe(true);
-        worst = Math.max(worst, relErr(a.r, b.r), relErr(a.g, b.g), relErr(a.b, b.b));
+        worst = Math.max(worst, e);
       }
     });
     expect(worst).toBeLessThan(1e-12);
   });
 });
-
-/** Mean of each channel's weight over n samples at θo, and its standard error. */
-function furnace(p: Params, thetaO: number, n: number, seed: number): [number, number][] {
-  const sp = setParams(p);
-  const [x, y, z] = direction(thetaO);
-  const out = new BsdfSample();
-  const sum = [0, 0, 0];
-  const sum2 = [0, 0, 0];
-  for (let i = 0; i < n; i++) {
-    const key = sampleKey(seed, i, thetaO);
-    q.wox = x;
-    q.woy = y;
-    q.woz = z;
-    q.u0 = hashToUnit(key, 0);
-    q.u1 = hashToUnit(key, 1);
-    q.u2 = hashToUnit(key, 2);
-    if (!layeredSample(sp, q, out)) continue;
-    // Energy: undo radiance mode's (n1/n2)² on refraction.
-    const w = [out.weightR, out.weightG, out.weightB].map((x) => x * out.etaScale);
-    for (let c = 0; c < 3; c++) {
-      if (!(Number.isFinite(w[c]) && w[c] >= 0)) throw new Error(`bad weight ${w[c]}`);
-      sum[c] += w[c];
-      sum2[c] += w[c] * w[c];
-    }
-  }
-  return sum.map((s, c) => {
-    const mean = s / n;
-    return [mean, Math.sqrt(Math.max(0, sum2[c] / n - mean * mean) / n)];
-  });
-}
 
 const FURNACE_THETAS = [0, 30, 60, 80, 89];
 
@@ -316,10 +189,15 @@ function expectFurnace(cases: Params[], seed: number): void {
   const bad: string[] = [];
   cases.forEach((p, k) => {
     for (const theta of FURNACE_THETAS) {
-      const channels = furnace(p, theta, 8_000, seed + k);
-      for (const [c, [mean, se]] of channels.entries()) {
-        if (mean - 1 > 4 * se)
-          bad.push(`${JSON.stringify(p)} at ${theta}°, channel ${c}: ${mean} ± ${se}`);
+      const {
+        mean,
+        se,
+        bad: nonFinite,
+      } = furnace(LAYERED, setParams(p), direction(theta), 8_000, seed + k, theta);
+      if (nonFinite > 0) bad.push(`${JSON.stringify(p)} at ${theta}°: ${nonFinite} bad weights`);
+      for (let c = 0; c < 3; c++) {
+        if (mean[c] - 1 > 4 * se[c])
+          bad.push(`${JSON.stringify(p)} at ${theta}°, channel ${c}: ${mean[c]} ± ${se[c]}`);
       }
     }
   });

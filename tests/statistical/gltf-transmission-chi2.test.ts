@@ -19,12 +19,21 @@
  *   refraction goes straight on with weight baseColor·(1 − Fd), no (n1/n2)².
  */
 import { describe, expect, it } from 'vitest';
-import { gltfEval, gltfPdf, gltfSample } from '../../src/core/bsdf/gltf-pbr.ts';
+import { gltfEval, gltfSample } from '../../src/core/bsdf/gltf-pbr.ts';
 import { BsdfQuery, BsdfSample, BsdfValue } from '../../src/core/bsdf/records.ts';
 import type { ShadingParams } from '../../src/core/bsdf/shading.ts';
 import { hashToUnit, sampleKey } from '../../src/core/rng/pcg.ts';
-import { chi2Test } from '../helpers/chi2.ts';
-import { HemisphereGrid } from '../helpers/hemisphere-grid.ts';
+import {
+  bsdfChi2,
+  direction,
+  evalBothWays,
+  expectChi2Fit,
+  furnace,
+  gltfLobe,
+  lobeWidth,
+  relErr,
+  setSampleQuery,
+} from '../helpers/bsdf-chi2.ts';
 
 interface Params {
   metallic?: number;
@@ -52,19 +61,6 @@ function setParams(p: Params): ShadingParams {
   sp.specular = p.specular ?? 1;
   sp.ior = 1.5;
   return sp;
-}
-
-const DEG = Math.PI / 180;
-const PHI_O = 0.7;
-
-function direction(thetaDeg: number): [number, number, number] {
-  const t = thetaDeg * DEG;
-  return [Math.sin(t) * Math.cos(PHI_O), Math.sin(t) * Math.sin(PHI_O), Math.cos(t)];
-}
-
-function relErr(a: number, b: number): number {
-  const m = Math.max(Math.abs(a), Math.abs(b));
-  return m === 0 ? 0 : Math.abs(a - b) / m;
 }
 
 interface Case {
@@ -115,84 +111,18 @@ const samplesOf = (c: Case): number => (c.params.dt ? 40_000 : 100_000);
 describe('glTF transmission lobes: χ² of sample against pdf on the sphere', () => {
   CASES.forEach((c, index) => {
     it(c.name, () => {
-      const N = samplesOf(c);
-      const sp = setParams(c.params);
-      const s = c.inside ? -1 : 1;
-      const [wox, woy, oz] = direction(c.thetaO);
-      const woz = s * oz;
-      // Near: wo's side (z mirrored from behind); far: the other side, z mirrored again.
-      const pdfAt = (x: number, y: number, z: number): number => {
-        q.wox = wox;
-        q.woy = woy;
-        q.woz = woz;
-        q.wix = x;
-        q.wiy = y;
-        q.wiz = z;
-        return gltfPdf(sp, q);
-      };
-      const alpha = c.params.roughness ** 2;
-      const width = alpha === 0 ? 10 : Math.max(2.5 * alpha, 1e-3);
-      const near = HemisphereGrid.around(oz < 1 ? Math.acos(oz) : 0, Math.atan2(-woy, -wox), width);
-      const far = HemisphereGrid.around(0, 0, 10, 12, 24);
-      const en = near.integrate((x, y, z) => pdfAt(x, y, s * z));
-      const ef = far.integrate((x, y, z) => pdfAt(x, y, -s * z));
-      const cells = near.below + far.below + 1;
-      const failed = cells - 1;
-      const expected = new Float64Array(cells);
-      let mass = 0;
-      for (let i = 0; i < near.below; i++) {
-        expected[i] = en[i] * N;
-        mass += en[i];
-      }
-      for (let i = 0; i < far.below; i++) {
-        expected[near.below + i] = ef[i] * N;
-        mass += ef[i];
-      }
-      expected[failed] = N * Math.max(0, 1 - mass);
-      const observed = new Float64Array(cells);
-      const out = new BsdfSample();
-      const f = new BsdfValue();
-      let weightErr = 0;
-      let pdfErr = 0;
-      for (let i = 0; i < N; i++) {
-        const key = sampleKey(8100 + index, i, 0);
-        q.wox = wox;
-        q.woy = woy;
-        q.woz = woz;
-        q.u0 = hashToUnit(key, 0);
-        q.u1 = hashToUnit(key, 1);
-        q.u2 = hashToUnit(key, 2);
-        if (!gltfSample(sp, q, out) || out.isDelta) {
-          observed[failed]++;
-          continue;
-        }
-        const z = s * out.wz;
-        observed[
-          z > 0 ? near.cellOf(out.wx, out.wy, z) : near.below + far.cellOf(out.wx, out.wy, -z)
-        ]++;
-        q.wix = out.wx;
-        q.wiy = out.wy;
-        q.wiz = out.wz;
-        gltfEval(sp, q, f);
-        pdfErr = Math.max(pdfErr, relErr(out.pdf, f.pdf), relErr(f.pdf, gltfPdf(sp, q)));
-        const k = Math.abs(out.wz) / out.pdf;
-        weightErr = Math.max(
-          weightErr,
-          relErr(out.weightR, f.r * k),
-          relErr(out.weightG, f.g * k),
-          relErr(out.weightB, f.b * k),
-        );
-      }
-      const r = chi2Test(observed, expected);
-      expect(r.impossible).toBeNull();
-      expect(mass).toBeLessThan(1 + 1e-6);
-      expect(r.dof).toBeGreaterThan(50);
-      expect(
-        r.pValue,
-        `χ² = ${r.stat.toFixed(1)} on ${r.dof} dof; rest ${observed[failed]} vs ${expected[failed].toFixed(1)}`,
-      ).toBeGreaterThan(ALPHA);
-      expect(weightErr).toBeLessThan(1e-9);
-      expect(pdfErr).toBeLessThan(1e-9);
+      // Near: wo's side, around the mirror direction; far: the other side.
+      const r = bsdfChi2({
+        lobe: gltfLobe,
+        sp: setParams(c.params),
+        wo: direction(c.thetaO),
+        inside: c.inside,
+        width: lobeWidth(c.params.roughness ** 2),
+        n: samplesOf(c),
+        seed: 8100 + index,
+        sphere: true,
+      });
+      expectChi2Fit(r, ALPHA);
     });
   });
 });
@@ -207,7 +137,7 @@ describe('glTF transmission lobes: reciprocity', () => {
     for (const dt of [0, 0.4, 1]) {
       for (const transmission of [0, 0.5]) {
         for (const roughness of [0, 0.3, 1]) {
-          setParams({ dt, transmission, roughness, metallic: 0.2 });
+          const sp = setParams({ dt, transmission, roughness, metallic: 0.2 });
           for (let i = 0; i < 300; i++) {
             const key = sampleKey(77 + n++, i, 0);
             const za = 2 * hashToUnit(key, 0) - 1;
@@ -216,13 +146,9 @@ describe('glTF transmission lobes: reciprocity', () => {
             const pb = 2 * Math.PI * hashToUnit(key, 3);
             const ra = Math.sqrt(1 - za * za);
             const rb = Math.sqrt(1 - zb * zb);
-            const a = [ra * Math.cos(pa), ra * Math.sin(pa), za];
-            const b = [rb * Math.cos(pb), rb * Math.sin(pb), zb];
-            [q.wox, q.woy, q.woz, q.wix, q.wiy, q.wiz] = [...a, ...b];
-            gltfEval(q.shading, q, f);
-            [q.wox, q.woy, q.woz, q.wix, q.wiy, q.wiz] = [...b, ...a];
-            gltfEval(q.shading, q, g);
-            worst = Math.max(worst, relErr(f.r, g.r), relErr(f.g, g.g), relErr(f.b, g.b));
+            const a: [number, number, number] = [ra * Math.cos(pa), ra * Math.sin(pa), za];
+            const b: [number, number, number] = [rb * Math.cos(pb), rb * Math.sin(pb), zb];
+            worst = Math.max(worst, evalBothWays(gltfLobe, sp, a, b, f, g));
             if (za * zb < 0 && f.r > 0) far++;
           }
         }
@@ -258,31 +184,11 @@ describe('glTF transmission lobes: white furnace (energy ≤ 1)', () => {
           for (const thetaO of [0, 60, 89]) {
             for (const inside of [false, true]) {
               const [x, y, z] = direction(thetaO);
-              const out = new BsdfSample();
-              let sum = 0;
-              let sum2 = 0;
-              for (let i = 0; i < n; i++) {
-                const key = sampleKey(
-                  950 + thetaO,
-                  i,
-                  roughness * 100 + metallic * 10 + (inside ? 1 : 0),
-                );
-                q.wox = x;
-                q.woy = y;
-                q.woz = inside ? -z : z;
-                q.u0 = hashToUnit(key, 0);
-                q.u1 = hashToUnit(key, 1);
-                q.u2 = hashToUnit(key, 2);
-                let e = 0;
-                if (gltfSample(sp, q, out)) {
-                  e = out.weightR * out.etaScale;
-                  if (!(Number.isFinite(e) && e >= 0) || out.weightG !== out.weightR) bad++;
-                }
-                sum += e;
-                sum2 += e * e;
-              }
-              const mean = sum / n;
-              const se = Math.sqrt(Math.max(0, sum2 / n - mean * mean) / n);
+              const stream = roughness * 100 + metallic * 10 + (inside ? 1 : 0);
+              const e = furnace(gltfLobe, sp, [x, y, inside ? -z : z], n, 950 + thetaO, stream);
+              bad += e.bad + e.notGrey;
+              const [mean] = e.mean;
+              const [se] = e.se;
               if (mean - 1 > 4 * se + 1e-12)
                 where = `roughness ${roughness}, metallic ${metallic}, wo at ${thetaO}°${inside ? ' behind' : ''}: ${mean} ± ${se}`;
             }
@@ -305,13 +211,7 @@ describe('glTF transmission lobes: reductions', () => {
     const sp = setParams(p);
     const [x, y, z] = direction((i * 7) % 90);
     const inside = i % 2 === 1;
-    q.wox = x;
-    q.woy = y;
-    q.woz = inside ? -z : z;
-    const k = sampleKey(key, i, 0);
-    q.u0 = hashToUnit(k, 0);
-    q.u1 = hashToUnit(k, 1);
-    q.u2 = hashToUnit(k, 2);
+    setSampleQuery(q, x, y, inside ? -z : z, sampleKey(key, i, 0));
     const ok = gltfSample(sp, q, out);
     q.wix = -y;
     q.wiy = x;
@@ -378,13 +278,7 @@ describe('glTF transmission lobes: reductions', () => {
           [1, b],
         ] as const) {
           const sp = setParams({ ...p, thickness });
-          q.wox = x;
-          q.woy = y;
-          q.woz = z;
-          const k = sampleKey(6, i, roughness * 10);
-          q.u0 = hashToUnit(k, 0);
-          q.u1 = hashToUnit(k, 1);
-          q.u2 = hashToUnit(k, 2);
+          setSampleQuery(q, x, y, z, sampleKey(6, i, roughness * 10));
           // A refusal leaves the record as it was: mark it.
           if (!gltfSample(sp, q, out)) out.pdf = -1;
         }

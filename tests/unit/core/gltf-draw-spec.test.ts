@@ -13,58 +13,18 @@ import {
 } from '../../../src/core/gltf-material/material-table.ts';
 import { drawSpecMaterial } from '../../validation/gltf-draw-spec.ts';
 import { Rng } from '../../validation/rng.ts';
+import { quadGltfDataUri } from '../../fuzz/gltf-samples.ts';
 import { memoryOptions } from '../../helpers/gltf.ts';
 
-/** A unit quad (positions, normals, TEXCOORD_0, indices) as one base64 buffer. */
+/** The fuzz table's unit quad (.gltf, buffer in a data: URI) with `material` on it. */
 function quadGltf(material: Record<string, unknown>, extensionsUsed: string[]): Uint8Array {
-  const f = new Float32Array([
-    0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 1, 1, 1, 1, 0, 0, 0,
-  ]);
-  const i = new Uint16Array([0, 1, 2, 0, 2, 3]);
-  const bytes = new Uint8Array(f.byteLength + i.byteLength);
-  bytes.set(new Uint8Array(f.buffer), 0);
-  bytes.set(new Uint8Array(i.buffer), f.byteLength);
-  const json = {
-    asset: { version: '2.0' },
-    extensionsUsed,
-    buffers: [
-      {
-        byteLength: bytes.length,
-        uri: `data:application/octet-stream;base64,${Buffer.from(bytes).toString('base64')}`,
-      },
-    ],
-    bufferViews: [
-      { buffer: 0, byteOffset: 0, byteLength: 48 },
-      { buffer: 0, byteOffset: 48, byteLength: 48 },
-      { buffer: 0, byteOffset: 96, byteLength: 32 },
-      { buffer: 0, byteOffset: 128, byteLength: 12 },
-    ],
-    accessors: [
-      {
-        bufferView: 0,
-        componentType: 5126,
-        count: 4,
-        type: 'VEC3',
-        min: [0, 0, 0],
-        max: [1, 1, 0],
-      },
-      { bufferView: 1, componentType: 5126, count: 4, type: 'VEC3' },
-      { bufferView: 2, componentType: 5126, count: 4, type: 'VEC2' },
-      { bufferView: 3, componentType: 5123, count: 6, type: 'SCALAR' },
-    ],
-    materials: [material],
-    meshes: [
-      {
-        primitives: [
-          { attributes: { POSITION: 0, NORMAL: 1, TEXCOORD_0: 2 }, indices: 3, material: 0 },
-        ],
-      },
-    ],
-    nodes: [{ mesh: 0 }],
-    scenes: [{ nodes: [0] }],
-    scene: 0,
-  };
-  return new TextEncoder().encode(JSON.stringify(json));
+  return quadGltfDataUri({
+    edit: (json) => {
+      json.extensionsUsed = extensionsUsed;
+      json.materials = [material];
+      (json.meshes as { primitives: { material?: number }[] }[])[0].primitives[0].material = 0;
+    },
+  });
 }
 
 describe('drawSpecMaterial', () => {

@@ -19,7 +19,7 @@ import { GLTF_LIMITS } from '../../../src/core/gltf/validate.ts';
 import { loadBareModel } from '../../../src/core/scene/load/bare-scene.ts';
 import { flattenedCopy, flattenJson, writeGlb } from '../../helpers/gltf-copies.ts';
 import { io, memoryOptions, meshPrimitive, sceneWithFiles } from '../../helpers/gltf.ts';
-import { renderSampled, ROOT } from '../../helpers/render.ts';
+import { renderSampled, ROOT, type RenderOptions } from '../../helpers/render.ts';
 
 const fixture = (name: string): Uint8Array =>
   new Uint8Array(readFileSync(`${ROOT}tests/fixtures/gltf-instancing/${name}`));
@@ -41,6 +41,19 @@ function maxRelative(a: Float64Array, b: Float64Array): number {
     if (!(d <= worst)) worst = d;
   }
   return worst;
+}
+
+/**
+ * `a` draws `instances` instances and its flattened copy `b` none; their renders agree
+ * to 1e-5 (maxRelative), and the camera frames the model: the image is not the bare
+ * environment.
+ */
+function expectImageOfCopy(a: Scene, b: Scene, instances: number, options: RenderOptions): void {
+  expect(compileScene(a).instanceCount).toBe(instances);
+  expect(compileScene(b).instanceCount).toBe(0);
+  const ia = renderSampled(a, options);
+  expect(maxRelative(ia.mean, renderSampled(b, options).mean)).toBeLessThan(1e-5);
+  expect(Math.max(...ia.mean) - Math.min(...ia.mean)).toBeGreaterThan(0.05);
 }
 
 describe('instanced scene against its flattened copy', () => {
@@ -138,13 +151,7 @@ describe('what is instanced', () => {
     );
     const a = await loadBareModel(glb, 'a.glb', null);
     const b = await loadBareModel(flattenedCopy(glb), 'b.glb', null);
-    expect(compileScene(a).instanceCount).toBe(2);
-    expect(compileScene(b).instanceCount).toBe(0);
-    const options = { width: 16, height: 16, spp: 4 };
-    const ia = renderSampled(a, options);
-    expect(maxRelative(ia.mean, renderSampled(b, options).mean)).toBeLessThan(1e-5);
-    // The camera frames the quads: the image is not the bare environment.
-    expect(Math.max(...ia.mean) - Math.min(...ia.mean)).toBeGreaterThan(0.05);
+    expectImageOfCopy(a, b, 2, { width: 16, height: 16, spp: 4 });
   });
 
   it('KHR_materials_anisotropy through instances: the tangent is carried to world space', async () => {
@@ -184,12 +191,7 @@ describe('what is instanced', () => {
     const glb = await io().writeBinary(doc);
     const a = await loadBareModel(glb, 'a.glb', null);
     const b = await loadBareModel(flattenedCopy(glb), 'b.glb', null);
-    expect(compileScene(a).instanceCount).toBe(2);
-    expect(compileScene(b).instanceCount).toBe(0);
-    const options = { width: 16, height: 16, spp: 4 };
-    const ia = renderSampled(a, options);
-    expect(maxRelative(ia.mean, renderSampled(b, options).mean)).toBeLessThan(1e-5);
-    expect(Math.max(...ia.mean) - Math.min(...ia.mean)).toBeGreaterThan(0.05);
+    expectImageOfCopy(a, b, 2, { width: 16, height: 16, spp: 4 });
   });
 });
 
@@ -205,12 +207,7 @@ describe('textures through instances', () => {
     const { reader } = await memoryOptions(files);
     const a = await loadBareModel(gltf, 'TextureTransformTest.gltf', reader);
     const b = await loadBareModel(copy, 'TextureTransformTest.gltf', reader);
-    expect(compileScene(a).instanceCount).toBe(5);
-    expect(compileScene(b).instanceCount).toBe(0);
-    const options = { width: 32, height: 24, spp: 2 };
-    const ia = renderSampled(a, options);
-    expect(maxRelative(ia.mean, renderSampled(b, options).mean)).toBeLessThan(1e-5);
-    expect(Math.max(...ia.mean) - Math.min(...ia.mean)).toBeGreaterThan(0.05);
+    expectImageOfCopy(a, b, 5, { width: 32, height: 24, spp: 2 });
   });
 });
 
