@@ -6,7 +6,11 @@
  *
  * Each scene: a floor, sphere and quad lights (archetypes.ts), a constant environment
  * now and then, and one to three closed meshes (icosphere, box, torus) written as
- * `.glb` files (gltf-files.ts), each with one material drawn from GLTF_MATERIALS.
+ * `.glb` files (gltf-files.ts), each with one material drawn from GLTF_MATERIALS: the
+ * core model (metallic–roughness, transmission, ior, specular), clearcoat and sheen,
+ * thin-walled and diffuse transmission, volumes with Beer–Lambert absorption and
+ * dispersion (closed meshes only), iridescence and anisotropy. Materials without a
+ * volume also go on an open disc now and then.
  * The estimator-consistency suite (consistency-d.test.ts) renders them: NEE+MIS must
  * agree with BSDF-only sampling, and Sobol with independent samples, so every lobe's
  * eval, pdf and sample must agree with each other inside a whole renderer (the χ²
@@ -29,7 +33,10 @@ import {
 } from './archetypes.ts';
 import type { GltfFeature, SceneBuilder } from './builder.ts';
 import type { GltfMaterialJson, GltfObject } from './gltf-files.ts';
-import { box, icosphere, torus, type LocalMesh } from './meshes.ts';
+import { drawLayersMaterial } from './gltf-draw-layers.ts';
+import { drawSpecMaterial } from './gltf-draw-spec.ts';
+import { drawVolumeMaterial } from './gltf-draw-volume.ts';
+import { box, disc, icosphere, torus, type LocalMesh } from './meshes.ts';
 import type { Rng } from './rng.ts';
 import { add, length, sub, type Vec3 } from './vec.ts';
 
@@ -42,6 +49,11 @@ export interface DrawnMaterial {
 export interface GltfMaterialDrawer {
   name: string;
   weight: number;
+  /**
+   * Only on closed meshes: a KHR_materials_volume solid needs an inside for its
+   * Beer–Lambert path lengths and its refraction in and out (docs/gltf.md).
+   */
+  closedOnly?: boolean;
   draw(g: Rng): DrawnMaterial;
 }
 
@@ -94,17 +106,89 @@ function drawPlain(g: Rng): DrawnMaterial {
   };
 }
 
-/** Every drawer; a material extension's lobes join here (see the file comment). */
+/** The base's tags: metal or dielectric, smooth (Dirac lobes) or rough. */
+function baseFeatures(m: GltfMaterialJson): GltfFeature[] {
+  const pbr = m.pbrMetallicRoughness as { metallicFactor: number; roughnessFactor: number };
+  return [
+    pbr.metallicFactor > 0.5 ? 'gltf-metal' : 'gltf-dielectric',
+    pbr.roughnessFactor === 0 ? 'gltf-smooth' : 'gltf-rough',
+  ];
+}
+
+/** KHR_materials_clearcoat and KHR_materials_sheen over a base (gltf-draw-layers.ts). */
+function drawLayers(g: Rng): DrawnMaterial {
+  const layers = drawLayersMaterial(g);
+  const { KHR_materials_clearcoat: coat, KHR_materials_sheen: sheen } = layers.extensions;
+  const material: GltfMaterialJson = { ...layers };
+  const features = baseFeatures(material);
+  // A zero coat or a black sheen is the reduction to the base: drawn, but not tagged.
+  if (coat.clearcoatFactor > 0) features.push('gltf-clearcoat');
+  if (Math.max(...sheen.sheenColorFactor) > 0) features.push('gltf-sheen');
+  return { material, features };
+}
+
+/** Transmission without a volume: thin-walled glass or diffuse transmission (gltf-draw-volume.ts). */
+function drawThinWalled(g: Rng): DrawnMaterial {
+  const { kind, ...material } = drawVolumeMaterial(
+    g,
+    g.pick(['thin glass', 'diffuse transmission'] as const),
+  );
+  const features = baseFeatures(material);
+  features.push(kind === 'thin glass' ? 'gltf-thin-glass' : 'gltf-diffuse-transmission');
+  if ((material.extensions as Record<string, unknown>).KHR_materials_transmission)
+    features.push('gltf-transmission');
+  return { material, features };
+}
+
+/** A KHR_materials_volume solid, dispersive now and then (gltf-draw-volume.ts): closed meshes only. */
+function drawVolume(g: Rng): DrawnMaterial {
+  const { kind, ...material } = drawVolumeMaterial(
+    g,
+    g.pick(['volume', 'dispersive volume'] as const),
+  );
+  const ext = material.extensions as { KHR_materials_volume: { attenuationDistance?: number } };
+  const features = baseFeatures(material);
+  features.push('gltf-transmission', 'gltf-volume');
+  if (ext.KHR_materials_volume.attenuationDistance !== undefined) features.push('gltf-attenuation');
+  if (kind === 'dispersive volume') features.push('gltf-dispersion');
+  return { material, features };
+}
+
+/** KHR_materials_iridescence and/or KHR_materials_anisotropy (gltf-draw-spec.ts). */
+function drawSpec(g: Rng): DrawnMaterial {
+  const { material } = drawSpecMaterial(g);
+  const ext = material.extensions as Record<string, unknown>;
+  const features = baseFeatures(material);
+  // encodeGlb writes TEXCOORD_0 and TANGENT, which anisotropy needs.
+  if (ext.KHR_materials_anisotropy) features.push('gltf-anisotropy');
+  if (ext.KHR_materials_iridescence) features.push('gltf-iridescence');
+  return { material, features };
+}
+
+/**
+ * Every drawer; a material extension's lobes join here (see the file comment). The
+ * weights give the core model about a third of the objects and each extension drawer
+ * about a sixth, so the suite's seeds see every feature (generator.test.ts checks).
+ */
 export const GLTF_MATERIALS: GltfMaterialDrawer[] = [
-  { name: 'metallic-roughness', weight: 1, draw: drawPlain },
+  { name: 'metallic-roughness', weight: 2, draw: drawPlain },
+  { name: 'clearcoat-sheen', weight: 1, draw: drawLayers },
+  { name: 'thin-walled', weight: 1, draw: drawThinWalled },
+  { name: 'volume', weight: 1, closedOnly: true, draw: drawVolume },
+  { name: 'iridescence-anisotropy', weight: 1, draw: drawSpec },
 ];
 
-/** The meshes a glTF object may be: closed, so transmissive ones bound a volume. */
-function drawMesh(g: Rng): LocalMesh {
+/**
+ * The meshes a glTF object may be: closed ones (icosphere, box, torus), which bound a
+ * volume, and for materials without one now and then an open disc (a thin wall seen
+ * from both sides).
+ */
+function drawMesh(g: Rng, closedOnly: boolean): LocalMesh {
   return g.weighted([
-    [icosphere(2), 0.5],
-    [box(), 0.25],
-    [torus(0.35, 24, 12), 0.25],
+    [icosphere(2), 0.45],
+    [box(), 0.2],
+    [torus(0.35, 24, 12), 0.2],
+    [disc(16), closedOnly ? 0 : 0.15],
   ] as const);
 }
 
@@ -136,9 +220,12 @@ function buildGltfObjects(b: SceneBuilder): ReturnType<Archetype['build']> {
     placed++;
     const drawer = g.weighted(GLTF_MATERIALS.map((d) => [d, d.weight] as const));
     const drawn = drawer.draw(g);
-    b.tag('gltf', ...drawn.features);
+    const mesh = drawMesh(g, drawer.closedOnly === true);
+    if (drawer.closedOnly === true && !mesh.closed)
+      throw new Error(`${drawer.name} on an open mesh`);
+    b.tag('gltf', ...drawn.features, ...(mesh.closed ? [] : (['gltf-open-mesh'] as const)));
     b.gltf({
-      mesh: drawMesh(g),
+      mesh,
       material: drawn.material,
       transform: trs(c, g.direction(), g.uniform(0, 2 * Math.PI), [size, size, size]),
     });

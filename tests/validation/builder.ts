@@ -92,6 +92,16 @@ export const GLTF_FEATURES = [
   'gltf-transmission',
   'gltf-specular',
   'gltf-ior',
+  'gltf-clearcoat',
+  'gltf-sheen',
+  'gltf-thin-glass',
+  'gltf-diffuse-transmission',
+  'gltf-volume',
+  'gltf-attenuation',
+  'gltf-dispersion',
+  'gltf-iridescence',
+  'gltf-anisotropy',
+  'gltf-open-mesh',
 ] as const;
 export type GltfFeature = (typeof GLTF_FEATURES)[number];
 export type Feature = (typeof FEATURES)[number] | (typeof MESH_FEATURES)[number] | GltfFeature;

@@ -32,9 +32,13 @@ import {
   type SamplerKind,
 } from '../../src/core/index.ts';
 import {
+  GM_DISPERSION,
   GM_EMISSIVE,
   GM_IOR,
+  GM_SHEEN_COLOR,
+  GM_SHEEN_ROUGHNESS,
   GM_STRIDE,
+  GM_THICKNESS,
   GM_TRANSMISSION,
 } from '../../src/core/gltf-material/material-table.ts';
 import {
@@ -108,8 +112,12 @@ const CONFIGS: Record<'A' | 'B' | 'C', { estimator: Estimator; sampler: SamplerK
  * roulette's 1/(1−q) with q = max(0.05, 1 − max β·etaScale), which can
  * lift the largest channel by at most 1/0.95 per bounce from the third.
  * With a = the largest diffuse albedo (1 as soon as any conductor or
- * dielectric is present, GLTF_WEIGHT_BOUND with a glTF model):
- * V = (Le·Σₖ aᵏ + Lenv·max(1, a)^B) · ηfactor · 0.95^−(B−2),
+ * dielectric is present, GLTF_WEIGHT_BOUND with a glTF model, sheenWeightBound with a
+ * sharp glTF sheen):
+ * A dispersive glTF volume makes a path carry one channel weighted 3 (dispersion.ts):
+ * one factor χ = 3 when any material disperses, and its ηfactor uses the largest
+ * dispersed index ior + h.
+ * V = (Le·Σₖ aᵏ + Lenv·max(1, a)^B) · ηfactor · χ · 0.95^−(B−2),
  * Lenv the constant environment or the brightest texel of the map times its
  * scale.
  */
@@ -117,6 +125,7 @@ export function bsdfSampleBound(scene: Scene): number {
   let le = 0;
   let a = 0;
   let eta = 1;
+  let channel = 1;
   for (const m of Object.values(scene.materials)) {
     le = Math.max(le, ...m.emission);
     if (m.type === 'diffuse') a = Math.max(a, ...m.albedo);
@@ -133,16 +142,33 @@ export function bsdfSampleBound(scene: Scene): number {
         table[o + GM_EMISSIVE + 1],
         table[o + GM_EMISSIVE + 2],
       );
-      if (table[o + GM_TRANSMISSION] > 0) eta *= Math.max(1, table[o + GM_IOR] ** 2);
+      if (!(table[o + GM_TRANSMISSION] > 0)) continue;
+      // KHR_materials_dispersion (src/core/bsdf/dispersion.ts): a path keeps one channel,
+      // weighted 3, from its first dispersive event on — once per path, whatever the number
+      // of dispersive materials — and sees that channel's index, at most ior + h.
+      const ior = table[o + GM_IOR];
+      const dispersion = table[o + GM_THICKNESS] > 0 ? table[o + GM_DISPERSION] : 0;
+      if (dispersion > 0) channel = 3;
+      eta *= Math.max(1, (ior + Math.max(0, ior - 1) * 0.025 * dispersion) ** 2);
     }
     a = Math.max(a, GLTF_WEIGHT_BOUND);
+    for (let o = 0; o < table.length; o += GM_STRIDE) {
+      const sheen = Math.max(
+        table[o + GM_SHEEN_COLOR],
+        table[o + GM_SHEEN_COLOR + 1],
+        table[o + GM_SHEEN_COLOR + 2],
+      );
+      if (sheen > 0) a = Math.max(a, sheenWeightBound(table[o + GM_SHEEN_ROUGHNESS]));
+    }
   }
   const B = scene.settings.maxBounces;
   let sum = 0;
   for (let k = 0; k <= B; k++) sum += a ** k;
   const env = Math.max(...scene.environment, environmentMapMaximum(scene));
   // The environment is reached after at most B scattering events, each weighing ≤ a when a > 1.
-  return (le * sum + env * Math.max(1, a) ** B) * eta * Math.pow(1 / 0.95, Math.max(0, B - 2));
+  return (
+    (le * sum + env * Math.max(1, a) ** B) * eta * channel * Math.pow(1 / 0.95, Math.max(0, B - 2))
+  );
 }
 
 /**
@@ -154,6 +180,28 @@ export function bsdfSampleBound(scene: Scene): number {
  * so a lobe that breaks it fails loudly rather than weakening the test in silence.
  */
 export const GLTF_WEIGHT_BOUND = 4;
+
+/**
+ * A bound on one channel of a sample's weight from a glTF material with a sheen of
+ * roughness r (KHR_materials_sheen, src/core/bsdf/gltf-layers.ts), where GLTF_WEIGHT_BOUND
+ * does not hold. The sheen lobe is picked with probability T(wo)·max3(sheenColor)·Ê(μo)
+ * and sampled uniformly over the hemisphere, so its weight is at most
+ *   W(r) = sup 2π · D·V(wo, wi)·μi / (max(1, E(μo), E(μi)) · Ê(μo)),
+ * the peak-to-mean ratio of the Charlie lobe (the colour over max3 is ≤ 1; a base lobe
+ * in the mixture only lowers it: a sum's ratio is at most the larger ratio). It is large
+ * for sharp sheens, whose lobe at grazing angles is far from uniform. Maximised on a grid
+ * (μo 1/400…1, μi 1/200…1, Δφ 2°): W(0.05) = 27.2, W(0.07) = 24.2, W(0.1) = 21.6,
+ * W(0.3) = 6.3, W(0.6) = 2.5, W(1) = 1.8 (decreasing in r); the steps below add a
+ * quarter for the grid. Below 0.05 (which the generator does not draw) the albedo table
+ * reaches 0 where D·V does not, and no finite bound holds. gltf-weight-bound.test.ts
+ * checks every drawer's samples against these.
+ */
+export function sheenWeightBound(roughness: number): number {
+  if (roughness >= 0.6) return GLTF_WEIGHT_BOUND;
+  if (roughness >= 0.3) return 8;
+  if (roughness >= 0.05) return 34;
+  return Infinity;
+}
 
 /** The brightest radiance an environment map sends: largest texel times scale (0 without one). */
 export function environmentMapMaximum(scene: Scene): number {
