@@ -183,7 +183,7 @@ export const GLTF_MATERIALS: GltfMaterialDrawer[] = [
  * volume, and for materials without one now and then an open disc (a thin wall seen
  * from both sides).
  */
-function drawMesh(g: Rng, closedOnly: boolean): LocalMesh {
+export function drawGltfMesh(g: Rng, closedOnly: boolean): LocalMesh {
   return g.weighted([
     [icosphere(2), 0.45],
     [box(), 0.2],
@@ -220,7 +220,7 @@ function buildGltfObjects(b: SceneBuilder): ReturnType<Archetype['build']> {
     placed++;
     const drawer = g.weighted(GLTF_MATERIALS.map((d) => [d, d.weight] as const));
     const drawn = drawer.draw(g);
-    const mesh = drawMesh(g, drawer.closedOnly === true);
+    const mesh = drawGltfMesh(g, drawer.closedOnly === true);
     if (drawer.closedOnly === true && !mesh.closed)
       throw new Error(`${drawer.name} on an open mesh`);
     b.tag('gltf', ...drawn.features, ...(mesh.closed ? [] : (['gltf-open-mesh'] as const)));

@@ -323,6 +323,13 @@ export const MESH_FIRST_SEED = 3001;
 /** glTF-family scenes (generateScene(seed, { family: 'gltf' })), seeds GLTF_FIRST_SEED…. */
 export const GLTF_SCENE_COUNT = 16;
 export const GLTF_FIRST_SEED = 5001;
+/**
+ * Punctual-light scenes (generateScene(seed, { family: 'punctual' })), seeds
+ * PUNCTUAL_FIRST_SEED…, checked by punctual.ts (Sobol = independent, point = sphere):
+ * TESTS_PER_SCENE tests each, like the other families.
+ */
+export const PUNCTUAL_SCENE_COUNT = 10;
+export const PUNCTUAL_FIRST_SEED = 7001;
 export const ALPHA_SUITE = 1e-3;
 export const OPTIONS: ConsistencyOptions = {
   width: 32,
@@ -337,7 +344,8 @@ export const OPTIONS: ConsistencyOptions = {
  */
 export const MESH_OPTIONS: ConsistencyOptions = { ...OPTIONS, budget: 1_350_000 };
 export const TESTS_PER_SCENE = 2 * imageRegions(OPTIONS.width, OPTIONS.height).length * 3;
-/** Bonferroni over every test of the three families: the whole suite fails by chance with p ≤ ALPHA_SUITE. */
+/** Bonferroni over every test of the four families: the whole suite fails by chance with p ≤ ALPHA_SUITE. */
 export const ALPHA_PER_TEST =
-  ALPHA_SUITE / ((SCENE_COUNT + MESH_SCENE_COUNT + GLTF_SCENE_COUNT) * TESTS_PER_SCENE);
+  ALPHA_SUITE /
+  ((SCENE_COUNT + MESH_SCENE_COUNT + GLTF_SCENE_COUNT + PUNCTUAL_SCENE_COUNT) * TESTS_PER_SCENE);
 const Z_PER_TEST = normalQuantileTwoSided(ALPHA_PER_TEST);
