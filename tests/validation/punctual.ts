@@ -18,16 +18,15 @@
  *    ≤ θs²·(2/α)² relative for a GGX lobe of α ≥ MIN_ROUGHNESS² = 0.04, whose value
  *    varies over ~α/2 in wi; with θs ≤ POINT_SPHERE_RADIUS / CLEARANCE = 2e-4 that is
  *    ≤ 1e-4 (the sheen lobe, ≥ 0.05 rad wide, and diffuse lobes less);
- * 2. penumbrae, of width w ≤ r·(receiver distance / occluder distance) ≤ 1e-4 × 40 in the
- *    unit frame (the floor is 40 wide): the soft profile minus the hard one integrates to
- *    0 across a straight edge, but an edge a region boundary cuts leaves at most w/2 of
- *    the edge's length — ≤ 2e-3 / (0.1 unit: a 4×3-pixel block seen from ≥ 5 away) =
- *    2e-2 of one block's light in the very worst case, ≤ 1e-3 for the penumbrae the
- *    scene's objects cast (within 4 units of the light: w ≤ 1e-3);
+ * 2. penumbrae, of width w ≤ r·(receiver distance / occluder distance) ≤ 1e-4·20/0.5 =
+ *    4e-3 in the unit frame: the soft profile minus the hard one integrates to 0 across
+ *    a straight edge, but where a region's border cuts an edge a strip ≤ w/2 wide differs
+ *    by at most half its light on average: ≤ 3e-3 of a 4×3-pixel block's light (≥ 0.37
+ *    units wide at the cameras' ≥ 5 units and fovY ≥ 25°) in the worst case;
  * 3. the sphere shading the environment, the horizon crossing the cone: O(θs²), ≤ 1e-7.
- * All far below what a test can resolve at this budget (`detectable`, reported per
- * scene: a few per cent of the whole image, more per block), so the sphere stands in
- * for the point light to well within the test's power.
+ * The test resolves at best ~0.15 % of the whole image (`detectable`), where only the
+ * O(θs²) terms act, and ~0.5 % of a block: the sphere stands in for the point light
+ * within the test's power (docs/validation.md).
  */
 import { compileScene, parseScene, type Scene } from '../../src/core/index.ts';
 import { POINT_SPHERE_RADIUS } from './archetypes-punctual.ts';
