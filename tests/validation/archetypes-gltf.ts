@@ -31,6 +31,7 @@ import {
   type Archetype,
   type Region,
 } from './archetypes.ts';
+import { MAP_ENVIRONMENT_MAKERS } from './archetypes-mesh.ts';
 import type { GltfFeature, SceneBuilder } from './builder.ts';
 import type { GltfMaterialJson, GltfObject } from './gltf-files.ts';
 import { drawLayersMaterial } from './gltf-draw-layers.ts';
@@ -167,12 +168,13 @@ function drawSpec(g: Rng): DrawnMaterial {
 
 /**
  * Every drawer; a material extension's lobes join here (see the file comment). The
- * weights give the core model about a third of the objects and each extension drawer
- * about a sixth, so the suite's seeds see every feature (generator.test.ts checks).
+ * weights give the core model and the two-lobe clearcoat–sheen drawer about a quarter
+ * of the objects each, and each other extension drawer about a seventh, so the suite's
+ * seeds see every feature (generator.test.ts checks).
  */
 export const GLTF_MATERIALS: GltfMaterialDrawer[] = [
   { name: 'metallic-roughness', weight: 2, draw: drawPlain },
-  { name: 'clearcoat-sheen', weight: 1, draw: drawLayers },
+  { name: 'clearcoat-sheen', weight: 2, draw: drawLayers },
   { name: 'thin-walled', weight: 1, draw: drawThinWalled },
   { name: 'volume', weight: 1, closedOnly: true, draw: drawVolume },
   { name: 'iridescence-anisotropy', weight: 1, draw: drawSpec },
@@ -190,6 +192,57 @@ export function drawGltfMesh(g: Rng, closedOnly: boolean): LocalMesh {
     [torus(0.35, 24, 12), 0.2],
     [disc(16), closedOnly ? 0 : 0.15],
   ] as const);
+}
+
+const MAPS_ONLY = MAP_ENVIRONMENT_MAKERS.filter((m) => m.name.endsWith('-map'));
+
+/** One glTF object of a drawn material at `c`, `size` across (a random rotation). */
+function placeGltfObject(b: SceneBuilder, c: Vec3, size: number): void {
+  const g = b.rng;
+  const drawer = g.weighted(GLTF_MATERIALS.map((d) => [d, d.weight] as const));
+  const drawn = drawer.draw(g);
+  const mesh = drawGltfMesh(g, drawer.closedOnly === true);
+  if (drawer.closedOnly === true && !mesh.closed) throw new Error(`${drawer.name} on an open mesh`);
+  b.tag('gltf', ...drawn.features, ...(mesh.closed ? [] : (['gltf-open-mesh'] as const)));
+  b.gltf({
+    mesh,
+    material: drawn.material,
+    transform: trs(c, g.direction(), g.uniform(0, 2 * Math.PI), [size, size, size]),
+  });
+}
+
+/**
+ * One glTF object filling most of the view, lit by an environment map alone (no
+ * emitter in view), 1–3 bounces: the material's own lobes make most of the image, and the
+ * BSDF-only bound V (a product over the bounces) stays small enough for the NEE+MIS vs
+ * BSDF-only pair to have power on it. The objects archetype, with up to six bounces
+ * between several small objects, has almost none on that pair (docs/validation.md).
+ */
+function buildGltfCloseup(b: SceneBuilder): ReturnType<Archetype['build']> {
+  const g = b.rng;
+  const S = 40;
+  b.quad([-S / 2, 0, -S / 2], [0, 0, S], [S, 0, 0], b.material('diffuse'));
+  // A map, not a constant: only a map is a light that next-event estimation samples, so
+  // under a constant alone NEE+MIS would be BSDF-only and the pair would test nothing.
+  environment(b, 0, MAPS_ONLY);
+  const size = g.uniform(0.6, 1);
+  const c: Vec3 = [0, size * 1.3, 0];
+  const elevation = g.uniform(5, 60) * (Math.PI / 180);
+  const azimuth = g.uniform(0, 2 * Math.PI);
+  const dist = size * g.uniform(3, 5);
+  const eye: Vec3 = [
+    c[0] + dist * Math.cos(elevation) * Math.sin(azimuth),
+    c[1] + dist * Math.sin(elevation),
+    c[2] + dist * Math.cos(elevation) * Math.cos(azimuth),
+  ];
+  placeGltfObject(b, c, size);
+  b.tag('camera-outside');
+  // The object (≤ √3·size across from its centre) fills about two thirds of the height.
+  const fovY = (2 * Math.atan((size * g.uniform(1.4, 2)) / dist) * 180) / Math.PI;
+  return {
+    camera: { position: eye, target: c, up: [0, 1, 0], fovY },
+    maxBounces: bounces(b, 1, 3),
+  };
 }
 
 function buildGltfObjects(b: SceneBuilder): ReturnType<Archetype['build']> {
@@ -218,17 +271,7 @@ function buildGltfObjects(b: SceneBuilder): ReturnType<Archetype['build']> {
     c[1] = Math.max(c[1], size * 1.2);
     if (length(sub(c, eye)) < size * 3) continue;
     placed++;
-    const drawer = g.weighted(GLTF_MATERIALS.map((d) => [d, d.weight] as const));
-    const drawn = drawer.draw(g);
-    const mesh = drawGltfMesh(g, drawer.closedOnly === true);
-    if (drawer.closedOnly === true && !mesh.closed)
-      throw new Error(`${drawer.name} on an open mesh`);
-    b.tag('gltf', ...drawn.features, ...(mesh.closed ? [] : (['gltf-open-mesh'] as const)));
-    b.gltf({
-      mesh,
-      material: drawn.material,
-      transform: trs(c, g.direction(), g.uniform(0, 2 * Math.PI), [size, size, size]),
-    });
+    placeGltfObject(b, c, size);
   }
   b.tag('camera-outside');
   return {
@@ -244,4 +287,5 @@ function buildGltfObjects(b: SceneBuilder): ReturnType<Archetype['build']> {
 
 export const GLTF_ARCHETYPES: Archetype[] = [
   { name: 'gltf-objects', weight: 1, build: buildGltfObjects },
+  { name: 'gltf-closeup', weight: 1, build: buildGltfCloseup },
 ];

@@ -321,7 +321,7 @@ export const SCENE_COUNT = 120;
 export const MESH_SCENE_COUNT = 40;
 export const MESH_FIRST_SEED = 3001;
 /** glTF-family scenes (generateScene(seed, { family: 'gltf' })), seeds GLTF_FIRST_SEED…. */
-export const GLTF_SCENE_COUNT = 24;
+export const GLTF_SCENE_COUNT = 32;
 export const GLTF_FIRST_SEED = 5001;
 /**
  * Punctual-light scenes (generateScene(seed, { family: 'punctual' })), seeds
