@@ -4,9 +4,11 @@
  * `generateScene(seed, { family: 'gltf' })`. A family of its own so the classic and
  * mesh families keep their random streams, seeds and committed references.
  *
- * Each scene: a floor, sphere and quad lights (archetypes.ts), a constant environment
- * now and then, and one to three closed meshes (icosphere, box, torus) written as
- * `.glb` files (gltf-files.ts), each with one material drawn from GLTF_MATERIALS: the
+ * Two archetypes: gltf-objects (a floor, sphere and quad lights, a constant environment
+ * now and then, one to three objects, up to 6 bounces) and gltf-closeup (one object
+ * filling the view under an environment map, 1–3 bounces, where the NEE+MIS vs
+ * BSDF-only pair has power). The objects are meshes (icosphere, box, torus, disc) written
+ * as `.glb` files (gltf-files.ts), each with one material drawn from GLTF_MATERIALS: the
  * core model (metallic–roughness, transmission, ior, specular), clearcoat and sheen,
  * thin-walled and diffuse transmission, volumes with Beer–Lambert absorption and
  * dispersion (closed meshes only), iridescence and anisotropy. Materials without a
