@@ -31,16 +31,7 @@ import {
   type Estimator,
   type SamplerKind,
 } from '../../src/core/index.ts';
-import {
-  GM_DISPERSION,
-  GM_EMISSIVE,
-  GM_IOR,
-  GM_SHEEN_COLOR,
-  GM_SHEEN_ROUGHNESS,
-  GM_STRIDE,
-  GM_THICKNESS,
-  GM_TRANSMISSION,
-} from '../../src/core/gltf-material/material-table.ts';
+import { gltfSampleFactors } from './gltf-bounds.ts';
 import {
   imageRegions,
   pilotSegments,
@@ -49,6 +40,8 @@ import {
   type Replicas,
 } from './replicas.ts';
 import { normalQuantileTwoSided, welch } from './stats.ts';
+
+export { GLTF_WEIGHT_BOUND, sheenWeightBound } from './gltf-bounds.ts';
 
 export interface ConsistencyOptions {
   width: number;
@@ -134,32 +127,11 @@ export function bsdfSampleBound(scene: Scene): number {
   }
   for (const s of scene.shapes) {
     if (s.type !== 'gltf' || s.data === null) continue;
-    const table = s.data.materials;
-    for (let o = 0; o < table.length; o += GM_STRIDE) {
-      le = Math.max(
-        le,
-        table[o + GM_EMISSIVE],
-        table[o + GM_EMISSIVE + 1],
-        table[o + GM_EMISSIVE + 2],
-      );
-      if (!(table[o + GM_TRANSMISSION] > 0)) continue;
-      // KHR_materials_dispersion (src/core/bsdf/dispersion.ts): a path keeps one channel,
-      // weighted 3, from its first dispersive event on — once per path, whatever the number
-      // of dispersive materials — and sees that channel's index, at most ior + h.
-      const ior = table[o + GM_IOR];
-      const dispersion = table[o + GM_THICKNESS] > 0 ? table[o + GM_DISPERSION] : 0;
-      if (dispersion > 0) channel = 3;
-      eta *= Math.max(1, (ior + Math.max(0, ior - 1) * 0.025 * dispersion) ** 2);
-    }
-    a = Math.max(a, GLTF_WEIGHT_BOUND);
-    for (let o = 0; o < table.length; o += GM_STRIDE) {
-      const sheen = Math.max(
-        table[o + GM_SHEEN_COLOR],
-        table[o + GM_SHEEN_COLOR + 1],
-        table[o + GM_SHEEN_COLOR + 2],
-      );
-      if (sheen > 0) a = Math.max(a, sheenWeightBound(table[o + GM_SHEEN_ROUGHNESS]));
-    }
+    const f = gltfSampleFactors(s.data.materials);
+    le = Math.max(le, f.emission);
+    a = Math.max(a, f.weight);
+    eta *= f.eta;
+    channel = Math.max(channel, f.channel);
   }
   const B = scene.settings.maxBounces;
   let sum = 0;
@@ -169,38 +141,6 @@ export function bsdfSampleBound(scene: Scene): number {
   return (
     (le * sum + env * Math.max(1, a) ** B) * eta * channel * Math.pow(1 / 0.95, Math.max(0, B - 2))
   );
-}
-
-/**
- * A bound on one channel of a glTF BSDF sample's weight f·cos/pdf. The glTF BSDF picks
- * its lobe with probabilities from the *mean* over channels of each lobe's albedo
- * estimate, so one channel of a saturated colour can carry up to 3× the mean; and the
- * estimate is taken at wo only, so a rough lobe's weight may exceed it somewhat. 4 covers
- * both; the suite checks the premise on every scene (the largest sample seen ≤ the bound),
- * so a lobe that breaks it fails loudly rather than weakening the test in silence.
- */
-export const GLTF_WEIGHT_BOUND = 4;
-
-/**
- * A bound on one channel of a sample's weight from a glTF material with a sheen of
- * roughness r (KHR_materials_sheen, src/core/bsdf/gltf-layers.ts), where GLTF_WEIGHT_BOUND
- * does not hold. The sheen lobe is picked with probability T(wo)·max3(sheenColor)·Ê(μo)
- * and sampled uniformly over the hemisphere, so its weight is at most
- *   W(r) = sup 2π · D·V(wo, wi)·μi / (max(1, E(μo), E(μi)) · Ê(μo)),
- * the peak-to-mean ratio of the Charlie lobe (the colour over max3 is ≤ 1; a base lobe
- * in the mixture only lowers it: a sum's ratio is at most the larger ratio). It is large
- * for sharp sheens, whose lobe at grazing angles is far from uniform. Maximised on a grid
- * (μo 1/400…1, μi 1/200…1, Δφ 2°): W(0.05) = 27.2, W(0.07) = 24.2, W(0.1) = 21.6,
- * W(0.3) = 6.3, W(0.6) = 2.5, W(1) = 1.8 (decreasing in r); the steps below add a
- * quarter for the grid. Below 0.05 (which the generator does not draw) the albedo table
- * reaches 0 where D·V does not, and no finite bound holds. gltf-weight-bound.test.ts
- * checks every drawer's samples against these.
- */
-export function sheenWeightBound(roughness: number): number {
-  if (roughness >= 0.6) return GLTF_WEIGHT_BOUND;
-  if (roughness >= 0.3) return 8;
-  if (roughness >= 0.05) return 34;
-  return Infinity;
 }
 
 /** The brightest radiance an environment map sends: largest texel times scale (0 without one). */

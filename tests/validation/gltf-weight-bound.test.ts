@@ -1,12 +1,11 @@
 /**
- * The premise of GLTF_WEIGHT_BOUND (consistency.ts), checked lobe by lobe: for every
- * drawer of the glTF family (archetypes-gltf.ts), one channel of a BSDF sample's weight
- * (as a fraction of the bound bsdfSampleBound takes for its material: GLTF_WEIGHT_BOUND,
- * or sheenWeightBound for a sheen)
- * f·|cos|/pdf — times etaScale, since the suite's bound counts the (n1/n2)² of
- * refraction apart, per solid — stays at or under the bound, over materials drawn by the
- * drawer itself (fixed seeds; 60 materials × 16 directions × 64 samples), loaded by the core's loader and filled as the integrator
- * fills them, and over directions wo on both sides of the surface.
+ * The premise of the per-bounce weight bounds (gltf-bounds.ts: GLTF_WEIGHT_BOUND, or
+ * sheenWeightBound for a sheen), checked lobe by lobe: for every drawer of the glTF family
+ * (archetypes-gltf.ts), one channel of a BSDF sample's weight f·|cos|/pdf — times
+ * etaScale, since the suite's bound counts the (n1/n2)² of refraction apart, per solid —
+ * stays at or under its material's bound, over materials drawn by the drawer itself
+ * (fixed seeds; 60 materials × 16 directions × 64 samples), loaded by the core's loader
+ * and filled as the integrator fills them, with wo on both sides of the surface.
  *
  * The consistency suite only checks the bound on whole paths (the largest BSDF-only
  * sample ≤ V), which is loose; this test sees each lobe's weight directly, so a new lobe
@@ -21,12 +20,8 @@ import { HitAttributes, fillGltfShading } from '../../src/core/gltf-material/sha
 import { hashToUnit, sampleKey } from '../../src/core/rng/pcg.ts';
 import { memoryOptions } from '../helpers/gltf.ts';
 import { GLTF_MATERIALS } from './archetypes-gltf.ts';
-import {
-  GM_SHEEN_COLOR,
-  GM_SHEEN_ROUGHNESS,
-  GM_STRIDE,
-} from '../../src/core/gltf-material/material-table.ts';
-import { GLTF_WEIGHT_BOUND, sheenWeightBound } from './consistency.ts';
+import { GM_STRIDE } from '../../src/core/gltf-material/material-table.ts';
+import { gltfSampleFactors } from './gltf-bounds.ts';
 import { Rng } from './rng.ts';
 
 const MATERIALS = 60;
@@ -59,17 +54,9 @@ describe('GLTF_WEIGHT_BOUND', () => {
       const t = model.materials;
       for (let m = 0; m < MATERIALS; m++) {
         fillGltfShading(t, model.textures, m, hit, q.shading);
-        // The bound bsdfSampleBound uses for this material (consistency.ts).
+        // The bound bsdfSampleBound uses for this material (gltf-bounds.ts).
         const o = m * GM_STRIDE;
-        const sheen = Math.max(
-          t[o + GM_SHEEN_COLOR],
-          t[o + GM_SHEEN_COLOR + 1],
-          t[o + GM_SHEEN_COLOR + 2],
-        );
-        const bound =
-          sheen > 0
-            ? Math.max(GLTF_WEIGHT_BOUND, sheenWeightBound(t[o + GM_SHEEN_ROUGHNESS]))
-            : GLTF_WEIGHT_BOUND;
+        const bound = gltfSampleFactors(t.subarray(o, o + GM_STRIDE)).weight;
         for (let d = 0; d < DIRECTIONS; d++) {
           // wo uniform on the sphere: the back side is the inside of a solid or of a thin wall.
           const z = 1 - 2 * hashToUnit(sampleKey(m, d, 0), 1);
