@@ -51,7 +51,7 @@ type LightJson = Record<string, unknown>;
 
 interface Case {
   name: string;
-  scene: SceneJson & { lights?: LightJson[] };
+  scene: Omit<SceneJson, 'lights'> & { lights?: LightJson[] };
   exact: number;
   delta: number;
 }

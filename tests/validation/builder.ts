@@ -92,9 +92,29 @@ export const GLTF_FEATURES = [
   'gltf-transmission',
   'gltf-specular',
   'gltf-ior',
+  'gltf-clearcoat',
+  'gltf-sheen',
+  'gltf-thin-glass',
+  'gltf-diffuse-transmission',
+  'gltf-volume',
+  'gltf-attenuation',
+  'gltf-dispersion',
+  'gltf-iridescence',
+  'gltf-anisotropy',
+  'gltf-open-mesh',
 ] as const;
 export type GltfFeature = (typeof GLTF_FEATURES)[number];
-export type Feature = (typeof FEATURES)[number] | (typeof MESH_FEATURES)[number] | GltfFeature;
+/** What the punctual family (archetypes-punctual.ts) covers. */
+export const PUNCTUAL_FEATURES = [
+  'punctual-point',
+  'punctual-spot',
+  'punctual-directional',
+] as const;
+export type Feature =
+  | (typeof FEATURES)[number]
+  | (typeof MESH_FEATURES)[number]
+  | GltfFeature
+  | (typeof PUNCTUAL_FEATURES)[number];
 
 export type MaterialJson =
   | { type: 'diffuse'; albedo: Vec3; emission?: Vec3 }
@@ -167,6 +187,19 @@ export interface SceneJson {
   materials: Record<string, MaterialJson>;
   shapes: ShapeJson[];
   environment?: Vec3 | { type: 'map'; file: string; scale?: number | Vec3; rotationY?: number };
+  /** Punctual lights (docs/scene-format.md): the punctual family's. */
+  lights?: PunctualLightJson[];
+}
+
+/** A scene-format punctual light (gltf-draw-lights.ts draws them): world space, degrees. */
+export interface PunctualLightJson {
+  type: 'point' | 'spot' | 'directional';
+  position?: Vec3;
+  direction?: Vec3;
+  intensity: number;
+  color: Vec3;
+  innerConeAngle?: number;
+  outerConeAngle?: number;
 }
 
 export type MaterialKind = 'diffuse' | 'conductor' | 'dielectric';
@@ -190,6 +223,8 @@ export class SceneBuilder {
   environment: EnvironmentJson = null;
   /** The glTF model of each gltf shape, by its index in `shapes`. */
   readonly gltfObjects = new Map<number, GltfObject>();
+  /** Punctual lights, in the archetype's unit frame. */
+  readonly punctualLights: PunctualLightJson[] = [];
   private count = 0;
 
   constructor(readonly rng: Rng) {}

@@ -31,12 +31,7 @@ import {
   type Estimator,
   type SamplerKind,
 } from '../../src/core/index.ts';
-import {
-  GM_EMISSIVE,
-  GM_IOR,
-  GM_STRIDE,
-  GM_TRANSMISSION,
-} from '../../src/core/gltf-material/material-table.ts';
+import { gltfSampleFactors } from './gltf-bounds.ts';
 import {
   imageRegions,
   pilotSegments,
@@ -45,6 +40,8 @@ import {
   type Replicas,
 } from './replicas.ts';
 import { normalQuantileTwoSided, welch } from './stats.ts';
+
+export { GLTF_WEIGHT_BOUND, sheenWeightBound } from './gltf-bounds.ts';
 
 export interface ConsistencyOptions {
   width: number;
@@ -108,8 +105,12 @@ const CONFIGS: Record<'A' | 'B' | 'C', { estimator: Estimator; sampler: SamplerK
  * roulette's 1/(1−q) with q = max(0.05, 1 − max β·etaScale), which can
  * lift the largest channel by at most 1/0.95 per bounce from the third.
  * With a = the largest diffuse albedo (1 as soon as any conductor or
- * dielectric is present, GLTF_WEIGHT_BOUND with a glTF model):
- * V = (Le·Σₖ aᵏ + Lenv·max(1, a)^B) · ηfactor · 0.95^−(B−2),
+ * dielectric is present, GLTF_WEIGHT_BOUND with a glTF model, sheenWeightBound with a
+ * sharp glTF sheen):
+ * A dispersive glTF volume makes a path carry one channel weighted 3 (dispersion.ts):
+ * one factor χ = 3 when any material disperses, and its ηfactor uses the largest
+ * dispersed index ior + h.
+ * V = (Le·Σₖ aᵏ + Lenv·max(1, a)^B) · ηfactor · χ · 0.95^−(B−2),
  * Lenv the constant environment or the brightest texel of the map times its
  * scale.
  */
@@ -117,6 +118,7 @@ export function bsdfSampleBound(scene: Scene): number {
   let le = 0;
   let a = 0;
   let eta = 1;
+  let channel = 1;
   for (const m of Object.values(scene.materials)) {
     le = Math.max(le, ...m.emission);
     if (m.type === 'diffuse') a = Math.max(a, ...m.albedo);
@@ -125,35 +127,21 @@ export function bsdfSampleBound(scene: Scene): number {
   }
   for (const s of scene.shapes) {
     if (s.type !== 'gltf' || s.data === null) continue;
-    const table = s.data.materials;
-    for (let o = 0; o < table.length; o += GM_STRIDE) {
-      le = Math.max(
-        le,
-        table[o + GM_EMISSIVE],
-        table[o + GM_EMISSIVE + 1],
-        table[o + GM_EMISSIVE + 2],
-      );
-      if (table[o + GM_TRANSMISSION] > 0) eta *= Math.max(1, table[o + GM_IOR] ** 2);
-    }
-    a = Math.max(a, GLTF_WEIGHT_BOUND);
+    const f = gltfSampleFactors(s.data.materials);
+    le = Math.max(le, f.emission);
+    a = Math.max(a, f.weight);
+    eta *= f.eta;
+    channel = Math.max(channel, f.channel);
   }
   const B = scene.settings.maxBounces;
   let sum = 0;
   for (let k = 0; k <= B; k++) sum += a ** k;
   const env = Math.max(...scene.environment, environmentMapMaximum(scene));
   // The environment is reached after at most B scattering events, each weighing ≤ a when a > 1.
-  return (le * sum + env * Math.max(1, a) ** B) * eta * Math.pow(1 / 0.95, Math.max(0, B - 2));
+  return (
+    (le * sum + env * Math.max(1, a) ** B) * eta * channel * Math.pow(1 / 0.95, Math.max(0, B - 2))
+  );
 }
-
-/**
- * A bound on one channel of a glTF BSDF sample's weight f·cos/pdf. The glTF BSDF picks
- * its lobe with probabilities from the *mean* over channels of each lobe's albedo
- * estimate, so one channel of a saturated colour can carry up to 3× the mean; and the
- * estimate is taken at wo only, so a rough lobe's weight may exceed it somewhat. 4 covers
- * both; the suite checks the premise on every scene (the largest sample seen ≤ the bound),
- * so a lobe that breaks it fails loudly rather than weakening the test in silence.
- */
-export const GLTF_WEIGHT_BOUND = 4;
 
 /** The brightest radiance an environment map sends: largest texel times scale (0 without one). */
 export function environmentMapMaximum(scene: Scene): number {
@@ -273,8 +261,15 @@ export const SCENE_COUNT = 120;
 export const MESH_SCENE_COUNT = 40;
 export const MESH_FIRST_SEED = 3001;
 /** glTF-family scenes (generateScene(seed, { family: 'gltf' })), seeds GLTF_FIRST_SEED…. */
-export const GLTF_SCENE_COUNT = 16;
+export const GLTF_SCENE_COUNT = 32;
 export const GLTF_FIRST_SEED = 5001;
+/**
+ * Punctual-light scenes (generateScene(seed, { family: 'punctual' })), seeds
+ * PUNCTUAL_FIRST_SEED…, checked by punctual.ts (Sobol = independent, point = sphere):
+ * TESTS_PER_SCENE tests each, like the other families.
+ */
+export const PUNCTUAL_SCENE_COUNT = 10;
+export const PUNCTUAL_FIRST_SEED = 7001;
 export const ALPHA_SUITE = 1e-3;
 export const OPTIONS: ConsistencyOptions = {
   width: 32,
@@ -289,7 +284,8 @@ export const OPTIONS: ConsistencyOptions = {
  */
 export const MESH_OPTIONS: ConsistencyOptions = { ...OPTIONS, budget: 1_350_000 };
 export const TESTS_PER_SCENE = 2 * imageRegions(OPTIONS.width, OPTIONS.height).length * 3;
-/** Bonferroni over every test of the three families: the whole suite fails by chance with p ≤ ALPHA_SUITE. */
+/** Bonferroni over every test of the four families: the whole suite fails by chance with p ≤ ALPHA_SUITE. */
 export const ALPHA_PER_TEST =
-  ALPHA_SUITE / ((SCENE_COUNT + MESH_SCENE_COUNT + GLTF_SCENE_COUNT) * TESTS_PER_SCENE);
+  ALPHA_SUITE /
+  ((SCENE_COUNT + MESH_SCENE_COUNT + GLTF_SCENE_COUNT + PUNCTUAL_SCENE_COUNT) * TESTS_PER_SCENE);
 const Z_PER_TEST = normalQuantileTwoSided(ALPHA_PER_TEST);

@@ -17,7 +17,9 @@
  *
  * The 'gltf' family (archetypes-gltf.ts) writes glTF models as `.glb` files in
  * `files`; loading them is asynchronous, so its `scene` keeps them unread until
- * `loadGltfModels` reads them through the core's loader.
+ * `loadGltfModels` reads them through the core's loader. The 'punctual' family
+ * (archetypes-punctual.ts) is glTF models under KHR_lights_punctual-style lights
+ * (the scene's `lights`), with no Dirac lobe anywhere.
  *
  * Use: `generateScene(seed)`; `node scripts/run-ts.mjs
  * tests/validation/export-references.ts` writes the reference set as files.
@@ -31,12 +33,14 @@ import { compose, similarityMatrix, transformPositions } from './affine.ts';
 import { ARCHETYPES } from './archetypes.ts';
 import { MESH_ARCHETYPES } from './archetypes-mesh.ts';
 import { GLTF_ARCHETYPES } from './archetypes-gltf.ts';
+import { PUNCTUAL_ARCHETYPES } from './archetypes-punctual.ts';
 import { encodeGlb } from './gltf-files.ts';
 import {
   SceneBuilder,
   type Feature,
   type MeshJson,
   type MeshStorage,
+  type PunctualLightJson,
   type SceneJson,
   type ShapeJson,
 } from './builder.ts';
@@ -44,7 +48,7 @@ import { encodeMeshFile } from './mesh-files.ts';
 import { Rng } from './rng.ts';
 import { Similarity, normalize, type Vec3 } from './vec.ts';
 
-export type Family = 'classic' | 'mesh' | 'gltf';
+export type Family = 'classic' | 'mesh' | 'gltf' | 'punctual';
 
 export interface GeneratedScene {
   seed: number;
@@ -77,7 +81,13 @@ export function generateScene(seed: number, options: GenerateOptions = {}): Gene
   const b = new SceneBuilder(rng);
   const family = options.family ?? 'classic';
   const all =
-    family === 'mesh' ? MESH_ARCHETYPES : family === 'gltf' ? GLTF_ARCHETYPES : ARCHETYPES;
+    family === 'mesh'
+      ? MESH_ARCHETYPES
+      : family === 'gltf'
+        ? GLTF_ARCHETYPES
+        : family === 'punctual'
+          ? PUNCTUAL_ARCHETYPES
+          : ARCHETYPES;
   const candidates = options.archetype ? all.filter((a) => a.name === options.archetype) : all;
   if (candidates.length === 0) throw new Error(`unknown archetype ${options.archetype}`);
   const archetype = rng.weighted(candidates.map((a) => [a, a.weight] as const));
@@ -150,6 +160,9 @@ export function generateScene(seed: number, options: GenerateOptions = {}): Gene
     materials: b.materials,
     shapes,
     ...(environment !== undefined ? { environment } : {}),
+    ...(b.punctualLights.length > 0
+      ? { lights: b.punctualLights.map((l) => transformLight(l, sim)) }
+      : {}),
   };
   const scene = readFiles(parseScene(JSON.stringify(json)), files);
   const triangles = scene.shapes.reduce(
@@ -207,6 +220,20 @@ function meshFile(
     material: m.material,
     file,
     ...(m.transform ? { transform: m.transform } : {}),
+  };
+}
+
+/**
+ * Maps a punctual light by the similarity: position and direction as points and
+ * directions; a point or spot light's intensity (candela) by scale², so the irradiance
+ * I/d² it gives at the mapped distances, and with it the image, stays the same.
+ */
+function transformLight(l: PunctualLightJson, sim: Similarity): PunctualLightJson {
+  return {
+    ...l,
+    ...(l.position ? { position: sim.point(l.position) } : {}),
+    ...(l.direction ? { direction: normalize(sim.direction(l.direction)) } : {}),
+    intensity: l.type === 'directional' ? l.intensity : l.intensity * sim.scale * sim.scale,
   };
 }
 

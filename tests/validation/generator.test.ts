@@ -4,8 +4,10 @@
  * its mesh family likewise for issue 11 (meshes and maps), with the files
  * its scenes name reading back through the core's own file resolution; the
  * classic family unchanged by the mesh family (its scenes, and so the
- * committed references, byte for byte); and the consistency test's power:
- * it must catch a known 3 % bias.
+ * committed references, byte for byte); its glTF family's materials and its
+ * punctual family's lights (no Dirac lobe, a point light in every scene, the
+ * sphere stand-in); and the consistency test's power: it must catch a known 3 %
+ * bias, and point lights 5 % too bright against their spheres.
  */
 import { createHash } from 'node:crypto';
 import { readFileSync } from 'node:fs';
@@ -21,7 +23,20 @@ import {
 import { ARCHETYPES } from './archetypes.ts';
 import { MESH_ARCHETYPES } from './archetypes-mesh.ts';
 import { GLTF_ARCHETYPES, GLTF_MATERIALS } from './archetypes-gltf.ts';
-import { FEATURES, GLTF_FEATURES, MESH_FEATURES } from './builder.ts';
+import { MIN_ROUGHNESS } from './archetypes-punctual.ts';
+import {
+  FEATURES,
+  GLTF_FEATURES,
+  MESH_FEATURES,
+  PUNCTUAL_FEATURES,
+  type ShapeJson,
+} from './builder.ts';
+import {
+  GM_CLEARCOAT,
+  GM_CLEARCOAT_ROUGHNESS,
+  GM_ROUGHNESS,
+  GM_STRIDE,
+} from '../../src/core/gltf-material/material-table.ts';
 import {
   ALPHA_PER_TEST,
   GLTF_FIRST_SEED,
@@ -30,9 +45,12 @@ import {
   MESH_OPTIONS,
   MESH_SCENE_COUNT,
   OPTIONS,
+  PUNCTUAL_FIRST_SEED,
+  PUNCTUAL_SCENE_COUNT,
   SCENE_COUNT,
   checkConsistency,
 } from './consistency.ts';
+import { checkPunctual, pointLightsAsSpheres, sphereVariant } from './punctual.ts';
 import { generateScene, loadGltfModels, type GeneratedScene } from './generate.ts';
 import { cross, normalize } from './vec.ts';
 
@@ -251,7 +269,71 @@ describe('scene generator, glTF family', () => {
   });
 });
 
+describe('scene generator, punctual family', () => {
+  const scenes = Array.from({ length: PUNCTUAL_SCENE_COUNT }, (_, i) =>
+    generateScene(PUNCTUAL_FIRST_SEED + i, { family: 'punctual' }),
+  );
+
+  it('has a point light in every scene, every light kind, and no Dirac lobe', async () => {
+    const seen = new Set(scenes.flatMap((g) => g.features));
+    for (const f of PUNCTUAL_FEATURES) expect(seen.has(f), f).toBe(true);
+    for (const g of scenes) {
+      expect(g.features, `seed ${g.seed}`).toContain('punctual-point');
+      expect(g.features, `seed ${g.seed}`).not.toContain('gltf-smooth');
+      const scene = await loadGltfModels(g);
+      for (const m of Object.values(scene.materials))
+        expect(m.type, `seed ${g.seed}`).toBe('diffuse');
+      for (const s of scene.shapes) {
+        if (s.type !== 'gltf') continue;
+        expect(s.data!.warnings, `seed ${g.seed}`).toEqual([]);
+        const t = s.data!.materials;
+        for (let o = 0; o < t.length; o += GM_STRIDE) {
+          expect(t[o + GM_ROUGHNESS]).toBeGreaterThanOrEqual(MIN_ROUGHNESS);
+          if (t[o + GM_CLEARCOAT] > 0)
+            expect(t[o + GM_CLEARCOAT_ROUGHNESS]).toBeGreaterThanOrEqual(MIN_ROUGHNESS);
+        }
+      }
+    }
+  });
+
+  it('replaces each point light, and only point lights, by a sphere of intensity I', () => {
+    const g = scenes.find((s) => (s.json.lights ?? []).length > 1)!;
+    const r = 1e-3;
+    const json = pointLightsAsSpheres(g.json, r);
+    const points = g.json.lights!.filter((l) => l.type === 'point');
+    expect(json.lights ?? []).toEqual(g.json.lights!.filter((l) => l.type !== 'point'));
+    expect(json.shapes.length).toBe(g.json.shapes.length + points.length);
+    points.forEach((l, i) => {
+      const s = json.shapes[g.json.shapes.length + i] as Extract<ShapeJson, { type: 'sphere' }>;
+      expect(s.center).toEqual(l.position);
+      // Radiant intensity of a Lambertian sphere: L · π r² in every direction.
+      const e = json.materials[s.material].emission!;
+      for (let c = 0; c < 3; c++)
+        expect(e[c] * Math.PI * r * r).toBeCloseTo(l.intensity * l.color[c], 9);
+    });
+  });
+});
+
 describe('consistency test power', () => {
+  it('catches point lights 5 % too bright against their spheres', async () => {
+    // Punctual scene 7002 (one point light, no environment): the point light lights it all.
+    const g = generateScene(7002, { family: 'punctual' });
+    const scene = await loadGltfModels(g);
+    const brighter = {
+      ...scene,
+      lights: scene.lights!.map((l) => ({ ...l, intensity: l.intensity * 1.05 })),
+    };
+    const r = checkPunctual(
+      brighter,
+      await sphereVariant(g),
+      MESH_OPTIONS,
+      100_003 * 7002,
+      ALPHA_PER_TEST,
+    );
+    const caught = r.tests.filter((t) => t.pair === 'point-vs-sphere' && t.p < ALPHA_PER_TEST);
+    expect(caught.length).toBeGreaterThan(0);
+  });
+
   /** The scene with every emission and the environment scaled by k: the image scales by k. */
   function brighter(scene: Scene, k: number): Scene {
     const materials = Object.fromEntries(
