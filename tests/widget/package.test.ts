@@ -50,11 +50,17 @@ function runInProject(name: string, source: string): string {
 }
 
 describe('the installed package', () => {
-  test('ships only the library, its types, the command line, bin and the scenes', () => {
+  test('ships only the library, its types, the command line, bin, the scenes and the KTX2 transcoder', () => {
     const top = readdirSync(installed.packageDir).sort();
     for (const entry of top) {
-      expect(['LICENSE', 'README.md', 'bin', 'dist', 'package.json', 'scenes']).toContain(entry);
+      expect(['LICENSE', 'README.md', 'bin', 'dist', 'package.json', 'scenes', 'vendor']).toContain(
+        entry,
+      );
     }
+    // The Basis Universal transcoder the command line loads for KTX2 textures (src/cli/gltf-node.ts).
+    expect(readdirSync(join(installed.packageDir, 'vendor'))).toEqual(['basis']);
+    const basis = readdirSync(join(installed.packageDir, 'vendor/basis'));
+    for (const f of ['basis_transcoder.js', 'basis_transcoder.wasm']) expect(basis).toContain(f);
     expect(readdirSync(join(installed.packageDir, 'dist')).sort()).toEqual(['cli', 'lib', 'types']);
     const pkg = JSON.parse(readFileSync(join(installed.packageDir, 'package.json'), 'utf8')) as {
       exports: Record<string, string | Record<string, string>>;
