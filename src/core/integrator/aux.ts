@@ -115,7 +115,9 @@ export function gltfAlbedo(sp: ShadingParams, out: AuxSample): void {
 
 /**
  * The albedo and normal of sample `sampleIndex` of pixel (px, py) into `out`.
- * PathTracer's `traceAux` (set on the prototype in path-tracer.ts).
+ * PathTracer's `traceAux` (set on the prototype in path-tracer.ts). `started`: the
+ * sampler is already at this pixel sample (trace of the same sample just ran; fill is a
+ * pure function of the state startPixelSample sets), which saves the Sobol set-up.
  */
 export function traceAux(
   this: PathTracer,
@@ -123,6 +125,7 @@ export function traceAux(
   py: number,
   sampleIndex: number,
   out: AuxSample,
+  started = false,
 ): void {
   const scene = this.scene;
   const materials = scene.materials;
@@ -137,7 +140,7 @@ export function traceAux(
   const sp = bq.shading;
   const u = this.u;
   const aperture = this.camera.aperture > 0;
-  sampler.startPixelSample(py * this.width + px, sampleIndex, aperture);
+  if (!started) sampler.startPixelSample(py * this.width + px, sampleIndex, aperture);
   sampler.fillRange(DIM_FILM, 0, aperture ? DIM_LENS + 2 - DIM_FILM : DIM_LENS - DIM_FILM, u);
   this.camera.generateRayFromSamples(px, py, u, DIM_LENS - DIM_FILM, ray);
   // Throughput of the delta chain so far.
@@ -294,9 +297,11 @@ export function traceAux(
         finish(out, 0, 0, 0, onx, ony, onz);
         return;
       }
-      tr *= bs.weightR;
-      tg *= bs.weightG;
-      tb *= bs.weightB;
+      // The albedo's factor is the surface's colour, not the radiance weight: etaScale
+      // undoes refraction's 1/η² (radiance compression), which is no reflectance.
+      tr *= bs.weightR * bs.etaScale;
+      tg *= bs.weightG * bs.etaScale;
+      tb *= bs.weightB * bs.etaScale;
       const wix = bs.wx * fsx + bs.wy * ftx + bs.wz * sx;
       const wiy = bs.wx * fsy + bs.wy * fty + bs.wz * sy;
       const wiz = bs.wx * fsz + bs.wy * ftz + bs.wz * sz;

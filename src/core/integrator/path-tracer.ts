@@ -112,7 +112,8 @@ export class PathTracer {
     for (let x = 0; x < width; x++) {
       for (let s = sampleStart; s < sampleEnd; s++) {
         this.trace(x, y, s, stats);
-        this.traceAux(x, y, s, a);
+        // The sampler is still at this sample: traceAux skips its set-up.
+        this.traceAux(x, y, s, a, true);
         if (!film.addSampleAux(x, y, this, a)) stats.rejected++;
       }
     }
@@ -150,7 +151,13 @@ export class PathTracer {
   declare trace: (px: number, py: number, sampleIndex: number, stats: RenderStats) => void;
 
   /** The albedo and normal of sample `sampleIndex` of pixel (px, py) into `out` (aux.ts). */
-  declare traceAux: (px: number, py: number, sampleIndex: number, out: AuxSample) => void;
+  declare traceAux: (
+    px: number,
+    py: number,
+    sampleIndex: number,
+    out: AuxSample,
+    started?: boolean,
+  ) => void;
 
   /**
    * Distance along the camera's forward axis to the surface seen through
