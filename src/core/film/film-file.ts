@@ -13,6 +13,10 @@
  *               lo    [4n]  float64 LE  exact-sum low limbs
  *          end−4 CRC-32 of every byte before it         uint32 LE
  *
+ * Version 2 (`pathwise-film/2`, FILM_FORMAT_AUX) adds the header key `aux` and, after
+ * `lo`, auxHi [6n] and auxLo [6n]: the exact sums of albedo R G B and normal X Y Z
+ * (integrator/aux.ts). A film without them is written as version 1, as before.
+ *
  * n = width·height, pixels row-major from the top row. The Float32 display
  * sums are not stored: they are one rounding of the exact sums (Film.resolve).
  *
