@@ -173,7 +173,8 @@ export function decodeFilmHeader(
   total: number,
 ): { header: FilmHeader; byteLength: number } {
   const present = prefix.subarray(0, Math.min(total, MAGIC_BYTES.length));
-  const v2 = total >= MAGIC_AUX_BYTES.length && startsWith(present, MAGIC_AUX_BYTES);
+  // A prefix of either magic (a file cut inside it is named as truncated below).
+  const v2 = !startsWith(MAGIC_BYTES, present) && startsWith(MAGIC_AUX_BYTES, present);
   if (!v2 && !startsWith(MAGIC_BYTES, present)) {
     throw new FilmFileError(
       `not a .film file: it does not start with "${FILM_FORMAT}" or "${FILM_FORMAT_AUX}"`,
