@@ -159,6 +159,22 @@ describe('split and merge with aux', () => {
     );
   });
 
+  it('a part with aux resumed (--resume) gives the bytes of one run', () => {
+    pathwiseOk(['render', scene, '--samples', '0:2', '--out', at('c2.film'), '--aux']);
+    pathwiseOk([
+      'render',
+      scene,
+      '--resume',
+      at('c2.film'),
+      '--out',
+      at('resumed.film'),
+      '--albedo',
+      at('resumed-albedo.pfm'),
+    ]);
+    expect(same(at('resumed.film'), at('full.film'))).toBe(true);
+    expect(same(at('resumed-albedo.pfm'), at('albedo.pfm'))).toBe(true);
+  });
+
   it('refuses to resume a checkpoint of the other kind', () => {
     pathwiseOk(['render', scene, '--samples', '0:3', '--out', at('c1.film')]);
     expectRefusal(
