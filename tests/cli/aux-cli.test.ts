@@ -82,6 +82,29 @@ describe('render --albedo --normal', () => {
     expect(normal.rgb.some((v) => v < -0.9)).toBe(true);
   });
 
+  it('worker threads killed mid-render: the aux planes too are finished from journals, same bytes', () => {
+    const env = { ...process.env, PATHWISE_TEST_FAULTS: 'kill=2,crash=2,seed=3' };
+    const r = pathwise(
+      [
+        'render',
+        scene,
+        '--threads',
+        '2',
+        '--stripe-rows',
+        '2',
+        '--out',
+        at('faulty.film'),
+        '--aux',
+        '--json',
+      ],
+      ROOT,
+      env,
+    );
+    expect(r.status, r.stderr).toBe(0);
+    expect(JSON.parse(r.stdout).workers_replaced).toBeGreaterThanOrEqual(1);
+    expect(same(at('faulty.film'), at('full.film'))).toBe(true);
+  });
+
   it('a .film with aux is pathwise-film/2; without, pathwise-film/1 as before', () => {
     expect(readFilm(at('full.film')).header).toMatchObject({
       format: 'pathwise-film/2',
