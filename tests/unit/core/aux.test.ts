@@ -208,6 +208,53 @@ describe('aux albedo and normal per material', () => {
   });
 });
 
+describe('alpha: the aux sees what the radiance sees', () => {
+  it('a half-transparent emitter at 1 spp: albedo where the path hit it, 0 where it passed', async () => {
+    const doc = new Document();
+    doc.createBuffer();
+    // Black base (albedo 0), emission 1, coverage 0.5: a sample that hits it has radiance 1
+    // (bounces 0: emission only) and albedo 1; one that passes through sees the black
+    // environment, radiance 0 and albedo 0.
+    const mat = doc
+      .createMaterial()
+      .setBaseColorFactor([0, 0, 0, 0.5])
+      .setAlphaMode('BLEND')
+      .setEmissiveFactor([1, 1, 1]);
+    const glb = await toGlb(docWith(doc, quadPrimitive(doc).setMaterial(mat)));
+    const scene = await sceneWithFiles(
+      {
+        format: 'pathwise-scene/1',
+        camera: { position: [0.5, 0.5, 3], target: [0.5, 0.5, 0], up: [0, 1, 0], fovY: 10 },
+        settings: { width: 16, height: 16, maxBounces: 0, spp: 1 },
+        materials: {},
+        shapes: [{ type: 'gltf', file: 'm.glb' }],
+        environment: [0, 0, 0],
+      },
+      new Map([['m.glb', glb]]),
+    );
+    const tracer = new PathTracer(compileScene(scene), {
+      width: 16,
+      height: 16,
+      maxBounces: 0,
+      seed: 5,
+      camera: scene.camera,
+    });
+    const film = new Film(16, 16, undefined, 0, 0, true);
+    tracer.renderRows(film, 0, 16, 0, 1, new RenderStats());
+    const albedo = film.auxMean(0);
+    const radiance = film.mean();
+    let hits = 0;
+    for (let p = 0; p < 256; p++) {
+      const hit = radiance[3 * p] > 0;
+      expect(albedo[3 * p], `pixel ${p}`).toBe(hit ? 1 : 0);
+      if (hit) hits++;
+    }
+    // Both kinds occur (256 samples at p = 0.5: all of one kind has probability 2^-255).
+    expect(hits).toBeGreaterThan(0);
+    expect(hits).toBeLessThan(256);
+  });
+});
+
 describe('gltfAlbedo: the layer sum', () => {
   const sp = () => {
     const s = new ShadingParams();
