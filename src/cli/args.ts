@@ -207,6 +207,6 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
       environment: environment as BareEnvironment | undefined,
       variant: options.get('variant') as string | undefined,
     },
-    aux: parseAuxOptions(options),
+    aux: parseAuxOptions(options, out),
   };
 }

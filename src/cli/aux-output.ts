@@ -4,6 +4,7 @@
  * same accepted samples as the radiance), and carried in `.film` parts as
  * `pathwise-film/2` (docs/film-format.md) so that split renders merge them exactly.
  */
+import { resolve } from 'node:path';
 import { encodePfm } from '../core/io/pfm.ts';
 import type { Film } from '../core/film/film.ts';
 import { quote } from '../core/util/message.ts';
@@ -30,8 +31,11 @@ export const AUX_USAGE = `  --albedo FILE.pfm   also write the first-hit albedo 
 export const MERGE_AUX_USAGE = `  --albedo FILE.pfm   also write the merged albedo (the parts must carry it: rendered with --aux)
   --normal FILE.pfm   also write the merged shading normal`;
 
-/** The aux options out of the already split `--name value` map. */
-export function parseAuxOptions(options: Map<string, string | true>): AuxArgs {
+/**
+ * The aux options out of the already split `--name value` map; `out` is the main output,
+ * which neither image may overwrite.
+ */
+export function parseAuxOptions(options: Map<string, string | true>, out: string): AuxArgs {
   const file = (name: string): string | undefined => {
     const v = options.get(name);
     if (typeof v !== 'string') return undefined;
@@ -41,6 +45,17 @@ export function parseAuxOptions(options: Map<string, string | true>): AuxArgs {
   };
   const albedo = file('albedo');
   const normal = file('normal');
+  for (const [name, path] of [
+    ['albedo', albedo],
+    ['normal', normal],
+  ] as const) {
+    if (path !== undefined && resolve(path) === resolve(out)) {
+      throw new UsageError(`--${name} names the same file as --out: ${quote(path, 240)}`);
+    }
+  }
+  if (albedo !== undefined && normal !== undefined && resolve(albedo) === resolve(normal)) {
+    throw new UsageError(`--albedo and --normal name the same file: ${quote(albedo, 240)}`);
+  }
   return {
     albedo,
     normal,

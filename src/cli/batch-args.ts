@@ -166,6 +166,6 @@ export function parseMergeArgs(argv: string[]): MergeArgs {
     allowGaps: options.has('allow-gaps'),
     exposure,
     json: options.has('json'),
-    aux: parseAuxOptions(options),
+    aux: parseAuxOptions(options, out),
   };
 }

@@ -218,6 +218,27 @@ describe('the flags', () => {
       /--albedo must end in \.pfm/,
     );
     expectRefusal(pathwise(['render', scene, '--out', at('o.pfm'), '--aux=yes']), /--aux/);
+    expectRefusal(
+      pathwise(['render', scene, '--out', at('o.pfm'), '--albedo', at('o.pfm')]),
+      /--albedo names the same file as --out/,
+    );
+    expectRefusal(
+      pathwise(['merge', at('x0.film'), '--out', at('o.pfm'), '--normal', at('o.pfm')]),
+      /--normal names the same file as --out/,
+    );
+    expectRefusal(
+      pathwise([
+        'render',
+        scene,
+        '--out',
+        at('o.pfm'),
+        '--albedo',
+        at('an.pfm'),
+        '--normal',
+        at('an.pfm'),
+      ]),
+      /--albedo and --normal name the same file/,
+    );
     const help = pathwise(['render', '--help']);
     expect(help.stdout + help.stderr).toMatch(/--albedo FILE\.pfm[\s\S]*--normal FILE\.pfm/);
     const mergeHelp = pathwise(['merge', '--help']);
