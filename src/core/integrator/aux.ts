@@ -38,7 +38,6 @@ import {
   M_GEOMETRIC_SIDE,
   M_TYPE,
 } from '../bsdf/materials.ts';
-import type { ShadingParams } from '../bsdf/shading.ts';
 import { SHAPE_SPHERE, SHAPE_TRIANGLE } from '../geometry/ray.ts';
 import { OFFSET_SCALE, QUAD_STRIDE, Q_NORMAL, SPHERE_STRIDE } from '../geometry/shapes.ts';
 import { intersectScene } from '../accel/trace.ts';
@@ -57,61 +56,12 @@ import {
 import { completeTriangleHit } from './triangle-surface.ts';
 import { MAX_ALPHA_CROSSINGS, gltfRow, shadeGltfHit } from './gltf-surface.ts';
 import type { PathTracer } from './path-tracer.ts';
+import { AuxSample, clamp01, finish, gltfAlbedo } from './aux-albedo.ts';
+
+export { AuxSample, gltfAlbedo };
 
 /** Perfect specular scattering events followed before the albedo is taken as it stands. */
 export const AUX_DELTA_LIMIT = 8;
-
-/** The coat's reflectance at normal incidence (ior 1.5): KHR_materials_clearcoat's F0. */
-const COAT_F0 = 0.04;
-
-/** One sample's auxiliary values, written by traceAux. */
-export class AuxSample {
-  ar = 0;
-  ag = 0;
-  ab = 0;
-  nx = 0;
-  ny = 0;
-  nz = 0;
-}
-
-const clamp01 = (v: number) => (v > 0 ? (v < 1 ? v : 1) : 0);
-
-/**
- * The albedo of a glTF hit (OIDN: "the weighted sum of the albedos of the individual
- * layers"): the base colour — which is the diffuse colour, a metal's F0 and the
- * transmission tint alike — blended toward the diffuse-transmission colour by its
- * weight, under the sheen (weight: its largest channel, the albedo-scaling of
- * KHR_materials_sheen with E taken as 1) and the clear coat (F0 0.04 times its
- * weight). Unlit: the base colour. Emission is added by the caller.
- */
-export function gltfAlbedo(sp: ShadingParams, out: AuxSample): void {
-  let r = sp.baseR,
-    g = sp.baseG,
-    b = sp.baseB;
-  if (!sp.unlit) {
-    const dt = sp.diffuseTransmission * (1 - sp.metallic) * (1 - sp.transmission);
-    if (dt > 0) {
-      r += (sp.dtR - r) * dt;
-      g += (sp.dtG - g) * dt;
-      b += (sp.dtB - b) * dt;
-    }
-    const sheen = Math.max(sp.sheenR, sp.sheenG, sp.sheenB);
-    if (sheen > 0) {
-      r = sp.sheenR + (1 - sheen) * r;
-      g = sp.sheenG + (1 - sheen) * g;
-      b = sp.sheenB + (1 - sheen) * b;
-    }
-    if (sp.clearcoat > 0) {
-      const c = sp.clearcoat * COAT_F0;
-      r = c + (1 - c) * r;
-      g = c + (1 - c) * g;
-      b = c + (1 - c) * b;
-    }
-  }
-  out.ar = r;
-  out.ag = g;
-  out.ab = b;
-}
 
 /**
  * The albedo and normal of sample `sampleIndex` of pixel (px, py) into `out`.
@@ -349,22 +299,4 @@ export function traceAux(
     finish(out, tr * clamp01(ar), tg * clamp01(ag), tb * clamp01(ab), onx, ony, onz);
     return;
   }
-}
-
-/** Writes the sample's values; a throughput above 1 (glass's tint is ≤ 1, but a chain's weight may round) is clamped. */
-function finish(
-  out: AuxSample,
-  r: number,
-  g: number,
-  b: number,
-  nx: number,
-  ny: number,
-  nz: number,
-): void {
-  out.ar = clamp01(r);
-  out.ag = clamp01(g);
-  out.ab = clamp01(b);
-  out.nx = nx;
-  out.ny = ny;
-  out.nz = nz;
 }
