@@ -12,6 +12,7 @@ import {
   type BatchOptions,
 } from './batch-args.ts';
 import { UsageError } from './errors.ts';
+import { AUX_OPTION_NAMES, AUX_USAGE, parseAuxOptions, type AuxArgs } from './aux-output.ts';
 import { BARE_ENVIRONMENTS, type BareEnvironment } from '../core/lights/studio.ts';
 import type { BareModelChoices } from '../core/scene/load/bare-scene.ts';
 import {
@@ -40,6 +41,8 @@ export interface RenderArgs {
   allowRead: string[];
   /** `--environment studio|none`, `--variant NAME`: a bare model's choices (core/scene/load/bare-scene.ts). */
   bare: BareModelChoices;
+  /** `--albedo`, `--normal`, `--aux`: the denoising features (aux-output.ts). */
+  aux: AuxArgs;
 }
 
 export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png|FILE.film [options]
@@ -63,13 +66,14 @@ export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png|
                       (default: its default materials; not for scene files)
   --allow-read DIR    files may also be read from DIR (repeatable); by default a scene and its
                       models read only files inside the scene's folder (a bare model's folder)
+${AUX_USAGE}
 ${BATCH_USAGE}`;
 
 /** The first line of USAGE, printed alone (on stderr) when no command is given. */
 export const SYNOPSIS = USAGE.split('\n')[0];
 
 /** Options that are switches: present or absent, never with a value. */
-const SWITCHES = new Set(['json', 'help']);
+const SWITCHES = new Set(['json', 'help', 'aux']);
 
 const INTEGER_OPTIONS = new Set([
   'spp',
@@ -134,6 +138,7 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     'variant',
     'json',
     'help',
+    ...AUX_OPTION_NAMES,
     ...BATCH_OPTION_NAMES,
   ]);
   for (const name of options.keys()) {
@@ -202,5 +207,6 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
       environment: environment as BareEnvironment | undefined,
       variant: options.get('variant') as string | undefined,
     },
+    aux: parseAuxOptions(options, out),
   };
 }

@@ -6,6 +6,7 @@
 import { LIMITS } from '../core/scene/format/types.ts';
 import { quote, sanitize } from '../core/util/message.ts';
 import { UsageError } from './errors.ts';
+import { MERGE_AUX_USAGE, parseAuxOptions, type AuxArgs } from './aux-output.ts';
 import {
   POSITIVE_DECIMAL,
   parseDecimalValue,
@@ -49,7 +50,8 @@ export const MERGE_USAGE = `usage: pathwise merge PART.film... --out FILE.pfm|FI
   --spp N             the render's total (default: the parts' own, which must agree)
   --allow-gaps        write the partial result when sample ranges are missing
   --exposure E        PNG exposure multiplier (default 1)
-  --json              print one JSON line describing the result on stdout`;
+  --json              print one JSON line describing the result on stdout
+${MERGE_AUX_USAGE}`;
 
 /** Runs a values.ts parser, turning its CliError into a UsageError. */
 function usage<T>(parse: () => T): T {
@@ -111,6 +113,8 @@ export interface MergeArgs {
   allowGaps: boolean;
   exposure: number;
   json: boolean;
+  /** `--albedo`, `--normal`: the merged denoising features (the parts must carry them). */
+  aux: AuxArgs;
 }
 
 export function parseMergeArgs(argv: string[]): MergeArgs {
@@ -130,7 +134,7 @@ export function parseMergeArgs(argv: string[]): MergeArgs {
       options.set(name, true);
       continue;
     }
-    if (!['out', 'spp', 'exposure'].includes(name)) {
+    if (!['out', 'spp', 'exposure', 'albedo', 'normal'].includes(name)) {
       throw new UsageError(`unknown option --${sanitize(name)} (try: pathwise merge --help)`);
     }
     const value = eq >= 0 ? a.slice(eq + 1) : argv[++i];
@@ -162,5 +166,6 @@ export function parseMergeArgs(argv: string[]): MergeArgs {
     allowGaps: options.has('allow-gaps'),
     exposure,
     json: options.has('json'),
+    aux: parseAuxOptions(options, out),
   };
 }

@@ -6,7 +6,9 @@
 import { createHash } from 'node:crypto';
 import { closeSync, fstatSync, openSync, readSync, statSync } from 'node:fs';
 import {
+  AUX_NAMES,
   FILM_FORMAT,
+  FILM_FORMAT_AUX,
   FilmFileError,
   FilmHeaderError,
   MAX_HEADER_BYTES,
@@ -82,9 +84,11 @@ export function makeHeader(
   spp: number,
   ranges: [number, number][],
   stats: FilmHeader['stats'],
+  /** The film carries albedo and normal: a `pathwise-film/2` header. */
+  aux = false,
 ): FilmHeader {
   return {
-    format: FILM_FORMAT,
+    format: aux ? FILM_FORMAT_AUX : FILM_FORMAT,
     renderer: identity.renderer,
     scene_sha256: identity.scene_sha256,
     settings: identity.settings,
@@ -93,6 +97,7 @@ export function makeHeader(
     spp,
     ranges,
     stats,
+    ...(aux ? { aux: AUX_NAMES } : {}),
   };
 }
 

@@ -24,7 +24,8 @@ import {
   type SampleRange,
 } from '../core/film/sample-ranges.ts';
 import type { Film } from '../core/film/film.ts';
-import type { FilmHeader } from '../core/film/film-file.ts';
+import { hasAux, type FilmHeader } from '../core/film/film-file.ts';
+import { AuxOutputs } from './aux-output.ts';
 import { MERGE_USAGE, parseMergeArgs, type MergeArgs } from './batch-args.ts';
 import { encodeOutput } from './encode-output.ts';
 import { CliError } from './errors.ts';
@@ -47,6 +48,21 @@ export async function merge(argv: string[]): Promise<void> {
   for (let k = 1; k < headers.length; k++) {
     const why = explainMismatch(name(0), first, name(k), headers[k]);
     if (why) throw new CliError(`cannot merge: ${why}`);
+  }
+  // Albedo and normal (pathwise-film/2) in every part or in none: a part without them
+  // cannot give its samples' share of the aux means.
+  const withAux = headers.findIndex((h) => hasAux(h));
+  const withoutAux = headers.findIndex((h) => !hasAux(h));
+  if (withAux >= 0 && withoutAux >= 0) {
+    throw new CliError(
+      `cannot merge: ${name(withAux)} holds albedo and normal (pathwise-film/2, rendered with --aux) and ${name(withoutAux)} does not (pathwise-film/1); render every part with --aux, or none`,
+    );
+  }
+  const aux = withAux >= 0;
+  if (args.aux.aux && !aux) {
+    throw new CliError(
+      `cannot write ${args.aux.albedo !== undefined ? '--albedo' : '--normal'}: the parts hold no albedo and normal (render them with --aux)`,
+    );
   }
   const total = args.spp ?? first.spp;
   if (args.spp === undefined) {
@@ -87,7 +103,9 @@ export async function merge(argv: string[]): Promise<void> {
 
   // Ctrl-C or SIGTERM from here on removes the temporary file (temp-registry.ts).
   const output = await OutputFile.prepare(args.out);
+  let auxOutputs: AuxOutputs | undefined;
   try {
+    auxOutputs = await AuxOutputs.prepare(args.aux);
     // Pixels, one part at a time.
     testStage('merge');
     const acc = readFilmFile(args.parts[0]);
@@ -99,12 +117,14 @@ export async function merge(argv: string[]): Promise<void> {
       stats.segments += part.header.stats.segments;
       stats.rejected += part.header.stats.rejected;
     }
-    const header = makeHeader(first, total, union, stats);
+    const header = makeHeader(first, total, union, stats, aux);
     testStage('write');
     await output.commit(encodeOutput(args.out, acc.film, () => header, args.exposure));
+    await auxOutputs.commit(acc.film);
     report(args, header, acc.film, missing, held, total);
   } finally {
     await output.discard();
+    await auxOutputs?.discard();
   }
 }
 

@@ -9,7 +9,8 @@ import { estimateNoise } from '../core/film/noise.ts';
 import { emptyImageMessage } from '../core/integrator/empty-image.ts';
 import { formatRanges } from '../core/film/sample-ranges.ts';
 import type { Film } from '../core/film/film.ts';
-import type { FilmHeader } from '../core/film/film-file.ts';
+import { hasAux, type FilmHeader } from '../core/film/film-file.ts';
+import { AuxOutputs } from './aux-output.ts';
 import type { RenderArgs } from './args.ts';
 import { processSeconds, runBatch, type BatchProgress } from './batch.ts';
 import { encodeOutput, isFilmPath } from './encode-output.ts';
@@ -77,12 +78,27 @@ export async function renderCommand(
     if (identity_ === undefined) throw new Error('a film header without the render identity');
     return identity_;
   };
-  const resumed = b.resume ? await loadCheckpoint(b.resume, identity(), start, end) : undefined;
+  const aux = args.aux.aux;
+  const resumed = b.resume
+    ? await loadCheckpoint(b.resume, identity(), start, end, aux)
+    : undefined;
   // Ctrl-C or SIGTERM from here on removes the temporary files (temp-registry.ts).
   // The outputs are checked (the output's temporary file created) before the render starts.
   const output = await OutputFile.prepare(args.out);
+  let auxOutputs: AuxOutputs;
+  try {
+    auxOutputs = await AuxOutputs.prepare(args.aux);
+  } catch (e) {
+    await output.discard();
+    throw e;
+  }
   const pool = await startPool(
-    output,
+    {
+      discard: async () => {
+        await output.discard();
+        await auxOutputs.discard();
+      },
+    },
     () =>
       new RenderPool({
         ...render,
@@ -91,6 +107,7 @@ export async function renderCommand(
         stripeRows: args.stripeRows,
         workerUrl: renderWorkerUrl(),
         early,
+        aux,
       }),
     b.checkpoint,
   );
@@ -102,11 +119,17 @@ export async function renderCommand(
     const from = resumed?.end ?? start;
     const prior = resumed?.stats ?? { paths: 0, segments: 0, rejected: 0 };
     const header = (n: number, spp: number): FilmHeader =>
-      makeHeader(identity(), spp, n > start ? [[start, n]] : [], {
-        paths: prior.paths + pool.stats.paths,
-        segments: prior.segments + pool.stats.segments,
-        rejected: prior.rejected + pool.stats.rejected,
-      });
+      makeHeader(
+        identity(),
+        spp,
+        n > start ? [[start, n]] : [],
+        {
+          paths: prior.paths + pool.stats.paths,
+          segments: prior.segments + pool.stats.segments,
+          rejected: prior.rejected + pool.stats.rejected,
+        },
+        aux,
+      );
     const columns = stderrColumns();
     const bar = columns > 0 ? new ProgressBar(process.stderr, columns) : undefined;
     const renderStart = processSeconds();
@@ -175,6 +198,7 @@ export async function renderCommand(
     await output.commit(
       encodeOutput(args.out, pool.film, () => header(result.end, spp), args.exposure),
     );
+    await auxOutputs.commit(pool.film);
     if (pool.stats.rejected > 0) {
       // Not an error (the image is finite and written), but never silent.
       process.stderr.write(
@@ -225,6 +249,7 @@ export async function renderCommand(
     stopFaults?.();
     await pool.close();
     await output.discard();
+    await auxOutputs.discard();
   }
 }
 
@@ -233,7 +258,7 @@ export async function renderCommand(
  * fail, the output's temporary file is removed before the error goes on.
  */
 async function startPool(
-  output: OutputFile,
+  output: Pick<OutputFile, 'discard'>,
   start: () => RenderPool,
   checkpoint: string | undefined,
 ): Promise<RenderPool> {
@@ -269,6 +294,7 @@ async function loadCheckpoint(
   identity: FilmIdentity,
   start: number,
   end: number,
+  aux: boolean,
 ): Promise<Resumed | undefined> {
   if (!existsSync(path)) {
     process.stderr.write(
@@ -279,6 +305,11 @@ async function loadCheckpoint(
   const { header, film } = readFilmFile(path);
   const why = explainMismatch(showPath(path), header, 'this render', identity);
   if (why) throw new CliError(`cannot resume: ${why}`);
+  if (hasAux(header) !== aux) {
+    throw new CliError(
+      `cannot resume: ${showPath(path)} ${aux ? 'holds no albedo and normal (it was rendered without --aux), and this render records them' : 'holds albedo and normal (rendered with --aux), and this render does not record them: add --aux'}`,
+    );
+  }
   const r = header.ranges;
   if (r.length === 0) return { film, end: start, stats: header.stats };
   if (r.length !== 1 || r[0][0] !== start) {

@@ -48,6 +48,8 @@ export interface PoolRequest extends RenderSettings {
   workerUrl: URL;
   /** Workers started earlier (EarlyWorkers, warm-up.ts), taken over by the pool; `threads` must match. */
   early?: EarlyWorkers;
+  /** Record albedo and normal (the film's aux planes) as well as radiance. */
+  aux?: boolean;
 }
 
 function spawn(workerUrl: URL, workerData: WorkerInput): Worker {
@@ -171,8 +173,9 @@ export class RenderPool {
     }
     // Enough stripes for load balance (~16 per thread), each at least a row.
     const stripeRows = req.stripeRows ?? Math.max(1, Math.floor(req.height / (threads * 16)));
-    this.filmBuffer = new SharedArrayBuffer(Film.byteLength(req.width, req.height));
-    this.film = new Film(req.width, req.height, this.filmBuffer);
+    const aux = req.aux ?? false;
+    this.filmBuffer = new SharedArrayBuffer(Film.byteLength(req.width, req.height, aux));
+    this.film = new Film(req.width, req.height, this.filmBuffer, 0, 0, aux);
     this.threads = threads;
     this.stripeRows = stripeRows;
     this.stripes = Math.ceil(req.height / stripeRows);
@@ -192,7 +195,7 @@ export class RenderPool {
       this.listen(k, worker);
       return {
         worker,
-        journal: new SharedArrayBuffer(Film.byteLength(req.width, stripeRows)),
+        journal: new SharedArrayBuffer(Film.byteLength(req.width, stripeRows, aux)),
         inRound: false,
         lastError: null,
         killed: false,
@@ -213,7 +216,7 @@ export class RenderPool {
     }
     this.compileSeconds = (performance.now() - this.startedAt) / 1000;
     this.sceneBytes = this.scene.buffer.byteLength;
-    this.job = { ...renderSettingsOf(req), camera: req.scene.camera, stripeRows };
+    this.job = { ...renderSettingsOf(req), camera: req.scene.camera, stripeRows, aux };
     // A warm-up in progress ends at its next row.
     Atomics.store(new Int32Array(this.stopWord), 0, 1);
     for (let k = 0; k < threads; k++) this.slots[k].worker.postMessage(this.initFor(k));

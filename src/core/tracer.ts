@@ -44,7 +44,8 @@ export {
   type Estimator,
   type TracerOptions,
 } from './integrator/path-tracer.ts';
-export { Film } from './film/film.ts';
+export { Film, type AuxValues } from './film/film.ts';
+export { AuxSample, gltfAlbedo } from './integrator/aux.ts';
 export { Camera } from './camera/camera.ts';
 export { encodePfm, decodePfm, type PfmImage, type PfmDecodeOptions } from './io/pfm.ts';
 export { encodeHdr, decodeHdr } from './io/hdr.ts';
@@ -57,6 +58,8 @@ export { estimateNoise, type NoiseInput } from './film/noise.ts';
 export { emptyImageMessage, filmIsEmpty } from './integrator/empty-image.ts';
 export {
   FILM_FORMAT,
+  FILM_FORMAT_AUX,
+  hasAux,
   FilmFileError,
   MAX_HEADER_BYTES,
   decodeFilmFile,

@@ -119,6 +119,25 @@ function filmSample(width: number, height: number, spoil?: (f: Film) => void): U
   return encodeFilmFile(filmHeader(width, height), film);
 }
 
+/** filmSample as `pathwise-film/2`, with albedo and normal planes. */
+function filmSampleAux(width: number, height: number, spoil?: (f: Film) => void): Uint8Array {
+  const film = new Film(width, height, undefined, 0, 0, true);
+  for (let s = 2; s < 5; s++)
+    for (let y = 0; y < height; y++)
+      for (let x = 0; x < width; x++)
+        film.addSampleAux(
+          x,
+          y,
+          { lr: 0.25 * s + x, lg: y * 1e-3, lb: 1e4 * s },
+          { ar: 0.1 * s, ag: 0.5, ab: 1, nx: 0.6, ny: -0.8, nz: 0 },
+        );
+  spoil?.(film);
+  return encodeFilmFile(
+    { ...filmHeader(width, height), format: 'pathwise-film/2', aux: ['albedo', 'normal'] },
+    film,
+  );
+}
+
 function filmHeader(width: number, height: number): FilmHeader {
   return {
     format: 'pathwise-film/1',
@@ -258,8 +277,13 @@ export const FORMATS: FormatEntry[] = [
       expect(film.sums.every(Number.isFinite)).toBe(true);
       expect(film.hi.every(Number.isInteger)).toBe(true);
       expect(film.lo.every(Number.isInteger)).toBe(true);
+      if (film.auxHi !== null) {
+        expect(film.auxHi.every(Number.isInteger)).toBe(true);
+        expect(film.auxLo!.every(Number.isInteger)).toBe(true);
+      }
     },
-    samples: () => [filmSample(2, 1), filmSample(1, 1)],
+    // Version 2 (albedo and normal) is read by the same decoder, under the same contract.
+    samples: () => [filmSample(2, 1), filmSample(1, 1), filmSampleAux(1, 1)],
     lyingHeaders: () => {
       const h = filmHeader(2, 1);
       return [
@@ -309,6 +333,16 @@ export const FORMATS: FormatEntry[] = [
         name: '+Inf in a low limb',
         bytes: filmSample(2, 1, (f) => (f.lo[6] = Infinity)),
         message: /pixel \(1, 0\) channel B: invalid exact sum/,
+      },
+      {
+        name: 'NaN in an albedo high limb (pathwise-film/2)',
+        bytes: filmSampleAux(1, 1, (f) => (f.auxHi![1] = NaN)),
+        message: /pixel \(0, 0\) albedo channel G: invalid exact sum \(NaN/,
+      },
+      {
+        name: '-Inf in a normal low limb (pathwise-film/2)',
+        bytes: filmSampleAux(1, 1, (f) => (f.auxLo![5] = -Infinity)),
+        message: /pixel \(0, 0\) normal channel Z: invalid exact sum/,
       },
       {
         name: 'NaN in the header',

@@ -97,7 +97,7 @@ parentPort!.on('message', (m: WarmMessage | InitMessage | RoundMessage) => {
   if (m.type === 'init') {
     job = m.job;
     tracer = createTracer(job, unpackScene(m.scene));
-    film = new Film(job.width, job.height, m.film);
+    film = new Film(job.width, job.height, m.film, 0, 0, job.aux ?? false);
     memory = roundMemoryFrom(m.round);
     journal = m.journal;
     const ready: ReadyReport = {

@@ -119,7 +119,7 @@ export function renderStripeRound(
   die?: Die,
 ): void {
   const [y0, y1] = stripeRows(s, stripeRowCount, film.rows);
-  const journal = new Film(film.width, y1 - y0, journalBuffer, y0);
+  const journal = new Film(film.width, y1 - y0, journalBuffer, y0, 0, film.auxHi !== null);
   journal.copyRowsFrom(film);
   const paths = stats.paths;
   const segments = stats.segments;
@@ -161,7 +161,7 @@ export function recoverSlot(
   const s = Atomics.load(m.published, slot);
   if (s >= 0 && Atomics.load(m.state, s) === slot + 1) {
     const [y0, y1] = stripeRows(s, stripeRowCount, film.rows);
-    film.copyRowsFrom(new Film(film.width, y1 - y0, journalBuffer, y0));
+    film.copyRowsFrom(new Film(film.width, y1 - y0, journalBuffer, y0, 0, film.auxHi !== null));
     Atomics.store(m.state, s, STRIPE_DONE);
     report.finished++;
   }

@@ -15,6 +15,8 @@ import type { RenderSettings } from '../../src/core/scene/format/render-settings
 export interface StripeJob extends RenderSettings {
   camera: CameraDesc;
   stripeRows: number;
+  /** The film carries albedo and normal planes (integrator/aux.ts). */
+  aux?: boolean;
 }
 
 /** Builds the tracer for a job over an already compiled scene (each worker does this once). */

@@ -13,6 +13,10 @@
  *               lo    [4n]  float64 LE  exact-sum low limbs
  *          end−4 CRC-32 of every byte before it         uint32 LE
  *
+ * Version 2 (`pathwise-film/2`, FILM_FORMAT_AUX) adds the header key `aux` and, after
+ * `lo`, auxHi [6n] and auxLo [6n]: the exact sums of albedo R G B and normal X Y Z
+ * (integrator/aux.ts). A film without them is written as version 1, as before.
+ *
  * n = width·height, pixels row-major from the top row. The Float32 display
  * sums are not stored: they are one rounding of the exact sums (Film.resolve).
  *
@@ -35,7 +39,16 @@ import { Film } from './film.ts';
 import { normalizeRanges, rangeSamples, type SampleRange } from './sample-ranges.ts';
 
 export const FILM_FORMAT = 'pathwise-film/1';
+/**
+ * Version 2: version 1 plus the denoising features (albedo and normal exact sums after
+ * the `lo` plane, header key `aux`). Written only for films that carry them; a film
+ * without them is still written as version 1, byte for byte as before.
+ */
+export const FILM_FORMAT_AUX = 'pathwise-film/2';
+/** The aux channels a version-2 film holds, as its header names them. */
+export const AUX_NAMES = ['albedo', 'normal'] as const;
 const MAGIC = FILM_FORMAT + '\n';
+const MAGIC_AUX = FILM_FORMAT_AUX + '\n';
 const PROLOGUE = 20;
 /** Headers are small; this bounds what a lying length can make us read. */
 export const MAX_HEADER_BYTES = 1 << 20;
@@ -63,7 +76,7 @@ export class FilmHeaderError extends FilmFileError {
 export type FilmSettings = RenderSettings;
 
 export interface FilmHeader {
-  format: typeof FILM_FORMAT;
+  format: typeof FILM_FORMAT | typeof FILM_FORMAT_AUX;
   /** Name and version of the renderer; parts of different renderers never merge. */
   renderer: string;
   /** SHA-256 (hex) of the scene as loaded, settings excluded (see docs/film-format.md). */
@@ -79,6 +92,8 @@ export interface FilmHeader {
   ranges: SampleRange[];
   /** Paths traced (pixels × samples), path segments, and samples rejected as non-finite. */
   stats: { paths: number; segments: number; rejected: number };
+  /** Version 2 only: the aux channels, always ["albedo", "normal"]. */
+  aux?: typeof AUX_NAMES;
 }
 
 export interface FilmFile {
@@ -89,16 +104,34 @@ export interface FilmFile {
 const align8 = (n: number) => Math.ceil(n / 8) * 8;
 const LITTLE_ENDIAN = new Uint8Array(new Uint32Array([1]).buffer)[0] === 1;
 
-/** Byte length of a whole file whose header takes `headerBytes` bytes. */
-export function filmFileLength(headerBytes: number, width: number, height: number): number {
+/** Byte length of a whole file whose header takes `headerBytes` bytes (`aux`: version 2). */
+export function filmFileLength(
+  headerBytes: number,
+  width: number,
+  height: number,
+  aux = false,
+): number {
   const n = width * height;
-  return align8(PROLOGUE + headerBytes) + align8(4 * n) + 64 * n + 4;
+  return align8(PROLOGUE + headerBytes) + align8(4 * n) + (aux ? 160 : 64) * n + 4;
+}
+
+/** Whether a header is of a version-2 film (one with albedo and normal). */
+export function hasAux(header: FilmHeader): boolean {
+  return header.format === FILM_FORMAT_AUX;
 }
 
 export function encodeFilmFile(header: FilmHeader, film: Film): Uint8Array {
   const { width, height } = header.settings;
   if (film.width !== width || film.rows !== height) {
     throw new RangeError(`film is ${film.width}×${film.rows}, header says ${width}×${height}`);
+  }
+  const aux = hasAux(header);
+  if (aux !== (film.auxHi !== null)) {
+    throw new RangeError(
+      aux
+        ? 'header is pathwise-film/2 but the film has no aux planes'
+        : 'film has aux planes: its header must be pathwise-film/2',
+    );
   }
   const json = asciiBytes(
     JSON.stringify(header).replace(
@@ -107,17 +140,17 @@ export function encodeFilmFile(header: FilmHeader, film: Film): Uint8Array {
     ),
   );
   const n = width * height;
-  const total = filmFileLength(json.length, width, height);
+  const total = filmFileLength(json.length, width, height, aux);
   const out = new Uint8Array(total);
   const view = new DataView(out.buffer);
-  out.set(MAGIC_BYTES, 0);
+  out.set(aux ? MAGIC_AUX_BYTES : MAGIC_BYTES, 0);
   view.setUint32(16, json.length, true);
   out.set(json, PROLOGUE);
   let at = align8(PROLOGUE + json.length);
   const sums = film.sums;
   for (let p = 0; p < n; p++) view.setUint32(at + 4 * p, sums[p * 4 + 3], true);
   at += align8(4 * n);
-  for (const plane of [film.hi, film.lo]) {
+  for (const plane of filmPlanes(film)) {
     if (LITTLE_ENDIAN) {
       out.set(new Uint8Array(plane.buffer, plane.byteOffset, plane.byteLength), at);
     } else {
@@ -140,8 +173,12 @@ export function decodeFilmHeader(
   total: number,
 ): { header: FilmHeader; byteLength: number } {
   const present = prefix.subarray(0, Math.min(total, MAGIC_BYTES.length));
-  if (!startsWith(MAGIC_BYTES, present)) {
-    throw new FilmFileError(`not a .film file: it does not start with "${FILM_FORMAT}"`);
+  // A prefix of either magic (a file cut inside it is named as truncated below).
+  const v2 = !startsWith(MAGIC_BYTES, present) && startsWith(MAGIC_AUX_BYTES, present);
+  if (!v2 && !startsWith(MAGIC_BYTES, present)) {
+    throw new FilmFileError(
+      `not a .film file: it does not start with "${FILM_FORMAT}" or "${FILM_FORMAT_AUX}"`,
+    );
   }
   if (total < PROLOGUE) {
     throw new FilmFileError(`truncated: ${total} bytes, not even the ${PROLOGUE}-byte prologue`);
@@ -159,8 +196,8 @@ export function decodeFilmHeader(
   if (prefix.length < PROLOGUE + h) {
     throw new RangeError(`decodeFilmHeader needs the first ${PROLOGUE + h} bytes`);
   }
-  const header = parseHeader(prefix.subarray(PROLOGUE, PROLOGUE + h));
-  const byteLength = filmFileLength(h, header.settings.width, header.settings.height);
+  const header = parseHeader(prefix.subarray(PROLOGUE, PROLOGUE + h), v2);
+  const byteLength = filmFileLength(h, header.settings.width, header.settings.height, v2);
   if (total < byteLength) {
     throw new FilmFileError(
       `truncated: ${total} bytes, but a ${header.settings.width}×${header.settings.height} film needs ${byteLength}`,
@@ -192,10 +229,10 @@ export function decodeFilmHeader(
  * The header's bytes, parsed and checked: a FilmFileError when they are not JSON (or
  * repeat a key), a FilmHeaderError when the JSON says something impossible.
  */
-function parseHeader(bytes: Uint8Array): FilmHeader {
+function parseHeader(bytes: Uint8Array, v2: boolean): FilmHeader {
   const value = parseHeaderText(bytes);
   try {
-    return validateHeader(value);
+    return validateHeader(value, v2);
   } catch (e) {
     if (e instanceof FilmFileError && !(e instanceof FilmHeaderError)) {
       throw new FilmHeaderError(e.message.slice(FILM_FORMAT.length + 2));
@@ -243,6 +280,12 @@ function asciiText(bytes: Uint8Array): string | null {
 }
 
 const MAGIC_BYTES = asciiBytes(MAGIC);
+const MAGIC_AUX_BYTES = asciiBytes(MAGIC_AUX);
+
+/** The planes a file stores after the counts, in order. */
+function filmPlanes(film: Film): Float64Array[] {
+  return film.auxHi !== null ? [film.hi, film.lo, film.auxHi, film.auxLo!] : [film.hi, film.lo];
+}
 
 function startsWith(bytes: Uint8Array, prefix: string | Uint8Array): boolean {
   const p = typeof prefix === 'string' ? asciiBytes(prefix) : prefix;
@@ -273,12 +316,13 @@ export function decodeFilmFile(bytes: Uint8Array): FilmFile {
   if (stored !== actual) throw checksumMismatch(stored, actual);
   const { width, height } = header.settings;
   const n = width * height;
-  const film = new Film(width, height);
+  const aux = hasAux(header);
+  const film = new Film(width, height, undefined, 0, 0, aux);
   let at = filmCountsOffset(view.getUint32(16, true));
   const counts = new Uint32Array(n);
   for (let p = 0; p < n; p++) counts[p] = view.getUint32(at + 4 * p, true);
   at += align8(4 * n);
-  for (const plane of [film.hi, film.lo]) {
+  for (const plane of filmPlanes(film)) {
     if (LITTLE_ENDIAN) {
       new Uint8Array(plane.buffer, plane.byteOffset, plane.byteLength).set(
         bytes.subarray(at, at + plane.byteLength),
@@ -306,6 +350,20 @@ export function decodeFilmFile(bytes: Uint8Array): FilmFile {
       }
       hi[i] += 0; // −0 → +0, the canonical zero
       lo[i] += 0;
+    }
+    if (aux) {
+      const ah = film.auxHi!;
+      const al = film.auxLo!;
+      for (let c = 0; c < 6; c++) {
+        const i = p * 6 + c;
+        if (!isValidExact(ah[i], al[i], count)) {
+          throw new FilmFileError(
+            `${where()} ${c < 3 ? 'albedo' : 'normal'} channel ${'RGBXYZ'[c]}: invalid exact sum (${ah[i]}, ${al[i]}) for ${count} samples`,
+          );
+        }
+        ah[i] += 0;
+        al[i] += 0;
+      }
     }
     sums[p * 4 + 3] = count;
     accepted += count;
@@ -411,11 +469,19 @@ function sha256Hex(v: unknown, name: string): string {
   return v;
 }
 
-function validateHeader(v: unknown): FilmHeader {
+function validateHeader(v: unknown, v2: boolean): FilmHeader {
   if (!isObject(v)) throw new FilmFileError('header: not a JSON object');
-  exactKeys(v, HEADER_KEYS, '');
-  if (v.format !== FILM_FORMAT) {
-    throw new FilmFileError(`header: format must be "${FILM_FORMAT}", got ${short(v.format)}`);
+  exactKeys(v, v2 ? [...HEADER_KEYS, 'aux'] : HEADER_KEYS, '');
+  const format = v2 ? FILM_FORMAT_AUX : FILM_FORMAT;
+  if (v.format !== format) {
+    throw new FilmFileError(
+      `header: format must be "${format}" (as the file's first line says), got ${short(v.format)}`,
+    );
+  }
+  if (v2 && JSON.stringify(v.aux) !== JSON.stringify(AUX_NAMES)) {
+    throw new FilmFileError(
+      `header: aux must be ${JSON.stringify(AUX_NAMES)}, got ${short(v.aux)}`,
+    );
   }
   if (typeof v.renderer !== 'string' || v.renderer.length === 0 || v.renderer.length > 200) {
     throw new FilmFileError(
@@ -461,7 +527,7 @@ function validateHeader(v: unknown): FilmHeader {
   const paths = integer(st.paths, 'stats.paths', 0, Number.MAX_SAFE_INTEGER);
   const rejected = integer(st.rejected, 'stats.rejected', 0, Number.MAX_SAFE_INTEGER);
   return {
-    format: FILM_FORMAT,
+    format,
     renderer: v.renderer,
     scene_sha256: sha256Hex(v.scene_sha256, 'scene_sha256'),
     settings,
@@ -474,6 +540,7 @@ function validateHeader(v: unknown): FilmHeader {
       segments: integer(st.segments, 'stats.segments', 0, Number.MAX_SAFE_INTEGER),
       rejected,
     },
+    ...(v2 ? { aux: AUX_NAMES } : {}),
   };
 }
 

@@ -18,6 +18,7 @@ import type { CameraDesc } from '../scene/format/types.ts';
 import type { Estimator, RenderSettings } from '../scene/format/render-settings.ts';
 import { RenderStats } from './render-stats.ts';
 import { trace } from './trace-path.ts';
+import { AuxSample, traceAux } from './aux.ts';
 
 export { RenderStats };
 
@@ -59,6 +60,8 @@ export class PathTracer {
   /** glTF scratch (gltf-surface.ts) and the number deciding alpha pass-through. */
   readonly gw = new GltfWork();
   readonly au = new Float64Array(1);
+  /** The albedo and normal of the last sample, for films with aux planes (aux.ts). */
+  readonly auxSample = new AuxSample();
 
   constructor(scene: CompiledScene, options: TracerOptions) {
     this.scene = scene;
@@ -83,7 +86,37 @@ export class PathTracer {
     sampleEnd: number,
     stats: RenderStats,
   ): void {
+    // A film with aux planes takes its own row loop: renderRow, the loop of every other
+    // render, stays the code V8 was measured with.
+    if (film.auxHi !== null) {
+      for (let y = y0; y < y1; y++) this.renderRowAux(film, y, sampleStart, sampleEnd, stats);
+      return;
+    }
     for (let y = y0; y < y1; y++) this.renderRow(film, y, sampleStart, sampleEnd, stats);
+  }
+
+  /**
+   * renderRow for a film with aux planes: each sample's radiance, then its first-hit
+   * albedo and normal (aux.ts) from the same camera ray and random numbers, added
+   * together or rejected together.
+   */
+  renderRowAux(
+    film: Film,
+    y: number,
+    sampleStart: number,
+    sampleEnd: number,
+    stats: RenderStats,
+  ): void {
+    const width = this.width;
+    const a = this.auxSample;
+    for (let x = 0; x < width; x++) {
+      for (let s = sampleStart; s < sampleEnd; s++) {
+        this.trace(x, y, s, stats);
+        // The sampler is still at this sample: traceAux skips its set-up.
+        this.traceAux(x, y, s, a, true);
+        if (!film.addSampleAux(x, y, this, a)) stats.rejected++;
+      }
+    }
   }
 
   /**
@@ -117,6 +150,15 @@ export class PathTracer {
    */
   declare trace: (px: number, py: number, sampleIndex: number, stats: RenderStats) => void;
 
+  /** The albedo and normal of sample `sampleIndex` of pixel (px, py) into `out` (aux.ts). */
+  declare traceAux: (
+    px: number,
+    py: number,
+    sampleIndex: number,
+    out: AuxSample,
+    started?: boolean,
+  ) => void;
+
   /**
    * Distance along the camera's forward axis to the surface seen through
    * film point (filmX, filmY), or NaN where the ray escapes — what
@@ -135,3 +177,4 @@ export class PathTracer {
 }
 
 PathTracer.prototype.trace = trace;
+PathTracer.prototype.traceAux = traceAux;

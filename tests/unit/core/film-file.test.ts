@@ -257,3 +257,110 @@ describe('pathwise-film/1', () => {
     expect(refusal(bytes)).toMatch(/stats do not add up: 61 paths/);
   });
 });
+
+describe('pathwise-film/2 (albedo and normal)', () => {
+  function auxFilm(): Film {
+    const f = new Film(W, H, undefined, 0, 0, true);
+    for (let s = 0; s < SAMPLES; s++)
+      for (let y = 0; y < H; y++)
+        for (let x = 0; x < W; x++)
+          f.addSampleAux(
+            x,
+            y,
+            { lr: x + s, lg: y * 0.5, lb: 0.25 },
+            { ar: 0.1 * x, ag: 0.3, ab: s === 1 ? 1 : 0.7, nx: -0.6, ny: 0, nz: 0.8 },
+          );
+    return f;
+  }
+  const header2 = (over: Partial<FilmHeader> = {}): FilmHeader =>
+    header({ format: 'pathwise-film/2', aux: ['albedo', 'normal'], ...over });
+
+  it('round-trips every bit, aux planes included; its length has 96 bytes a pixel more', () => {
+    const f = auxFilm();
+    const bytes = encodeFilmFile(header2(), f);
+    const headerBytes = new DataView(bytes.buffer).getUint32(16, true);
+    expect(bytes.length).toBe(filmFileLength(headerBytes, W, H, true));
+    expect(filmFileLength(headerBytes, W, H, true) - filmFileLength(headerBytes, W, H)).toBe(
+      96 * W * H,
+    );
+    expect(new TextDecoder().decode(bytes.subarray(0, 16))).toBe('pathwise-film/2\n');
+    const back = decodeFilmFile(bytes);
+    expect(back.header).toEqual(header2());
+    expect(back.film.auxHi).toEqual(f.auxHi);
+    expect(back.film.auxLo).toEqual(f.auxLo);
+    expect(back.film.auxMean(0)).toEqual(f.auxMean(0));
+    expect(Buffer.from(encodeFilmFile(back.header, back.film)).equals(Buffer.from(bytes))).toBe(
+      true,
+    );
+  });
+
+  it('a version-1 file still reads, as a film without aux planes', () => {
+    const back = decodeFilmFile(encodeFilmFile(header(), film()));
+    expect(back.film.auxHi).toBeNull();
+    expect(back.header.format).toBe('pathwise-film/1');
+    expect('aux' in back.header).toBe(false);
+  });
+
+  it('refuses a header that disagrees with its version, and a film of the other kind', () => {
+    expect(() => encodeFilmFile(header(), auxFilm())).toThrow(/must be pathwise-film\/2/);
+    expect(() => encodeFilmFile(header2(), film())).toThrow(/no aux planes/);
+    const bytes = encodeFilmFile(header2(), auxFilm());
+    // The first line says 2, the header 1 (and carries aux): refused, resealed.
+    const v1Header = withRawHeader2({ ...header2(), format: 'pathwise-film/1' });
+    expect(refusal(v1Header)).toMatch(/format must be "pathwise-film\/2"/);
+    expect(refusal(withRawHeader2({ ...header2(), aux: ['albedo'] }))).toMatch(
+      /aux must be \["albedo","normal"\]/,
+    );
+    const { aux: _aux, ...noAux } = header2();
+    expect(refusal(withRawHeader2(noAux))).toMatch(/aux is missing/);
+    // A version-1 first line on a version-2 body: its header has an unknown key.
+    const relabelled = bytes.slice();
+    relabelled[14] = '1'.charCodeAt(0);
+    expect(refusal(reseal(relabelled))).toMatch(/unknown key aux/);
+  });
+
+  it('refuses NaN and out-of-range values in the aux planes, naming the channel', () => {
+    const cases: [(f: Film) => void, RegExp][] = [
+      [(f) => (f.auxHi![6 + 4] = NaN), /pixel \(1, 0\) normal channel Y: invalid exact sum/],
+      [(f) => (f.auxLo![0] = 0.5), /pixel \(0, 0\) albedo channel R: invalid exact sum/],
+      [(f) => (f.auxHi![2] = 2 ** 40), /albedo channel B: invalid exact sum .* for 4 samples/],
+    ];
+    for (const [spoil, message] of cases) {
+      const f = auxFilm();
+      spoil(f);
+      expect(refusal(encodeFilmFile(header2(), f))).toMatch(message);
+    }
+  });
+
+  it('names truncation of a version-2 file', () => {
+    const bytes = encodeFilmFile(header2(), auxFilm());
+    for (const n of [20, 60, bytes.length - 96 * W * H, bytes.length - 1]) {
+      expect(refusal(bytes.subarray(0, n))).toMatch(/truncated/);
+    }
+  });
+});
+
+/** withRawHeader for a version-2 file. */
+function withRawHeader2(raw: unknown): Uint8Array {
+  const f = new Film(W, H, undefined, 0, 0, true);
+  for (let y = 0; y < H; y++)
+    for (let x = 0; x < W; x++)
+      for (let s = 0; s < SAMPLES; s++)
+        f.addSampleAux(
+          x,
+          y,
+          { lr: 1, lg: 1, lb: 1 },
+          { ar: 0.5, ag: 0.5, ab: 0.5, nx: 0, ny: 1, nz: 0 },
+        );
+  const good = encodeFilmFile(header({ format: 'pathwise-film/2', aux: ['albedo', 'normal'] }), f);
+  const oldLen = new DataView(good.buffer).getUint32(16, true);
+  const json = new TextEncoder().encode(JSON.stringify(raw));
+  const payload = good.subarray(Math.ceil((20 + oldLen) / 8) * 8);
+  const at = Math.ceil((20 + json.length) / 8) * 8;
+  const out = new Uint8Array(at + payload.length);
+  out.set(good.subarray(0, 16));
+  new DataView(out.buffer).setUint32(16, json.length, true);
+  out.set(json, 20);
+  out.set(payload, at);
+  return reseal(out);
+}
