@@ -32,4 +32,5 @@ await Promise.all([
     chunkNames: 'chunks/[name]-[hash]',
   }),
   build({ ...common, entryPoints: { 'render-worker': 'workers/node/render-worker.ts' } }),
+  build({ ...common, entryPoints: { 'denoise-worker': 'workers/node/denoise-worker.ts' } }),
 ]);
