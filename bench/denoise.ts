@@ -1,6 +1,6 @@
 /**
  * Denoiser speed: pathwise's TypeScript U-Net (src/core/denoise) against native OIDN 2.5
- * (pyoidn, through oidn_ref.py) on the same colour, albedo and normal images, in one run:
+ * (pyoidn, bench/oidn-threads.py, with the same thread counts) on the same colour, albedo and normal images, in one run:
  * each side gets one warm-up, then REPEAT timed runs (median reported). Ours runs in-process
  * (1 thread, one tile as OIDN) and across worker_threads (src/cli/denoise-pool.ts; with
  * more than one thread the image is cut into OIDN-style overlapped tiles of at most
@@ -43,51 +43,67 @@ const tza = readFileSync('vendor/oidn-weights/rt_hdr_alb_nrm.tza');
 const weights = unetWeights(parseTza(tza));
 const median = (xs: number[]): number => [...xs].sort((a, b) => a - b)[xs.length >> 1]!;
 
-async function time(run: () => unknown): Promise<number> {
+/** Median wall seconds and process CPU seconds (all threads, workers included). */
+async function time(run: () => unknown): Promise<{ seconds: number; cpu: number }> {
   await run(); // warm-up
   const ts: number[] = [];
+  const cs: number[] = [];
   for (let i = 0; i < repeat; i++) {
     const t = performance.now();
+    const c = process.cpuUsage();
     await run();
     ts.push((performance.now() - t) / 1000);
+    const d = process.cpuUsage(c);
+    cs.push((d.user + d.system) / 1e6);
   }
-  return median(ts);
+  return { seconds: median(ts), cpu: median(cs) };
 }
 
-const native = JSON.parse(
-  execFileSync(
-    python,
-    [
-      '/work/shared/tools/oidn_ref.py',
-      colorPath,
-      '--albedo',
-      albedoPath,
-      '--normal',
-      normalPath,
-      '--out',
-      '/tmp/pathwise-bench-denoise-oidn.pfm',
-      '--repeat',
-      String(repeat),
-    ],
-    { encoding: 'utf8' },
-  ),
-) as { seconds_median: number };
-const rows: Record<string, number | string>[] = [
-  { what: 'native OIDN 2.5.1 (pyoidn)', seconds: native.seconds_median },
-];
+// Native OIDN with the same thread counts as ours (bench/oidn-threads.py sets numThreads).
+const rows: Record<string, number | string>[] = [];
+for (const t of threads) {
+  const args = [
+    'bench/oidn-threads.py',
+    colorPath,
+    albedoPath,
+    normalPath,
+    String(t),
+    String(repeat),
+  ];
+  const r = JSON.parse(execFileSync(python, args, { encoding: 'utf8' })) as {
+    seconds_median: number;
+    cpu_seconds_median: number;
+  };
+  rows.push({
+    what: `native OIDN 2.5.1 (pyoidn)`,
+    threads: t,
+    seconds: r.seconds_median,
+    cpu: r.cpu_seconds_median,
+  });
+}
 rows.push({
-  what: 'pathwise, in-process, 1 thread, 1 tile',
-  seconds: await time(() => denoise(images, weights)),
+  what: 'pathwise, in-process, 1 tile',
+  threads: 1,
+  ...(await time(() => denoise(images, weights))),
 });
 const workerUrl = pathToFileURL('dist/cli/denoise-worker.js');
 for (const t of threads) {
   const tiles = t > 1 ? { maxTilePixels: tilePixels, minTileSide: 0 } : {};
   rows.push({
-    what: `pathwise, ${t} worker thread(s)`,
-    seconds: await time(() => denoiseInWorkers(images, tza, { threads: t, workerUrl, tiles })),
+    what: `pathwise, worker threads`,
+    threads: t,
+    ...(await time(() => denoiseInWorkers(images, tza, { threads: t, workerUrl, tiles }))),
   });
 }
-for (const r of rows) r.ratio = (native.seconds_median / (r.seconds as number)).toFixed(3);
+// Speed relative to native OIDN with as many threads: native seconds / our seconds, by wall
+// time and by process CPU time (the machine may be shared: CPU time is what load disturbs least).
+const nativeAt = (t: number) =>
+  rows.find((r) => r.threads === t && String(r.what).startsWith('native'))!;
+for (const r of rows) {
+  const n = nativeAt(r.threads as number);
+  r['speed (wall)'] = ((n.seconds as number) / (r.seconds as number)).toFixed(3);
+  r['speed (cpu)'] = ((n.cpu as number) / (r.cpu as number)).toFixed(3);
+}
 console.log(
   `${c.width}×${c.height}, colour + albedo + normal, median of ${repeat} after a warm-up`,
 );

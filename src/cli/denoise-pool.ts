@@ -52,6 +52,16 @@ export async function denoiseInWorkers(
   const url = options.workerUrl ?? new URL('./denoise-worker.js', import.meta.url);
   const count = Math.max(1, Math.min(options.threads, job.plan.tiles.length));
   const workers = Array.from({ length: count }, () => new Worker(url, { workerData: data }));
+  // A worker that throws or exits mid-job fails the whole call with its error (nothing hangs).
+  let fail: (e: Error) => void = () => {};
+  const failed = new Promise<never>((_, reject) => (fail = reject));
+  failed.catch(() => {}); // observed by the races below; terminate()'s exits come after
+  for (const w of workers) {
+    w.on('error', (e: Error) => fail(e));
+    w.on('exit', (code) =>
+      fail(new Error(`denoise worker exited (code ${code}) before the image was done`)),
+    );
+  }
   const free = [...workers];
   const waiting: ((w: Worker) => void)[] = [];
   const release = (w: Worker): void => {
@@ -66,20 +76,15 @@ export async function denoiseInWorkers(
       job,
       async (tile) => {
         const w = await acquire();
-        await new Promise<void>((resolve, reject) => {
-          const onMessage = (m: DenoiseWorkerReply): void => {
-            w.off('error', onError);
-            if (m.done === tile) resolve();
-            else reject(new Error(`denoise worker answered tile ${m.done} for ${tile}`));
-          };
-          const onError = (e: Error): void => {
-            w.off('message', onMessage);
-            reject(e);
-          };
-          w.once('message', onMessage);
-          w.once('error', onError);
-          w.postMessage({ tile });
+        const done = new Promise<void>((resolve, reject) => {
+          w.once('message', (m: DenoiseWorkerReply) =>
+            m.done === tile
+              ? resolve()
+              : reject(new Error(`denoise worker answered tile ${m.done} for ${tile}`)),
+          );
         });
+        w.postMessage({ tile });
+        await Promise.race([done, failed]);
         release(w);
       },
       count,

@@ -58,4 +58,16 @@ describe('denoiser tiles and threads', () => {
       ),
     ).toBe(true);
   });
+
+  it('a worker that fails rejects the call with its error instead of hanging', async () => {
+    const workerUrl = pathToFileURL('dist/cli/no-such-denoise-worker.js');
+    await expect(denoiseInWorkers(images, tza, { threads: 2, workerUrl, tiles })).rejects.toThrow(
+      /no-such-denoise-worker|Cannot find/,
+    );
+  });
+  it('refuses mismatched inputs before starting a thread', async () => {
+    await expect(
+      denoiseInWorkers({ ...images, normal: null }, tza, { threads: 2, tiles }),
+    ).rejects.toThrow(/the weights take 9 input channels, the images give 6/);
+  });
 });
