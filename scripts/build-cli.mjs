@@ -1,12 +1,12 @@
-// Bundles the command line and its worker into dist/cli with esbuild, so
+// Bundles the command line and its workers into dist/cli with esbuild, so
 // `pathwise` runs on plain Node without a TypeScript loader.
 //
 // The command line is split (esbuild's code splitting): what a scene of
 // spheres, quads and meshes needs is in pathwise.js; the glTF loader
 // (glTF-Transform, image decoders, MikkTSpace: most of the code) is in
 // dist/cli/chunks, imported only when a scene names a model, so a render
-// does not compile 800 KB of JavaScript it will not run. The worker is one
-// file of its own.
+// does not compile 800 KB of JavaScript it will not run. Each worker (the
+// render worker; the denoiser's, src/cli/denoise-pool.ts) is one file of its own.
 import { build } from 'esbuild';
 import { rmSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
@@ -32,4 +32,5 @@ await Promise.all([
     chunkNames: 'chunks/[name]-[hash]',
   }),
   build({ ...common, entryPoints: { 'render-worker': 'workers/node/render-worker.ts' } }),
+  build({ ...common, entryPoints: { 'denoise-worker': 'workers/node/denoise-worker.ts' } }),
 ]);

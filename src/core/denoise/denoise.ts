@@ -1,0 +1,133 @@
+/**
+ * Denoising an HDR image with OIDN's "RT" network, tile by tile (OIDN core/unet_filter.cpp,
+ * UNetFilter::execute): the input scale comes from the whole image's autoexposure, once;
+ * each tile is then encoded into the network's input (transfer.ts), run (unet.ts) and
+ * decoded into its own, disjoint region of the output. Tiles share nothing but read-only
+ * inputs, so any executor may run them in any order and on any thread — a worker pool
+ * passes its own `runTile` — and the output's bits do not depend on it.
+ */
+import { at } from './planes.ts';
+import { planTiles, type TileOptions, type TilePlan } from './tiles.ts';
+import { autoexposure, decodeHdr, encodeAlbedo, encodeHdr, encodeNormal } from './transfer.ts';
+import { allocUNetWorkspace, runUNet, type UNetWorkspace } from './unet.ts';
+import type { UNetWeights } from './unet-weights.ts';
+
+export interface DenoiseImages {
+  readonly width: number;
+  readonly height: number;
+  /** Linear HDR radiance, RGB, row-major, row 0 at the top. */
+  readonly color: Float32Array;
+  /** First-hit albedo in [0, 1] (needs weights for 6 or 9 inputs). */
+  readonly albedo?: Float32Array | null;
+  /** First-hit shading normal in [-1, 1] (needs albedo and weights for 9 inputs). */
+  readonly normal?: Float32Array | null;
+}
+
+export interface DenoiseJob {
+  readonly images: DenoiseImages;
+  readonly weights: UNetWeights;
+  readonly plan: TilePlan;
+  /** Multiplies colour before encoding (OIDN's inputScale; autoexposure when not given). */
+  readonly inputScale: number;
+}
+
+export function prepareDenoise(
+  images: DenoiseImages,
+  weights: UNetWeights,
+  options: TileOptions & { inputScale?: number } = {},
+): DenoiseJob {
+  const { width, height, color, albedo, normal } = images;
+  if (!(Number.isInteger(width) && Number.isInteger(height) && width > 0 && height > 0))
+    throw new RangeError(`denoise: bad image size ${width}×${height}`);
+  const n = width * height * 3;
+  for (const [name, img] of [
+    ['color', color],
+    ['albedo', albedo],
+    ['normal', normal],
+  ] as const)
+    if (img && img.length !== n)
+      throw new RangeError(`denoise: ${name} has ${img.length} floats, expected ${n}`);
+  const inputs = 3 + (albedo ? 3 : 0) + (normal ? 3 : 0);
+  if (normal && !albedo)
+    throw new RangeError('denoise: a normal image needs an albedo image (as in OIDN)');
+  if (inputs !== weights.inputChannels)
+    throw new RangeError(
+      `denoise: the weights take ${weights.inputChannels} input channels, the images give ${inputs}`,
+    );
+  const inputScale = options.inputScale ?? autoexposure(color, width, height);
+  return { images, weights, plan: planTiles(width, height, options), inputScale };
+}
+
+/** A workspace for the job's tile size (allocate once per thread, reuse for every tile). */
+export function allocDenoiseWorkspace(job: DenoiseJob): UNetWorkspace {
+  return allocUNetWorkspace(job.weights, job.plan.tileH, job.plan.tileW);
+}
+
+/** Denoises tile `index` of the job into `output` (RGB, the image's size). */
+export function runDenoiseTile(
+  job: DenoiseJob,
+  index: number,
+  ws: UNetWorkspace,
+  output: Float32Array,
+): void {
+  const tile = job.plan.tiles[index];
+  if (!tile) throw new RangeError(`denoise: no tile ${index}`);
+  const { width, color, albedo, normal } = job.images;
+  const { input } = ws;
+  input.data.fill(0); // the tile's padding is zero in the encoded domain, as OIDN's input process
+  const scale = job.inputScale;
+  for (let y = 0; y < tile.srcH; y++) {
+    for (let x = 0; x < tile.srcW; x++) {
+      const p = 3 * ((tile.srcY + y) * width + tile.srcX + x);
+      const q = at(input, 0, tile.bufY + y, tile.bufX + x);
+      const plane = input.plane;
+      for (let c = 0; c < 3; c++) input.data[q + c * plane] = encodeHdr(color[p + c]! * scale);
+      if (albedo)
+        for (let c = 0; c < 3; c++) input.data[q + (3 + c) * plane] = encodeAlbedo(albedo[p + c]!);
+      if (normal)
+        for (let c = 0; c < 3; c++) input.data[q + (6 + c) * plane] = encodeNormal(normal[p + c]!);
+    }
+  }
+  runUNet(job.weights, ws);
+  const out = ws.output;
+  const outputScale = scale !== 0 ? 1 / scale : 0;
+  for (let y = 0; y < tile.outH; y++) {
+    for (let x = 0; x < tile.outW; x++) {
+      const p = 3 * ((tile.outY + y) * width + tile.outX + x);
+      const q = at(out, 0, tile.outBufY + y, tile.outBufX + x);
+      for (let c = 0; c < 3; c++)
+        output[p + c] = decodeHdr(out.data[q + c * out.plane]!) * outputScale;
+    }
+  }
+}
+
+/** Denoises the whole image on this thread. */
+export function denoise(
+  images: DenoiseImages,
+  weights: UNetWeights,
+  options: TileOptions & { inputScale?: number } = {},
+): Float32Array {
+  const job = prepareDenoise(images, weights, options);
+  const ws = allocDenoiseWorkspace(job);
+  const output = new Float32Array(images.width * images.height * 3);
+  for (let i = 0; i < job.plan.tiles.length; i++) runDenoiseTile(job, i, ws, output);
+  return output;
+}
+
+/**
+ * Runs every tile of a job through `execute` (e.g. a worker pool's), at most `lanes` at a
+ * time, claiming tiles in order. Each call must write its tile's output region.
+ */
+export async function denoiseTiles(
+  job: DenoiseJob,
+  execute: (index: number) => Promise<void>,
+  lanes: number,
+): Promise<void> {
+  let next = 0;
+  const lane = async (): Promise<void> => {
+    while (next < job.plan.tiles.length) await execute(next++);
+  };
+  await Promise.all(
+    Array.from({ length: Math.max(1, Math.min(lanes, job.plan.tiles.length)) }, lane),
+  );
+}

@@ -1,0 +1,73 @@
+/**
+ * Tiling and threads change no bit. A tiny U-Net (the RT wiring, 4 channels a layer, random
+ * weights: tests/helpers/tza.ts) keeps this cheap; the property does not depend on the
+ * widths. (1) An image cut into OIDN's overlapped tiles gives the bits of the same image
+ * in one tile: the overlap covers the receptive field and tile origins keep the pooling
+ * grid. (2) denoiseInWorkers with 1, 2 and 4 worker threads gives the same bits.
+ */
+import { pathToFileURL } from 'node:url';
+import { describe, expect, it } from 'vitest';
+import { denoiseInWorkers } from '../../../src/cli/denoise-pool.ts';
+import { denoise } from '../../../src/core/denoise/denoise.ts';
+import { planTiles } from '../../../src/core/denoise/tiles.ts';
+import { parseTza } from '../../../src/core/denoise/tza.ts';
+import { unetWeights } from '../../../src/core/denoise/unet-weights.ts';
+import { randomStream, tinyUNetTza } from '../../helpers/tza.ts';
+
+const W = 520,
+  H = 420;
+function image(seed: number, lo: number, hi: number): Float32Array {
+  const next = randomStream(seed);
+  return Float32Array.from({ length: W * H * 3 }, (_, i) => {
+    const x = (i / 3) % W;
+    return lo + (hi - lo) * (0.5 + 0.25 * Math.sin(x / 17) + 0.25 * next());
+  });
+}
+const images = {
+  width: W,
+  height: H,
+  color: image(1, 0, 4),
+  albedo: image(2, 0, 1),
+  normal: image(3, -1, 1),
+};
+const tza = tinyUNetTza(9, 4, 11);
+const tiles = { maxTilePixels: 400 * 400, minTileSide: 0 }; // 2 × 2 tiles of 384²
+
+describe('denoiser tiles and threads', () => {
+  it('overlapped tiles give the bits of one tile', () => {
+    expect(planTiles(W, H, tiles).tiles.length).toBe(4);
+    const weights = unetWeights(parseTza(tza));
+    const whole = denoise(images, weights);
+    const tiled = denoise(images, weights, tiles);
+    let differ = 0;
+    for (let i = 0; i < whole.length; i++) if (whole[i] !== tiled[i]) differ++;
+    expect(differ).toBe(0);
+    expect(whole.some((v) => v > 0)).toBe(true);
+  });
+
+  it('1, 2 and 4 worker threads give the same bits', async () => {
+    const workerUrl = pathToFileURL('dist/cli/denoise-worker.js');
+    const [one, two, four] = await Promise.all(
+      [1, 2, 4].map((threads) => denoiseInWorkers(images, tza, { threads, workerUrl, tiles })),
+    );
+    expect(Buffer.from(two!.buffer).equals(Buffer.from(one!.buffer))).toBe(true);
+    expect(Buffer.from(four!.buffer).equals(Buffer.from(one!.buffer))).toBe(true);
+    expect(
+      Buffer.from(one!.buffer).equals(
+        Buffer.from(denoise(images, unetWeights(parseTza(tza)), tiles).buffer),
+      ),
+    ).toBe(true);
+  });
+
+  it('a worker that fails rejects the call with its error instead of hanging', async () => {
+    const workerUrl = pathToFileURL('dist/cli/no-such-denoise-worker.js');
+    await expect(denoiseInWorkers(images, tza, { threads: 2, workerUrl, tiles })).rejects.toThrow(
+      /no-such-denoise-worker|Cannot find/,
+    );
+  });
+  it('refuses mismatched inputs before starting a thread', async () => {
+    await expect(
+      denoiseInWorkers({ ...images, normal: null }, tza, { threads: 2, tiles }),
+    ).rejects.toThrow(/the weights take 9 input channels, the images give 6/);
+  });
+});
