@@ -12,6 +12,7 @@ import {
   type BatchOptions,
 } from './batch-args.ts';
 import { UsageError } from './errors.ts';
+import { DENOISE_USAGE, parseDenoiseOptions, type DenoiseArgs } from './denoise-args.ts';
 import { AUX_OPTION_NAMES, AUX_USAGE, parseAuxOptions, type AuxArgs } from './aux-output.ts';
 import { BARE_ENVIRONMENTS, type BareEnvironment } from '../core/lights/studio.ts';
 import type { BareModelChoices } from '../core/scene/load/bare-scene.ts';
@@ -43,6 +44,8 @@ export interface RenderArgs {
   bare: BareModelChoices;
   /** `--albedo`, `--normal`, `--aux`: the denoising features (aux-output.ts). */
   aux: AuxArgs;
+  /** `--denoise`, `--raw`: the denoised output (denoise-output.ts). */
+  denoise: DenoiseArgs;
 }
 
 export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png|FILE.film [options]
@@ -67,13 +70,14 @@ export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png|
   --allow-read DIR    files may also be read from DIR (repeatable); by default a scene and its
                       models read only files inside the scene's folder (a bare model's folder)
 ${AUX_USAGE}
+${DENOISE_USAGE}
 ${BATCH_USAGE}`;
 
 /** The first line of USAGE, printed alone (on stderr) when no command is given. */
 export const SYNOPSIS = USAGE.split('\n')[0];
 
 /** Options that are switches: present or absent, never with a value. */
-const SWITCHES = new Set(['json', 'help', 'aux']);
+const SWITCHES = new Set(['json', 'help', 'aux', 'denoise']);
 
 const INTEGER_OPTIONS = new Set([
   'spp',
@@ -139,6 +143,8 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     'json',
     'help',
     ...AUX_OPTION_NAMES,
+    'denoise',
+    'raw',
     ...BATCH_OPTION_NAMES,
   ]);
   for (const name of options.keys()) {
@@ -185,6 +191,10 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
       `--environment must be one of ${BARE_ENVIRONMENTS.join(', ')}, got ${quote(String(environment))}`,
     );
   }
+  const aux = parseAuxOptions(options, out);
+  const denoise = parseDenoiseOptions(options, out);
+  // The network takes the first-hit albedo and normal: a denoised render records them.
+  if (denoise.denoise) aux.aux = true;
   return {
     scenePath: positional[0],
     out,
@@ -207,6 +217,7 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
       environment: environment as BareEnvironment | undefined,
       variant: options.get('variant') as string | undefined,
     },
-    aux: parseAuxOptions(options, out),
+    aux,
+    denoise,
   };
 }

@@ -3,6 +3,7 @@
  * checkpoints) and the arguments of `pathwise merge`. Every problem is a
  * UsageError with a one-line message (exit status 2).
  */
+import { MERGE_DENOISE_USAGE, parseDenoiseOptions, type DenoiseArgs } from './denoise-args.ts';
 import { LIMITS } from '../core/scene/format/types.ts';
 import { quote, sanitize } from '../core/util/message.ts';
 import { UsageError } from './errors.ts';
@@ -51,7 +52,8 @@ export const MERGE_USAGE = `usage: pathwise merge PART.film... --out FILE.pfm|FI
   --allow-gaps        write the partial result when sample ranges are missing
   --exposure E        PNG exposure multiplier (default 1)
   --json              print one JSON line describing the result on stdout
-${MERGE_AUX_USAGE}`;
+${MERGE_AUX_USAGE}
+${MERGE_DENOISE_USAGE}`;
 
 /** Runs a values.ts parser, turning its CliError into a UsageError. */
 function usage<T>(parse: () => T): T {
@@ -115,6 +117,8 @@ export interface MergeArgs {
   json: boolean;
   /** `--albedo`, `--normal`: the merged denoising features (the parts must carry them). */
   aux: AuxArgs;
+  /** `--denoise`, `--raw`: the merged image denoised (denoise-output.ts). */
+  denoise: DenoiseArgs;
 }
 
 export function parseMergeArgs(argv: string[]): MergeArgs {
@@ -129,12 +133,12 @@ export function parseMergeArgs(argv: string[]): MergeArgs {
     const eq = a.indexOf('=');
     const name = eq >= 0 ? a.slice(2, eq) : a.slice(2);
     if (options.has(name)) throw new UsageError(`--${sanitize(name)} is given twice`);
-    if (name === 'json' || name === 'allow-gaps' || name === 'help') {
+    if (name === 'json' || name === 'allow-gaps' || name === 'help' || name === 'denoise') {
       if (eq >= 0) usage(() => switchWithoutValue(`--${name}`, a));
       options.set(name, true);
       continue;
     }
-    if (!['out', 'spp', 'exposure', 'albedo', 'normal'].includes(name)) {
+    if (!['out', 'spp', 'exposure', 'albedo', 'normal', 'raw'].includes(name)) {
       throw new UsageError(`unknown option --${sanitize(name)} (try: pathwise merge --help)`);
     }
     const value = eq >= 0 ? a.slice(eq + 1) : argv[++i];
@@ -167,5 +171,6 @@ export function parseMergeArgs(argv: string[]): MergeArgs {
     exposure,
     json: options.has('json'),
     aux: parseAuxOptions(options, out),
+    denoise: parseDenoiseOptions(options, out),
   };
 }

@@ -13,6 +13,7 @@
  * --allow-gaps). Pixels are then read one part at a time, so memory holds
  * two films at most.
  */
+import { availableParallelism } from 'node:os';
 import { basename } from 'node:path';
 import { estimateNoise } from '../core/film/noise.ts';
 import {
@@ -27,7 +28,8 @@ import type { Film } from '../core/film/film.ts';
 import { hasAux, type FilmHeader } from '../core/film/film-file.ts';
 import { AuxOutputs } from './aux-output.ts';
 import { MERGE_USAGE, parseMergeArgs, type MergeArgs } from './batch-args.ts';
-import { encodeOutput } from './encode-output.ts';
+import { encodeImage, encodeOutput } from './encode-output.ts';
+import { denoiseWorkerUrl } from './render-command.ts';
 import { CliError } from './errors.ts';
 import { explainMismatch } from './film-compat.ts';
 import { makeHeader, readFilmFile, readFilmHeader } from './film-file.ts';
@@ -104,8 +106,10 @@ export async function merge(argv: string[]): Promise<void> {
   // Ctrl-C or SIGTERM from here on removes the temporary file (temp-registry.ts).
   const output = await OutputFile.prepare(args.out);
   let auxOutputs: AuxOutputs | undefined;
+  let raw: OutputFile | undefined;
   try {
     auxOutputs = await AuxOutputs.prepare(args.aux);
+    raw = args.denoise.raw === undefined ? undefined : await OutputFile.prepare(args.denoise.raw);
     // Pixels, one part at a time.
     testStage('merge');
     const acc = readFilmFile(args.parts[0]);
@@ -119,12 +123,27 @@ export async function merge(argv: string[]): Promise<void> {
     }
     const header = makeHeader(first, total, union, stats, aux);
     testStage('write');
-    await output.commit(encodeOutput(args.out, acc.film, () => header, args.exposure));
+    if (args.denoise.denoise) {
+      // Loaded only here: the network, its weights and its worker threads (docs/denoise.md).
+      const { denoiseFilm } = await import('./denoise-output.ts');
+      const denoised = await denoiseFilm(acc.film, availableParallelism(), denoiseWorkerUrl());
+      if (denoised.inputs === 'colour')
+        process.stderr.write(
+          'pathwise: note: the parts carry no albedo and normal (rendered without --aux): denoised from the colour alone\n',
+        );
+      await raw?.commit(encodeOutput(args.denoise.raw!, acc.film, () => header, args.exposure));
+      await output.commit(
+        encodeImage(args.out, acc.film.width, acc.film.rows, denoised.image, args.exposure),
+      );
+    } else {
+      await output.commit(encodeOutput(args.out, acc.film, () => header, args.exposure));
+    }
     await auxOutputs.commit(acc.film);
     report(args, header, acc.film, missing, held, total);
   } finally {
     await output.discard();
     await auxOutputs?.discard();
+    await raw?.discard();
   }
 }
 

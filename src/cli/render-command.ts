@@ -13,7 +13,7 @@ import { hasAux, type FilmHeader } from '../core/film/film-file.ts';
 import { AuxOutputs } from './aux-output.ts';
 import type { RenderArgs } from './args.ts';
 import { processSeconds, runBatch, type BatchProgress } from './batch.ts';
-import { encodeOutput, isFilmPath } from './encode-output.ts';
+import { encodeImage, encodeOutput, isFilmPath } from './encode-output.ts';
 import { CliError, UsageError } from './errors.ts';
 import { explainMismatch } from './film-compat.ts';
 import { filmIdentity, makeHeader, readFilmFile, type FilmIdentity } from './film-file.ts';
@@ -35,6 +35,11 @@ interface Resumed {
 /** The bundled worker script, beside this bundle (dist/cli). */
 export function renderWorkerUrl(): URL {
   return new URL('./render-worker.js', import.meta.url);
+}
+
+/** The denoiser's bundled worker script (denoise-pool.ts), beside this bundle. */
+export function denoiseWorkerUrl(): URL {
+  return new URL('./denoise-worker.js', import.meta.url);
 }
 
 export async function renderCommand(
@@ -92,11 +97,20 @@ export async function renderCommand(
     await output.discard();
     throw e;
   }
+  let raw: OutputFile | undefined;
+  try {
+    raw = args.denoise.raw === undefined ? undefined : await OutputFile.prepare(args.denoise.raw);
+  } catch (e) {
+    await output.discard();
+    await auxOutputs.discard();
+    throw e;
+  }
   const pool = await startPool(
     {
       discard: async () => {
         await output.discard();
         await auxOutputs.discard();
+        await raw?.discard();
       },
     },
     () =>
@@ -195,9 +209,20 @@ export async function renderCommand(
     const bad = countNonFinite(pool.film.mean());
     if (bad > 0) throw new Error(`${bad} pixel values are not finite; nothing was written`);
     testStage('write');
-    await output.commit(
-      encodeOutput(args.out, pool.film, () => header(result.end, spp), args.exposure),
-    );
+    const filmHeader = () => header(result.end, spp);
+    if (args.denoise.denoise) {
+      // Loaded only here: the network, its weights and its worker threads (docs/denoise.md).
+      const { denoiseFilm } = await import('./denoise-output.ts');
+      const threads = pool.threads;
+      await pool.close();
+      const denoised = await denoiseFilm(pool.film, threads, denoiseWorkerUrl());
+      await raw?.commit(encodeOutput(args.denoise.raw!, pool.film, filmHeader, args.exposure));
+      await output.commit(
+        encodeImage(args.out, pool.film.width, pool.film.rows, denoised.image, args.exposure),
+      );
+    } else {
+      await output.commit(encodeOutput(args.out, pool.film, filmHeader, args.exposure));
+    }
     await auxOutputs.commit(pool.film);
     if (pool.stats.rejected > 0) {
       // Not an error (the image is finite and written), but never silent.
@@ -250,6 +275,7 @@ export async function renderCommand(
     await pool.close();
     await output.discard();
     await auxOutputs.discard();
+    await raw?.discard();
   }
 }
 

@@ -50,15 +50,22 @@ function runInProject(name: string, source: string): string {
 }
 
 describe('the installed package', () => {
-  test('ships only the library, its types, the command line, bin, the scenes and the KTX2 transcoder', () => {
+  test('ships only the library, its types, the command line, bin, the scenes, the KTX2 transcoder and the denoiser weights', () => {
     const top = readdirSync(installed.packageDir).sort();
     for (const entry of top) {
       expect(['LICENSE', 'README.md', 'bin', 'dist', 'package.json', 'scenes', 'vendor']).toContain(
         entry,
       );
     }
-    // The Basis Universal transcoder the command line loads for KTX2 textures (src/cli/gltf-node.ts).
-    expect(readdirSync(join(installed.packageDir, 'vendor'))).toEqual(['basis']);
+    // The Basis Universal transcoder the command line loads for KTX2 textures (src/cli/gltf-node.ts),
+    // and the denoiser's weights (src/cli/denoise-output.ts).
+    expect(readdirSync(join(installed.packageDir, 'vendor')).sort()).toEqual([
+      'basis',
+      'oidn-weights',
+    ]);
+    const weights = readdirSync(join(installed.packageDir, 'vendor/oidn-weights'));
+    for (const f of ['rt_hdr.tza', 'rt_hdr_alb_nrm.tza', 'LICENSE.txt'])
+      expect(weights).toContain(f);
     const basis = readdirSync(join(installed.packageDir, 'vendor/basis'));
     for (const f of ['basis_transcoder.js', 'basis_transcoder.wasm']) expect(basis).toContain(f);
     expect(readdirSync(join(installed.packageDir, 'dist')).sort()).toEqual(['cli', 'lib', 'types']);
