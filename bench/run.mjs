@@ -46,6 +46,10 @@ function parseArgs(argv) {
   }
   return o;
 }
+/** BENCHMARKS.md's marker: the hand-written sections after it survive a re-run. */
+const HAND_WRITTEN =
+  '<!-- Measured by other scripts, written by hand: bench/run.mjs keeps what follows. -->';
+
 const opt = parseArgs(process.argv.slice(2));
 const quick = !!opt.quick;
 const outDir = path.resolve(
@@ -685,6 +689,11 @@ function writeMarkdown(result, deviceFull) {
     `- Re-run: \`npm run bench\` (full) or \`npm run bench -- --quick\` (smoke, < 2 min). Thread scaling alone, e.g. on a bigger machine: \`node bench/run.mjs --only scaling --threads-max 16 --out-dir DIR\`, then pass \`--device-results DIR/scaling.json\` to a full run to include it.`,
   );
   L.push('');
+  // Sections measured by other scripts (bench/forest.ts, the denoiser's time to error) are
+  // written by hand below this marker; a re-run keeps them.
+  const kept = existsSync(mdPath) ? readFileSync(mdPath, 'utf8') : '';
+  const at = kept.indexOf(HAND_WRITTEN);
+  if (at >= 0) L.push(kept.slice(at));
   writeFileSync(mdPath, L.join('\n'));
 }
 
