@@ -6,23 +6,10 @@
  * image. Denoising is biased (docs/denoise.md says where it misleads), so the raw image
  * and the `.film` stay the record of the render: a `.film` output is never denoised.
  */
-import { existsSync } from 'node:fs';
 import { readFile } from 'node:fs/promises';
-import { fileURLToPath } from 'node:url';
 import type { Film } from '../core/film/film.ts';
 import { denoiseInWorkers } from './denoise-pool.ts';
-
-/**
- * The folder of the network's weights (OIDN 2.5.1's, Apache-2.0): vendor/oidn-weights/ of
- * this package, beside src/ when run from the sources, beside dist/ from the bundle.
- */
-function weightsFolder(): string {
-  for (const up of ['../../vendor/oidn-weights/', '../../../vendor/oidn-weights/']) {
-    const folder = fileURLToPath(new URL(up, import.meta.url));
-    if (existsSync(folder + 'rt_hdr.tza')) return folder;
-  }
-  throw new Error('vendor/oidn-weights/ is missing from the installation');
-}
+import { vendorFolder } from './vendor-folder.ts';
 
 /** What was denoised: the inputs the network took. */
 export type DenoiseInputs = 'colour' | 'colour, albedo and normal';
@@ -38,7 +25,9 @@ export async function denoiseFilm(
 ): Promise<{ image: Float32Array; inputs: DenoiseInputs }> {
   const aux = film.auxHi !== null;
   const tza = new Uint8Array(
-    await readFile(weightsFolder() + (aux ? 'rt_hdr_alb_nrm.tza' : 'rt_hdr.tza')),
+    await readFile(
+      vendorFolder('oidn-weights', 'rt_hdr.tza') + (aux ? 'rt_hdr_alb_nrm.tza' : 'rt_hdr.tza'),
+    ),
   );
   const image = await denoiseInWorkers(
     {

@@ -11,10 +11,8 @@
  * their WebAssembly is read from the installed package (or vendor/basis/) and
  * handed over as bytes or a WebAssembly.Module, so nothing is fetched.
  */
-import { existsSync } from 'node:fs';
 import { readFile } from 'node:fs/promises';
 import { createRequire } from 'node:module';
-import { fileURLToPath } from 'node:url';
 import type { GltfLoadOptions } from '../core/gltf/load.ts';
 import type {
   DracoDecoderModule,
@@ -32,6 +30,7 @@ import {
   type Ktx2Transcoder,
 } from '../core/texture/ktx2-transcode.ts';
 import { nodeSceneFiles } from './scene-files.ts';
+import { vendorFolder } from './vendor-folder.ts';
 
 let mikktspace: Promise<TangentGenerator> | null = null;
 
@@ -115,18 +114,6 @@ export function nodeWebpDecoder(): Promise<WebpDecoder> {
   return webp;
 }
 
-/**
- * vendor/basis/ of this package: beside src/ when run from the sources, beside dist/
- * when run from the bundle (dist/cli/chunks/…).
- */
-function basisFolder(): string {
-  for (const up of ['../../vendor/basis/', '../../../vendor/basis/']) {
-    const folder = fileURLToPath(new URL(up, import.meta.url));
-    if (existsSync(folder + 'basis_transcoder.wasm')) return folder;
-  }
-  throw new Error('vendor/basis/basis_transcoder.wasm is missing from the installation');
-}
-
 let ktx2: Promise<Ktx2Transcoder> | null = null;
 
 /**
@@ -135,7 +122,7 @@ let ktx2: Promise<Ktx2Transcoder> | null = null;
  */
 export function nodeKtx2Transcoder(): Promise<Ktx2Transcoder> {
   ktx2 ??= (async () => {
-    const folder = basisFolder();
+    const folder = vendorFolder('basis', 'basis_transcoder.wasm');
     const require = createRequire(import.meta.url);
     const factory = require(folder + 'basis_transcoder.js') as (options: {
       wasmBinary: Uint8Array;
