@@ -13,8 +13,8 @@ import { ROOT } from '../../helpers/render.ts';
 /**
  * Layers, each with those it may import: the core (pure TypeScript, no DOM) at the
  * bottom; the two worker hosts above it, which share nothing; the page's view over the
- * browser's workers; the demo and the widget over the view; the command line over the
- * Node workers.
+ * browser's workers; the three.js bridge over the core alone; the demo and the widget
+ * over the view (the widget over the bridge too); the command line over the Node workers.
  */
 const LAYERS: Record<string, string[]> = {
   'src/core': [],
@@ -22,7 +22,8 @@ const LAYERS: Record<string, string[]> = {
   'workers/node': ['src/core'],
   'src/view': ['src/core', 'workers/browser'],
   'src/app': ['src/core', 'workers/browser', 'src/view'],
-  'src/widget': ['src/core', 'workers/browser', 'src/view'],
+  'src/three': ['src/core'],
+  'src/widget': ['src/core', 'workers/browser', 'src/view', 'src/three'],
   'src/cli': ['src/core', 'workers/node'],
 };
 
