@@ -5,6 +5,8 @@
  *   pathwise.js  the main entry: API + element, registers <pathwise-view>
  *   element.js   the same without registering anything
  *   core.js      the DOM-free tracer, for Node and workers
+ *   three.js     fromThree: three.js scenes into pathwise scenes (three not bundled:
+ *                the bridge reads three's objects without importing it)
  * Dependencies (comlink) are bundled in, so dist/lib also runs straight from
  * a CDN or a plain <script type="module"> with no import map. The render
  * worker is emitted as its own file and found via new URL(…, import.meta.url).
@@ -26,6 +28,7 @@ export default defineConfig({
         pathwise: 'src/widget/register.ts',
         element: 'src/widget/index.ts',
         core: 'src/core/index.ts',
+        three: 'src/three/index.ts',
       },
       formats: ['es'],
       fileName: (_format, entryName) => `${entryName}.js`,

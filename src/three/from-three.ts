@@ -10,6 +10,7 @@ import { Document, MathUtils, type Node } from '@gltf-transform/core';
 import { EXTMeshGPUInstancing } from '@gltf-transform/extensions';
 import { PreloadedIO } from '../core/gltf/io.ts';
 import type { SceneFileReader } from '../core/scene/load/load.ts';
+import type { CameraDesc } from '../core/scene/format/types.ts';
 import { convertCamera, type SceneCamera } from './three-camera.ts';
 import { convertEnvironment, type SceneEnvironment } from './three-environment.ts';
 import { GeometryConverter } from './three-geometry.ts';
@@ -216,4 +217,18 @@ function instances(
     .setAttribute('TRANSLATION', acc('TRANSLATION', 'VEC3', T))
     .setAttribute('ROTATION', acc('ROTATION', 'VEC4', R))
     .setAttribute('SCALE', acc('SCALE', 'VEC3', S));
+}
+
+/**
+ * The camera alone, whole (aperture and focus distance filled in), for following a
+ * three.js camera without converting the scene again.
+ */
+export function cameraFromThree(camera: object): CameraDesc {
+  const c = convertCamera(camera as ThreeCamera, () => {});
+  const d = Math.hypot(
+    c.target[0] - c.position[0],
+    c.target[1] - c.position[1],
+    c.target[2] - c.position[2],
+  );
+  return { ...c, aperture: c.aperture ?? 0, focusDistance: c.focusDistance ?? d };
 }

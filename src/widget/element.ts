@@ -28,6 +28,7 @@ import {
   type ObservedAttribute,
 } from './attributes.ts';
 import { ELEMENT_CSS } from './styles.ts';
+import { ThreeLink } from './three-link.ts';
 import { VisibilityWatcher } from './visibility.ts';
 
 /** Events of <pathwise-view>: the controller's, re-dispatched on the element. */
@@ -85,6 +86,7 @@ export class PathwiseViewElement extends ElementBase {
   /** Detaches the pointer controls while `camera-controls` is on. */
   private detachControls: (() => void) | null = null;
   private sceneObject: unknown = undefined;
+  private readonly three = new ThreeLink();
   private lastProgress: ProgressInfo | null = null;
   private workerUrlOverride: string | URL | undefined = undefined;
   /** Bumped on every scene request so a slow, superseded load cannot report over a newer one. */
@@ -221,6 +223,37 @@ export class PathwiseViewElement extends ElementBase {
   set scene(value: unknown) {
     this.sceneObject = value;
     if (this.tracer) this.requestScene();
+  }
+
+  /**
+   * A three.js scene (any Object3D) to path-trace, with `threeCamera`; takes precedence
+   * over `scene` and `src`. Converted by pathwise/three (docs/three.md); what cannot be
+   * mapped is reported in one `warning` event.
+   */
+  get threeScene(): object | null {
+    return this.three.scene;
+  }
+  set threeScene(value: object | null) {
+    this.three.scene = value;
+    if (this.tracer && this.three.active) this.requestScene();
+  }
+
+  /**
+   * The three.js PerspectiveCamera the view follows: moving it (OrbitControls, say)
+   * restarts accumulation from the new view without reloading the scene.
+   */
+  get threeCamera(): object | null {
+    return this.three.camera;
+  }
+  set threeCamera(value: object | null) {
+    const first = this.three.camera === null;
+    this.three.camera = value;
+    if (this.tracer && this.three.active && first) this.requestScene();
+  }
+
+  /** Converts `threeScene` again: call it after changing its geometry, materials or lights. */
+  threeChanged(): void {
+    if (this.tracer && this.three.active) this.requestScene();
   }
 
   /** The underlying controller, for camera and other advanced controls; null while disconnected. */
@@ -379,6 +412,7 @@ export class PathwiseViewElement extends ElementBase {
     const tracer = this.tracer;
     if (!tracer) return;
     this.tracer = null;
+    this.three.stop();
     this.sceneRequest++;
     this.detachControls?.();
     this.detachControls = null;
@@ -396,9 +430,16 @@ export class PathwiseViewElement extends ElementBase {
     if (!tracer) return;
     const request = ++this.sceneRequest;
     let pending: Promise<void>;
-    if (this.hasSceneObject()) {
+    if (this.three.active) {
+      pending = this.three.load(tracer, (messages) =>
+        this.dispatchEvent(new CustomEvent('warning', { detail: { messages } })),
+      );
+      this.three.watch(() => this.tracer);
+    } else if (this.hasSceneObject()) {
+      this.three.stop();
       pending = tracer.setScene(this.sceneObject);
     } else if (this.src !== '') {
+      this.three.stop();
       pending = tracer.load(this.src);
     } else {
       return;

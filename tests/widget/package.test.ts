@@ -112,6 +112,40 @@ process.stdout.write(JSON.stringify({ width, height, rgb: Array.from(film.mean()
     expect(isGreen(walls.right), `right wall ${walls.right}`).toBe(true);
   });
 
+  test('pathwise/three converts a three.js scene in Node, and the core renders it', () => {
+    // three is an optional peer dependency: the consumer brings it (here, the repository's).
+    const three = JSON.stringify(join(REPO, 'node_modules/three/build/three.module.js'));
+    const out = runInProject(
+      'three-convert.mjs',
+      `import * as THREE from ${three};
+import { fromThree } from 'pathwise/three';
+import { Film, PathTracer, RenderStats, compileScene, resolveSceneFiles, validateScene } from 'pathwise/core';
+const scene = new THREE.Scene();
+const red = new THREE.Mesh(new THREE.BoxGeometry(1, 1, 1), new THREE.MeshStandardMaterial({ color: 0xff0000, roughness: 1 }));
+scene.add(red);
+const light = new THREE.PointLight(0xffffff, 20);
+light.position.set(0, 2, 2);
+scene.add(light);
+const camera = new THREE.PerspectiveCamera(40, 1, 0.1, 100);
+camera.position.set(0, 0, 4);
+const converted = await fromThree(scene, camera);
+const loaded = await resolveSceneFiles(validateScene(converted.scene), converted.reader);
+const width = 16, height = 16;
+const tracer = new PathTracer(compileScene(loaded), { width, height, maxBounces: 2, camera: loaded.camera });
+const film = new Film(width, height);
+tracer.renderRows(film, 0, height, 0, 8, new RenderStats());
+const rgb = film.mean();
+const c = ((height / 2) * width + width / 2) * 3;
+process.stdout.write(JSON.stringify({ warnings: converted.warnings, centre: [rgb[c], rgb[c + 1], rgb[c + 2]] }));
+`,
+    );
+    const result = JSON.parse(out) as { warnings: string[]; centre: number[] };
+    expect(result.warnings).toEqual([]);
+    // The box's face towards the camera, lit by the point light: red.
+    expect(result.centre[0]).toBeGreaterThan(0.05);
+    expect(result.centre[1]).toBeLessThan(result.centre[0] * 0.05);
+  });
+
   test('imports without a DOM (server-side rendering) and registers nothing there', () => {
     const out = runInProject(
       'ssr-import.mjs',
