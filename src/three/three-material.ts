@@ -91,7 +91,9 @@ export class MaterialConverter {
     );
     const alphaTest = numberOf(o, 'alphaTest', 0);
     if (alphaTest > 0) mat.setAlphaMode('MASK').setAlphaCutoff(alphaTest);
-    else if (o.transparent === true) mat.setAlphaMode('BLEND');
+    // pathwise's BLEND is stochastic (a path passes with probability 1 − α), which is
+    // what three's alphaHash draws too.
+    else if (o.transparent === true || o.alphaHash === true) mat.setAlphaMode('BLEND');
     if (o.wireframe === true) this.warn(`${where}: wireframe is not drawn; the surfaces are`);
 
     if (m.isMeshBasicMaterial) {

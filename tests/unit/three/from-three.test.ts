@@ -178,53 +178,100 @@ describe('fromThree materials', () => {
   });
 });
 
-describe('fromThree environment and camera', () => {
-  it('orients an equirectangular map as three looks it up (equirectUv)', async () => {
-    // 8×4 float texels, each holding its own index; flipY as HDRLoader sets it.
-    const W = 8;
-    const H = 4;
-    const data = new Float32Array(W * H * 4);
-    for (let i = 0; i < W * H; i++) data.set([i, 0, 0, 1], i * 4);
-    const env = new THREE.DataTexture(data, W, H, THREE.RGBAFormat, THREE.FloatType);
-    env.mapping = THREE.EquirectangularReflectionMapping;
-    env.flipY = true;
+describe('fromThree geometry', () => {
+  it('makes one primitive per group with its material, for indexed, non-indexed and interleaved geometry', async () => {
+    const materials = [0xff0000, 0x00ff00, 0x0000ff, 0xffff00, 0xff00ff, 0x00ffff].map(
+      (c) => new THREE.MeshStandardMaterial({ color: c }),
+    );
+    const indexed = new THREE.BoxGeometry(1, 1, 1);
+    const flat = indexed.toNonIndexed();
+    // Interleaved positions and normals, as some loaders make them.
+    const interleaved = new THREE.BufferGeometry();
+    const buffer = new THREE.InterleavedBuffer(
+      new Float32Array([0, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 1]),
+      6,
+    );
+    interleaved.setAttribute('position', new THREE.InterleavedBufferAttribute(buffer, 3, 0));
+    interleaved.setAttribute('normal', new THREE.InterleavedBufferAttribute(buffer, 3, 3));
     const scene = new THREE.Scene();
-    scene.environment = env;
-    scene.environmentRotation.y = 0.4;
-    const r = await fromThree(scene, camera());
-    expect(r.warnings).toEqual([]);
-    const e = r.scene.environment!;
-    const pfm = decodePfm(r.files.get(e.file)!);
-    for (const d of [
-      [1, 0.2, 0.1],
-      [-0.3, 0.5, -1],
-      [0.1, -0.8, 0.6],
-      [-1, -0.1, 0.2],
-      [0.4, 0.9, -0.3],
-    ]) {
-      const n = Math.hypot(d[0], d[1], d[2]);
-      const [x, y, z] = d.map((v) => v / n);
-      // three: the lookup direction is turned by the negated Euler angles
-      // (WebGLBackground / envMapRotation), then equirectUv; with flipY the data's row 0
-      // is at v = 1 (the top).
-      const a = -0.4;
-      const rx = Math.cos(a) * x + Math.sin(a) * z;
-      const rz = -Math.sin(a) * x + Math.cos(a) * z;
-      const u = Math.atan2(rz, rx) / (2 * Math.PI) + 0.5;
-      const v = Math.asin(y) / Math.PI + 0.5;
-      const expected =
-        Math.min(H - 1, Math.floor((1 - v) * H)) * W + Math.min(W - 1, Math.floor(u * W));
-      // pathwise: docs/scene-format.md, Environment maps.
-      const t = (e.rotationY * Math.PI) / 180;
-      const px = Math.cos(t) * x - Math.sin(t) * z;
-      const pz = Math.sin(t) * x + Math.cos(t) * z;
-      let pu = Math.atan2(px, -pz) / (2 * Math.PI);
-      pu -= Math.floor(pu);
-      const pv = Math.acos(y) / Math.PI;
-      const texel = Math.min(H - 1, Math.floor(pv * H)) * W + Math.min(W - 1, Math.floor(pu * W));
-      expect(pfm.rgb[texel * 3]).toBe(expected);
+    scene.add(new THREE.Mesh(indexed, materials), new THREE.Mesh(flat, materials));
+    scene.add(new THREE.Mesh(interleaved, new THREE.MeshStandardMaterial()));
+    const { json, warnings } = await gltfJson(scene);
+    expect(warnings).toEqual([]);
+    const [a, b, c] = json.meshes;
+    for (const mesh of [a, b]) {
+      expect(mesh.primitives.length).toBe(6);
+      const colours = mesh.primitives.map((p: any) =>
+        json.materials[p.material].pbrMetallicRoughness.baseColorFactor.slice(0, 3),
+      );
+      expect(colours).toEqual(materials.map((m) => [m.color.r, m.color.g, m.color.b]));
+      for (const p of mesh.primitives) expect(json.accessors[p.indices].count).toBe(6);
     }
+    const positions = json.accessors[c.primitives[0].attributes.POSITION];
+    expect(positions).toMatchObject({ count: 3, max: [1, 1, 0], min: [0, 0, 0] });
   });
+});
+
+describe('fromThree environment and camera', () => {
+  it.each(['float', 'half'])(
+    'orients an equirectangular %s map as three looks it up (equirectUv)',
+    async (kind) => {
+      // 8×4 texels, each holding its own index; flipY as HDRLoader sets it; half floats as
+      // HDRLoader makes them by default.
+      const W = 8;
+      const H = 4;
+      const data = new Float32Array(W * H * 4);
+      for (let i = 0; i < W * H; i++) data.set([i, 0, 0, 1], i * 4);
+      const env =
+        kind === 'float'
+          ? new THREE.DataTexture(data, W, H, THREE.RGBAFormat, THREE.FloatType)
+          : new THREE.DataTexture(
+              Uint16Array.from(data, (v) => THREE.DataUtils.toHalfFloat(v)),
+              W,
+              H,
+              THREE.RGBAFormat,
+              THREE.HalfFloatType,
+            );
+      env.mapping = THREE.EquirectangularReflectionMapping;
+      env.flipY = true;
+      const scene = new THREE.Scene();
+      scene.environment = env;
+      scene.environmentRotation.y = 0.4;
+      const r = await fromThree(scene, camera());
+      expect(r.warnings).toEqual([]);
+      const e = r.scene.environment!;
+      const pfm = decodePfm(r.files.get(e.file)!);
+      for (const d of [
+        [1, 0.2, 0.1],
+        [-0.3, 0.5, -1],
+        [0.1, -0.8, 0.6],
+        [-1, -0.1, 0.2],
+        [0.4, 0.9, -0.3],
+      ]) {
+        const n = Math.hypot(d[0], d[1], d[2]);
+        const [x, y, z] = d.map((v) => v / n);
+        // three: the lookup direction is turned by the negated Euler angles
+        // (WebGLBackground / envMapRotation), then equirectUv; with flipY the data's row 0
+        // is at v = 1 (the top).
+        const a = -0.4;
+        const rx = Math.cos(a) * x + Math.sin(a) * z;
+        const rz = -Math.sin(a) * x + Math.cos(a) * z;
+        const u = Math.atan2(rz, rx) / (2 * Math.PI) + 0.5;
+        const v = Math.asin(y) / Math.PI + 0.5;
+        const expected =
+          Math.min(H - 1, Math.floor((1 - v) * H)) * W + Math.min(W - 1, Math.floor(u * W));
+        // pathwise: docs/scene-format.md, Environment maps.
+        const t = (e.rotationY * Math.PI) / 180;
+        const px = Math.cos(t) * x - Math.sin(t) * z;
+        const pz = Math.sin(t) * x + Math.cos(t) * z;
+        let pu = Math.atan2(px, -pz) / (2 * Math.PI);
+        pu -= Math.floor(pu);
+        const pv = Math.acos(y) / Math.PI;
+        const texel = Math.min(H - 1, Math.floor(pv * H)) * W + Math.min(W - 1, Math.floor(pu * W));
+        expect(pfm.rgb[texel * 3]).toBe(expected);
+      }
+    },
+  );
 
   it('takes depth of field from a PhysicalCamera-like fStop, bokehSize and focusDistance', async () => {
     const c = Object.assign(camera(), { fStop: 2, bokehSize: 20, focusDistance: 4 });
