@@ -81,7 +81,9 @@ export class TextureConverter {
       this.warn(`${where}: a cube, compressed or render-target texture is not read; ignored`);
     } else {
       try {
-        const png = encodeTexels(tex, encoding, flipGreen);
+        const png = cachedPng(tex, `${encoding}/${flipGreen}`, () =>
+          encodeTexels(tex, encoding, flipGreen),
+        );
         texture = this.doc
           .createTexture(tex.name || tex.uuid)
           .setImage(png)
@@ -129,6 +131,24 @@ export class TextureConverter {
         .setScale([repeat.x, repeat.y]),
     );
   }
+}
+
+/**
+ * PNGs already made, per texture object and encoding, while the texture's `version`
+ * (which three bumps on `needsUpdate`) stays: converting a scene again after a change
+ * (the widget's threeChanged()) re-encodes only the textures that changed.
+ */
+const pngs = new WeakMap<object, Map<string, { version: unknown; png: Uint8Array }>>();
+
+function cachedPng(tex: ThreeTexture, key: string, make: () => Uint8Array): Uint8Array {
+  let byKey = pngs.get(tex);
+  if (byKey === undefined) pngs.set(tex, (byKey = new Map()));
+  const version = (tex as { version?: unknown }).version;
+  const known = byKey.get(key);
+  if (known !== undefined && known.version === version && version !== undefined) return known.png;
+  const png = make();
+  byKey.set(key, { version, png });
+  return png;
 }
 
 /**

@@ -324,3 +324,25 @@ describe('fromThree warnings', () => {
     expect(rc.warnings.join('\n')).toMatch(/scene.environment: a cube or PMREM texture/);
   });
 });
+
+describe('fromThree texture cache', () => {
+  it('re-encodes a texture only when its version changes', async () => {
+    const map = checker();
+    const scene = box(new THREE.MeshStandardMaterial({ map }));
+    const texel = async () => {
+      const { json, resources } = await gltfJson(scene);
+      const view = json.bufferViews[json.images[0].bufferView];
+      const bin = Object.values(resources)[0] as Uint8Array;
+      return Array.from(
+        decodePng(
+          bin.subarray(view.byteOffset ?? 0, (view.byteOffset ?? 0) + view.byteLength),
+        ).data.slice(0, 4),
+      );
+    };
+    expect(await texel()).toEqual([255, 0, 0, 255]);
+    (map.image.data as Uint8Array).set([0, 0, 0, 255], 0);
+    expect(await texel()).toEqual([255, 0, 0, 255]); // unchanged version: the cached PNG
+    map.needsUpdate = true;
+    expect(await texel()).toEqual([0, 0, 0, 255]);
+  });
+});
