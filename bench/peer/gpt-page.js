@@ -67,7 +67,9 @@ window.runPeer = async function runPeer(config) {
   const info = glInfo(gl);
   t.context = now();
 
-  const { scene, camera } = threeSceneFromPathwise(config.scene, width, height);
+  const { scene, camera, summary } = threeSceneFromPathwise(config.scene, width, height, {
+    emitters: config.emitters,
+  });
   const pt = new WebGLPathTracer(renderer);
   // Render every sample into the float target at once: no delay, no fade, no
   // rasterised stand-in, no low-resolution preview, nothing drawn to the
@@ -98,8 +100,18 @@ window.runPeer = async function runPeer(config) {
   const checkpoints = [];
   let next = 0;
   let readMs = 0;
+  // At most two samples in flight: renderSample only queues the draw, and a
+  // deep queue would run far past the time cap before a readback drained it.
+  const fences = [];
   for (;;) {
+    while (fences.length >= 2) {
+      if (gl.getSyncParameter(fences[0], gl.SYNC_STATUS) === gl.SIGNALED) {
+        gl.deleteSync(fences.shift());
+      } else await yieldTask();
+    }
+    const before = pt.samples;
     pt.renderSample();
+    if (pt.samples !== before) fences.push(gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0));
     if (!pt.isCompiling && !t.compiled) t.compiled = now();
     const samples = pt.samples;
     if (samples >= 1 && !t.firstSample) {
@@ -130,8 +142,9 @@ window.runPeer = async function runPeer(config) {
       readMs += r1 - r0;
       break;
     }
-    await yieldTask();
+    if (pt.samples === before) await yieldTask();
   }
+  for (const f of fences) gl.deleteSync(f);
   console.warn = origWarn;
   const errors = [];
   for (let e = gl.getError(); e !== gl.NO_ERROR; e = gl.getError()) errors.push(e);
@@ -143,6 +156,7 @@ window.runPeer = async function runPeer(config) {
     warnings,
     glErrors: errors,
     size: [pt.target.width, pt.target.height],
+    scene: summary,
     checkpoints: checkpoints.map(({ samples, ms, cap }) => ({ samples, ms, cap: !!cap })),
   };
 };

@@ -34,7 +34,12 @@ export async function pathwiseProbe(config) {
       images.push(Float32Array.from(rgb));
       checkpoints.push({ samples, ms, cap: capped, width, height });
       while (next < config.checkpoints.length && samples >= config.checkpoints[next]) next++;
-      if (capped || relMse(rgb) <= config.stopRelMse || next >= config.checkpoints.length) break;
+      // Past the target, go on to minRenderMs after the first image, so the
+      // rate is measured over more than the first few seconds.
+      const first = c.timeline().firstImage;
+      const longEnough = first > 0 && ms - first >= config.minRenderMs;
+      if (capped || next >= config.checkpoints.length) break;
+      if (relMse(rgb) <= config.stopRelMse && longEnough) break;
     }
     await sleep(10);
   }

@@ -32,6 +32,8 @@ const TILES = Number(arg('tiles', 1));
 const TARGETS = [1e-2, 1e-3];
 /** Seconds after the first sample before the rate is measured (JIT, compile, worker start). */
 const WARMUP_S = 2;
+/** pathwise reaches 1e-3 in seconds; it renders at least this long after its first image, for a steadier rate. */
+const MIN_RENDER_S = 15;
 const CHECKPOINTS = Array.from({ length: 17 }, (_, k) => 2 ** k);
 
 /**
@@ -42,13 +44,26 @@ const CHECKPOINTS = Array.from({ length: 17 }, (_, k) => 2 ** k);
  * objects it does no next-event estimation, so `bounces` = maxBounces + 1
  * gives the same longest path.
  */
-function loadScene(name) {
+function loadScene(spec) {
+  // `cornell:rect`: pathwise's scene as it is, three-gpu-pathtracer's with the
+  // emitter as a RectAreaLight (three-scene.js), its own light model.
+  const [name, variant] = spec.split(':');
+  if (variant !== undefined && variant !== 'rect') throw new Error(`unknown variant ${spec}`);
   const refs = JSON.parse(readFileSync(join(ROOT, 'tests/references/references.json'), 'utf8'));
   const entry = refs.entries[name];
   const json = JSON.parse(readFileSync(join(ROOT, entry.scene), 'utf8'));
   const reference = readPfm(join(ROOT, 'tests/references', entry.file));
+  // The directly seen emitter: the only pixels above 1 in these references.
+  const emitterMask = new Uint8Array(reference.width * reference.height);
+  for (let p = 0; p < emitterMask.length; p++) {
+    const [r, g, b] = reference.rgb.subarray(3 * p, 3 * p + 3);
+    emitterMask[p] = Math.max(r, g, b) > 1 ? 1 : 0;
+  }
   return {
-    name,
+    name: spec,
+    preset: name,
+    emitters: variant === 'rect' ? 'rect-area-light' : 'emissive',
+    emitterMask,
     json,
     reference,
     width: reference.width,
@@ -77,13 +92,13 @@ function rgbFromBottomUp(rgba, width, height) {
  * Seconds at which relMSE first reaches `target`, interpolated log-log between
  * the checkpoints that bracket it (relMSE ∝ 1/t between them); null if never.
  */
-function timeTo(points, target) {
+function timeTo(points, target, key = 'relmse') {
   for (let i = 0; i < points.length; i++) {
-    if (points[i].relmse > target) continue;
+    if (points[i][key] > target) continue;
     if (i === 0) return points[0].seconds;
     const a = points[i - 1];
     const b = points[i];
-    const f = Math.log(target / a.relmse) / Math.log(b.relmse / a.relmse);
+    const f = Math.log(target / a[key]) / Math.log(b[key] / a[key]);
     return Math.exp(Math.log(a.seconds) + f * Math.log(b.seconds / a.seconds));
   }
   return null;
@@ -119,11 +134,19 @@ function rate(points, firstSampleS) {
   return (b.samples - a.samples) / (b.seconds - a.seconds);
 }
 
-/** Mean of each channel: an energy mismatch shows here before it shows as an error floor. */
-function meanRgb(rgb) {
+/**
+ * Mean of each channel, over the pixels the mask does not mark (all, without
+ * one): an energy mismatch shows here before it shows as an error floor.
+ */
+function meanRgb(rgb, mask) {
   const m = [0, 0, 0];
-  for (let i = 0; i < rgb.length; i++) m[i % 3] += rgb[i];
-  return m.map((x) => x / (rgb.length / 3));
+  let n = 0;
+  for (let p = 0; p < rgb.length / 3; p++) {
+    if (mask?.[p]) continue;
+    for (let c = 0; c < 3; c++) m[c] += rgb[3 * p + c];
+    n++;
+  }
+  return m.map((x) => x / n);
 }
 
 /**
@@ -139,10 +162,26 @@ function extrapolate(points, sppPerS, target) {
   return last.seconds + (spp - last.samples) / sppPerS;
 }
 
-function summarise(points, firstSampleS, reference, width, height) {
+/**
+ * The relMSE a uniform per-channel bias alone would leave: each channel of
+ * the reference, off the directly seen emitter (whose pixels dominate the
+ * image mean), scaled by the ratio of the image's channel mean there to the
+ * reference's. An estimate of a floor: a bias that is not uniform over the
+ * image is not captured, and noise in the means is counted as bias.
+ */
+function meanBiasFloor(rgb, reference, mask) {
+  const m = meanRgb(rgb, mask);
+  const r = meanRgb(reference, mask);
+  const scaled = reference.map((v, i) => (mask[Math.floor(i / 3)] ? v : (v * m[i % 3]) / r[i % 3]));
+  return relMse(scaled, reference);
+}
+
+function summarise(points, firstSampleS, reference, width, height, mask) {
   const last = points[points.length - 1];
   const sppPerS = rate(points, firstSampleS);
   return {
+    mean_bias_floor: meanBiasFloor(points.last, reference, mask),
+    final_mean_rgb_without_emitter: meanRgb(points.last, mask),
     extrapolated_time_to: Object.fromEntries(
       TARGETS.map((t) => [String(t), extrapolate(points, sppPerS, t)]),
     ),
@@ -151,6 +190,10 @@ function summarise(points, firstSampleS, reference, width, height) {
     spp_per_s: sppPerS,
     first_sample_s: firstSampleS,
     time_to: Object.fromEntries(TARGETS.map((t) => [String(t), timeTo(points, t)])),
+    time_to_without_emitter_pixels: Object.fromEntries(
+      TARGETS.map((t) => [String(t), timeTo(points, t, 'relmse_without_emitter')]),
+    ),
+    final_relmse_without_emitter: last.relmse_without_emitter,
     final_spp: last.samples,
     final_seconds: last.seconds,
     final_relmse: last.relmse,
@@ -204,6 +247,15 @@ const browser = await chromium.launch({
   args: CHROMIUM_ARGS,
 });
 
+/** relMSE over the pixels that do not see the emitter directly (lib.mjs's relMse on them). */
+function relMseMasked(rgb, scene) {
+  const keep = [];
+  for (let p = 0; p < scene.emitterMask.length; p++) if (!scene.emitterMask[p]) keep.push(p);
+  const pick = (img) =>
+    Float32Array.from(keep.flatMap((p) => [img[3 * p], img[3 * p + 1], img[3 * p + 2]]));
+  return relMse(pick(rgb), pick(scene.reference.rgb));
+}
+
 /** Pulls the checkpoint images out of the page and scores them with lib.mjs's relMSE. */
 async function score(page, checkpoints, scene, bottomUp) {
   const points = [];
@@ -214,6 +266,7 @@ async function score(page, checkpoints, scene, bottomUp) {
       samples: checkpoints[i].samples,
       seconds: checkpoints[i].ms / 1000,
       relmse: relMse(rgb, scene.reference.rgb),
+      relmse_without_emitter: relMseMasked(rgb, scene),
       cap: checkpoints[i].cap,
     });
     if (i === checkpoints.length - 1) points.last = rgb;
@@ -238,7 +291,10 @@ async function runGpt(scene, seed) {
     scene: scene.json,
     width: scene.width,
     height: scene.height,
-    bounces: scene.maxBounces + 1,
+    // With a RectAreaLight, next-event estimation adds one segment past the
+    // last hit, so maxBounces loop iterations reach Mitsuba's max_depth.
+    bounces: scene.emitters === 'emissive' ? scene.maxBounces + 1 : scene.maxBounces,
+    emitters: scene.emitters,
     tiles: TILES,
     checkpoints: CHECKPOINTS,
     capMs: CAP_S * 1000,
@@ -250,7 +306,14 @@ async function runGpt(scene, seed) {
   await page.close();
   const t = r.timeline;
   return {
-    ...summarise(points, t.firstSample / 1000, scene.reference.rgb, scene.width, scene.height),
+    ...summarise(
+      points,
+      t.firstSample / 1000,
+      scene.reference.rgb,
+      scene.width,
+      scene.height,
+      scene.emitterMask,
+    ),
     // compileAsync resolves at once here; the program is really compiled and
     // linked at the first draw, so this is compile plus one sample.
     scene_built_to_first_sample_s: (t.firstSample - t.sceneBuilt) / 1000,
@@ -259,6 +322,8 @@ async function runGpt(scene, seed) {
     page_script_s: t.start / 1000,
     readback_ms_total: r.readMs,
     size: r.size,
+    scene_summary: r.scene,
+    bounces: scene.emitters === 'emissive' ? scene.maxBounces + 1 : scene.maxBounces,
     gl: r.info,
     warnings: r.warnings,
     gl_errors: r.glErrors,
@@ -271,9 +336,10 @@ async function runPathwise(scene, seed) {
   const page = await browser.newPage({ viewport: { width: 800, height: 600 } });
   const log = [];
   pageLog(page, log);
-  const query = `scene=${scene.name}&width=${scene.width}&height=${scene.height}&seed=${seed}&spp=1000000`;
+  const query = `scene=${scene.preset}&width=${scene.width}&height=${scene.height}&seed=${seed}&spp=1000000`;
   await page.goto(`${url}?${query}`);
   const r = await page.evaluate(pathwiseProbe, {
+    minRenderMs: MIN_RENDER_S * 1000,
     checkpoints: CHECKPOINTS,
     capMs: CAP_S * 1000,
     reference: Array.from(scene.reference.rgb),
@@ -293,6 +359,7 @@ async function runPathwise(scene, seed) {
       scene.reference.rgb,
       scene.width,
       scene.height,
+      scene.emitterMask,
     ),
     scene_loaded_s: r.timeline.sceneLoaded / 1000,
     workers: r.workers,
@@ -334,11 +401,9 @@ for (const name of SCENES) {
           `${r.scene_built_to_first_sample_s !== undefined ? ` (scene built to first sample ${r.scene_built_to_first_sample_s.toFixed(2)} s)` : ''}, ` +
           `1e-2 ${tt(r.time_to['0.01'])}, 1e-3 ${tt(r.time_to['0.001'])}, ` +
           `final relMSE ${r.final_relmse.toExponential(3)} at ${r.final_spp} spp / ${r.final_seconds.toFixed(1)} s, slope ${r.late_slope?.toFixed(2)}, ` +
-          `mean RGB ${r.final_mean_rgb.map((x) => x.toFixed(4)).join(' ')} (reference ${meanRgb(
-            scene.reference.rgb,
-          )
-            .map((x) => x.toFixed(4))
-            .join(' ')})`,
+          `mean RGB off the emitter / reference ${r.final_mean_rgb_without_emitter
+            .map((x, c) => (x / meanRgb(scene.reference.rgb, scene.emitterMask)[c]).toFixed(4))
+            .join(' ')}, relMSE off the emitter ${r.final_relmse_without_emitter.toExponential(3)}`,
       );
     }
   }
@@ -377,7 +442,20 @@ for (const name of SCENES) {
       extrapolated_time_to_1e2_s: med((r) => r.extrapolated_time_to['0.01'] ?? r.time_to['0.01']),
       extrapolated_time_to_1e3_s: med((r) => r.extrapolated_time_to['0.001'] ?? r.time_to['0.001']),
       final_relmse: med((r) => r.final_relmse),
+      final_relmse_without_emitter: med((r) => r.final_relmse_without_emitter),
+      time_to_1e2_without_emitter_s: med((r) => r.time_to_without_emitter_pixels['0.01']),
+      emitter_pixels: scene.emitterMask.reduce((a, b) => a + b, 0),
+      gpt_scene: rs[0].scene_summary,
       final_block_mare_8: med((r) => r.final_block_mare_8),
+      mean_rgb_over_reference: rs.map((r) =>
+        r.final_mean_rgb.map((x, c) => x / meanRgb(scene.reference.rgb)[c]),
+      ),
+      mean_bias_floor: med((r) => r.mean_bias_floor),
+      mean_rgb_over_reference_without_emitter: rs.map((r) =>
+        r.final_mean_rgb_without_emitter.map(
+          (x, c) => x / meanRgb(scene.reference.rgb, scene.emitterMask)[c],
+        ),
+      ),
       late_slope: med((r) => r.late_slope),
       cross_relmse_gpt_vs_pathwise: cross,
       per_run: rs.map(({ last, ...r }) => r),
@@ -404,7 +482,10 @@ const header = [
   'to 1e-2',
   'to 1e-3',
   'final relMSE',
+  'w/o emitter px',
+  'to 1e-2 w/o em.',
   'blockMARE8',
+  'mean-bias floor',
   'late slope',
 ];
 const rows = results.map((r) => [
@@ -417,7 +498,10 @@ const rows = results.map((r) => [
   fmtS(r.time_to_1e2_s, 0, r.runs, r.extrapolated_time_to_1e2_s),
   fmtS(r.time_to_1e3_s, r.reached_1e3, r.runs, r.extrapolated_time_to_1e3_s),
   `${r.final_relmse.toExponential(2)} @ ${r.per_run.map((q) => q.final_spp).sort((a, b) => a - b)[r.runs >> 1]} spp`,
+  r.final_relmse_without_emitter.toExponential(2),
+  fmtS(r.time_to_1e2_without_emitter_s, 0, r.runs),
   r.final_block_mare_8.toExponential(2),
+  r.mean_bias_floor.toExponential(1),
   r.late_slope?.toFixed(2) ?? '—',
 ]);
 const widths = header.map((h, i) => Math.max(h.length, ...rows.map((r) => r[i].length)));
@@ -457,6 +541,7 @@ const report = {
     cap_s: CAP_S,
     tiles: TILES,
     warmup_s: WARMUP_S,
+    pathwise_min_render_s: MIN_RENDER_S,
     checkpoints: 'powers of two of spp, each run stopping at relMSE ≤ 1e-3 or the cap',
     times: 'seconds since navigation start of the page (page clock), start-up included',
   },

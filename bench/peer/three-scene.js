@@ -12,6 +12,7 @@ import {
   Mesh,
   MeshStandardMaterial,
   PerspectiveCamera,
+  RectAreaLight,
   Scene,
   SphereGeometry,
 } from 'three';
@@ -48,8 +49,36 @@ function standardMaterial(def, name) {
   return m;
 }
 
-/** The scene and camera at width × height; `summary` lists what was built. */
-export function threeSceneFromPathwise(json, width, height) {
+/**
+ * An emissive, axis-aligned, downward-facing quad as a RectAreaLight of the
+ * same radiance (three-gpu-pathtracer adds color × intensity as radiance and
+ * samples it by next-event estimation with MIS). Its limits, which make this
+ * a different scene: camera rays do not see area lights (the ceiling shows
+ * instead), and it emits from one side only, as the quad does.
+ */
+function rectLight(shape, def) {
+  const { corner: c, u, v } = shape;
+  const down = u[1] === 0 && v[1] === 0 && u[2] * v[0] - u[0] * v[2] < 0;
+  if (!down || u[2] !== 0 || v[0] !== 0) {
+    throw new Error('only a downward quad with u along x and v along z becomes a RectAreaLight');
+  }
+  const peak = Math.max(...def.emission);
+  const light = new RectAreaLight(0xffffff, peak, u[0], v[2]);
+  light.color.setRGB(...def.emission.map((e) => e / peak), LinearSRGBColorSpace);
+  light.position.set(c[0] + u[0] / 2, c[1], c[2] + v[2] / 2);
+  // Local −z (the lit side) turned to −y; local x (width) stays x, local y (height) becomes −z.
+  light.rotation.set(-Math.PI / 2, 0, 0);
+  return light;
+}
+
+/**
+ * The scene and camera at width × height; `summary` lists what was built.
+ * options.emitters: 'emissive' (default; emissive triangles, reached only by
+ * BSDF sampling) or 'rect-area-light' (see rectLight).
+ */
+export function threeSceneFromPathwise(json, width, height, options = {}) {
+  const emitters = options.emitters ?? 'emissive';
+  const summary = { meshes: 0, emissiveMeshes: 0, rectAreaLights: 0, emitters };
   if (json.environment) throw new Error('environment is not mapped by the peer benchmark');
   if (json.lights?.length) throw new Error('lights are not mapped by the peer benchmark');
   const materials = {};
@@ -62,6 +91,13 @@ export function threeSceneFromPathwise(json, width, height) {
   // leave the open front of the box see black, as in pathwise.
   scene.background = new Color(0, 0, 0);
   for (const shape of json.shapes) {
+    const def = json.materials[shape.material];
+    const emits = def.emission && Math.max(...def.emission) > 0;
+    if (emits && emitters === 'rect-area-light') {
+      scene.add(rectLight(shape, def));
+      summary.rectAreaLights++;
+      continue;
+    }
     let geometry;
     if (shape.type === 'quad') geometry = quadGeometry(shape);
     else if (shape.type === 'sphere') {
@@ -69,6 +105,8 @@ export function threeSceneFromPathwise(json, width, height) {
       geometry.translate(...shape.center);
     } else throw new Error(`shape type ${shape.type} is not mapped by the peer benchmark`);
     scene.add(new Mesh(geometry, materials[shape.material]));
+    summary.meshes++;
+    if (emits) summary.emissiveMeshes++;
   }
   const cam = json.camera;
   if (cam.aperture) throw new Error('a thin-lens camera is not mapped by the peer benchmark');
@@ -78,5 +116,5 @@ export function threeSceneFromPathwise(json, width, height) {
   camera.lookAt(...cam.target);
   camera.updateMatrixWorld();
   scene.updateMatrixWorld(true);
-  return { scene, camera, summary: { meshes: json.shapes.length } };
+  return { scene, camera, summary };
 }
