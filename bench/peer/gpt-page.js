@@ -82,6 +82,7 @@ window.runPeer = async function runPeer(config) {
   pt.renderToCanvas = false;
   pt.tiles.set(config.tiles, config.tiles);
   pt.bounces = config.bounces;
+  if (config.mis === false) pt.multipleImportanceSampling = false;
   // NEE is on by default (FEATURE_MIS) but samples only light objects; the
   // scene has none, so the emissive quad is reached by BSDF sampling alone.
   pt.setScene(scene, camera);

@@ -47,8 +47,14 @@ const CHECKPOINTS = Array.from({ length: 17 }, (_, k) => 2 ** k);
 function loadScene(spec) {
   // `cornell:rect`: pathwise's scene as it is, three-gpu-pathtracer's with the
   // emitter as a RectAreaLight (three-scene.js), its own light model.
-  const [name, variant] = spec.split(':');
-  if (variant !== undefined && variant !== 'rect') throw new Error(`unknown variant ${spec}`);
+  // `:nomis` (diagnostic) turns off three-gpu-pathtracer's next-event
+  // estimation (FEATURE_MIS): lights are then reached by BSDF sampling alone.
+  const [name, variantList] = spec.split(':');
+  const variants = variantList ? variantList.split('+') : [];
+  for (const v of variants) {
+    if (v !== 'rect' && v !== 'nomis') throw new Error(`unknown variant ${v} in ${spec}`);
+  }
+  const variant = variants.includes('rect') ? 'rect' : undefined;
   const refs = JSON.parse(readFileSync(join(ROOT, 'tests/references/references.json'), 'utf8'));
   const entry = refs.entries[name];
   const json = JSON.parse(readFileSync(join(ROOT, entry.scene), 'utf8'));
@@ -63,6 +69,7 @@ function loadScene(spec) {
     name: spec,
     preset: name,
     emitters: variant === 'rect' ? 'rect-area-light' : 'emissive',
+    mis: !variants.includes('nomis'),
     emitterMask,
     json,
     reference,
@@ -293,8 +300,9 @@ async function runGpt(scene, seed) {
     height: scene.height,
     // With a RectAreaLight, next-event estimation adds one segment past the
     // last hit, so maxBounces loop iterations reach Mitsuba's max_depth.
-    bounces: scene.emitters === 'emissive' ? scene.maxBounces + 1 : scene.maxBounces,
+    bounces: scene.emitters === 'emissive' || !scene.mis ? scene.maxBounces + 1 : scene.maxBounces,
     emitters: scene.emitters,
+    mis: scene.mis,
     tiles: TILES,
     checkpoints: CHECKPOINTS,
     capMs: CAP_S * 1000,
@@ -323,7 +331,7 @@ async function runGpt(scene, seed) {
     readback_ms_total: r.readMs,
     size: r.size,
     scene_summary: r.scene,
-    bounces: scene.emitters === 'emissive' ? scene.maxBounces + 1 : scene.maxBounces,
+    bounces: scene.emitters === 'emissive' || !scene.mis ? scene.maxBounces + 1 : scene.maxBounces,
     gl: r.info,
     warnings: r.warnings,
     gl_errors: r.glErrors,
