@@ -165,6 +165,8 @@ function meanRgb(rgb, mask) {
 function extrapolate(points, sppPerS, target) {
   const last = points[points.length - 1];
   if (last.relmse <= target || !sppPerS) return null;
+  // A floor: relMSE no longer falls as 1/spp, and no time reaches the target.
+  if (!(lateSlope(points) <= -0.8)) return Infinity;
   const spp = (last.samples * last.relmse) / target;
   return last.seconds + (spp - last.samples) / sppPerS;
 }
@@ -391,6 +393,13 @@ const browserInfo = await (async () => {
   return { ...r, version: browser.version(), args: CHROMIUM_ARGS };
 })();
 
+/** Median over runs of the extrapolated (or reached) time; 'floor' if any run hit one. */
+function extrapolatedMedian(rs, key) {
+  const v = rs.map((r) => r.extrapolated_time_to[key] ?? r.time_to[key]);
+  if (v.includes(Infinity)) return 'floor';
+  return v.every((x) => Number.isFinite(x)) ? median(v) : null;
+}
+
 const RUNNERS = { gpt: runGpt, pathwise: runPathwise };
 const NAMES = { gpt: 'three-gpu-pathtracer', pathwise: 'pathwise' };
 const results = [];
@@ -447,8 +456,9 @@ for (const name of SCENES) {
       time_to_1e2_s: med((r) => r.time_to['0.01']),
       time_to_1e3_s: med((r) => r.time_to['0.001']),
       reached_1e3: rs.filter((r) => r.time_to['0.001'] !== null).length,
-      extrapolated_time_to_1e2_s: med((r) => r.extrapolated_time_to['0.01'] ?? r.time_to['0.01']),
-      extrapolated_time_to_1e3_s: med((r) => r.extrapolated_time_to['0.001'] ?? r.time_to['0.001']),
+      // 'floor' where a run's relMSE had stopped falling as 1/spp (late slope above −0.8).
+      extrapolated_time_to_1e2_s: extrapolatedMedian(rs, '0.01'),
+      extrapolated_time_to_1e3_s: extrapolatedMedian(rs, '0.001'),
       final_relmse: med((r) => r.final_relmse),
       final_relmse_without_emitter: med((r) => r.final_relmse_without_emitter),
       time_to_1e2_without_emitter_s: med((r) => r.time_to_without_emitter_pixels['0.01']),
@@ -478,7 +488,9 @@ rmSync(tmp, { recursive: true, force: true });
 
 const fmtS = (x, reached, runs, extra) =>
   x === null
-    ? `${reached ? `${reached}/${runs} runs` : `not within ${CAP_S} s`}${extra ? ` (~${extra.toFixed(0)} s extrap.)` : ''}`
+    ? `${reached ? `${reached}/${runs} runs` : `not within ${CAP_S} s`}${
+        extra === 'floor' ? ' (floor)' : extra ? ` (~${extra.toFixed(0)} s extrap.)` : ''
+      }`
     : `${x.toFixed(1)} s`;
 const header = [
   'scene',
@@ -558,6 +570,6 @@ const report = {
 };
 const date = new Date().toISOString().slice(0, 10);
 mkdirSync(join(ROOT, 'bench/results'), { recursive: true });
-const file = join(ROOT, `bench/results/peer-${date}.json`);
+const file = arg('out', join(ROOT, `bench/results/peer-${date}.json`));
 writeFileSync(file, `${JSON.stringify(report, null, 1)}\n`);
 console.log(`wrote ${file}`);
