@@ -2,6 +2,14 @@
 // same headless Chromium on this machine, where WebGL2 is software
 // (SwiftShader), the weak-GPU case.
 //   node bench/peer/run.mjs [--runs 3] [--cap 120] [--scenes cornell] [--tracers gpt,pathwise]
+//                           [--tiles 1] [--out file.json]
+// Scenes: a preset with a reference (tests/references), optionally with
+// variants of the three.js side after a colon, joined by '+': `rect` (the
+// emitter as a RectAreaLight, sampled by three-gpu-pathtracer's NEE) and
+// `nomis` (FEATURE_MIS off: no NEE; for the emissive scene the same estimator
+// as the default, since there are no lights to sample, but a shorter shader).
+// The default, cornell alone, takes about 8 minutes on 2 cores; the report's
+// table is `--scenes cornell,cornell:nomis,cornell:rect` (about 22).
 // Per scene and tracer: samples per pixel per second after warm-up, time to
 // the first sample (for three-gpu-pathtracer, the shader compile separately),
 // time to relMSE 1e-2 and 1e-3 against the scene's Mitsuba reference, final
