@@ -5,6 +5,7 @@
  * where v = 0): three uploads row 0 at v = 0 unless `flipY` is set, so a flipped texture
  * is read bottom-up.
  */
+import { halfToFloat } from '../core/math/half.ts';
 import type { ThreeTexture } from './three-shapes.ts';
 
 /** three's constants (src/constants.js), stable since r1xx. */
@@ -19,16 +20,6 @@ export interface Texels {
   /** 4 channels per texel, row 0 at v = 0; 0–255 for 8-bit sources, linear values for float ones. */
   rgba: Float32Array | Uint8ClampedArray;
   float: boolean;
-}
-
-/** IEEE 754 binary16 to a number (three's HalfFloatType data). */
-export function halfToFloat(h: number): number {
-  const s = h & 0x8000 ? -1 : 1;
-  const e = (h >> 10) & 0x1f;
-  const f = h & 0x3ff;
-  if (e === 0) return s * f * 2 ** -24;
-  if (e === 31) return f === 0 ? s * Infinity : NaN;
-  return s * (1 + f / 1024) * 2 ** (e - 15);
 }
 
 /** Reads `tex`'s texels; throws an Error saying why when they cannot be read here. */

@@ -3,6 +3,7 @@
  * per-pixel sample statistics (mean and variance of the mean, per channel)
  * so tolerances come from the render's own noise.
  */
+import { expect } from 'vitest';
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { nodeSceneFiles } from '../../src/cli/scene-files.ts';
@@ -250,4 +251,19 @@ export function blockChiSquarePair(
     }
   }
   return { chi2, dof, maxAbsZ };
+}
+
+/**
+ * The block test between two independent renders of one image (tests/scenes): no sample
+ * rejected, at least `minDof` 4×4 blocks with variance, χ² under its p = 0.001 quantile
+ * and no |z| over 5 (about 0.2 % false alarms together).
+ */
+export function expectSameImage(a: SampledImage, b: SampledImage, minDof = 100, label = ''): void {
+  expect(a.stats.rejected + b.stats.rejected, label).toBe(0);
+  const { chi2, dof, maxAbsZ } = blockChiSquarePair(a, b, 4);
+  expect(dof, label).toBeGreaterThan(minDof);
+  expect(chi2, `${label} χ² ${chi2.toFixed(1)} over ${dof} blocks`).toBeLessThan(
+    chiSquareQuantile(dof, 3.09),
+  );
+  expect(maxAbsZ, label).toBeLessThan(5);
 }

@@ -26,12 +26,7 @@ import { describe, expect, it } from 'vitest';
 import type { EnvironmentMapDesc, Estimator, Scene } from '../../src/core/index.ts';
 import { docWith, meshPrimitive, png, sceneWithFiles, toGlb } from '../helpers/gltf.ts';
 import { cube } from '../helpers/mesh-gen.ts';
-import {
-  blockChiSquarePair,
-  chiSquareQuantile,
-  imageMean,
-  renderSampled,
-} from '../helpers/render.ts';
+import { expectSameImage, imageMean, renderSampled } from '../helpers/render.ts';
 
 const SIZE = 32;
 const SPP = 64;
@@ -104,11 +99,7 @@ function render(scene: Scene, seed: number, estimator?: Estimator) {
 }
 
 function expectSame(a: ReturnType<typeof render>, b: ReturnType<typeof render>): void {
-  expect(a.stats.rejected + b.stats.rejected).toBe(0);
-  const { chi2, dof, maxAbsZ } = blockChiSquarePair(a, b, 4);
-  expect(dof).toBeGreaterThan(100);
-  expect(chi2).toBeLessThan(chiSquareQuantile(dof, 3.09));
-  expect(maxAbsZ).toBeLessThan(5);
+  expectSameImage(a, b);
 }
 
 describe('alpha in the tracer', () => {

@@ -11,7 +11,7 @@ import * as THREE from 'three';
 import { describe, expect, it } from 'vitest';
 import { fromThree } from '../../src/three/index.ts';
 import { sceneWithFiles } from '../helpers/gltf.ts';
-import { blockChiSquarePair, chiSquareQuantile, renderSampled } from '../helpers/render.ts';
+import { expectSameImage, renderSampled } from '../helpers/render.ts';
 
 const SIZE = 32;
 const SPP = 64;
@@ -28,11 +28,7 @@ function render(scene: Awaited<ReturnType<typeof sceneWithFiles>>, seed: number)
 }
 
 function expectSame(a: ReturnType<typeof render>, b: ReturnType<typeof render>): void {
-  expect(a.stats.rejected + b.stats.rejected).toBe(0);
-  const { chi2, dof, maxAbsZ } = blockChiSquarePair(a, b, 4);
-  expect(dof).toBeGreaterThan(100);
-  expect(chi2).toBeLessThan(chiSquareQuantile(dof, 3.09));
-  expect(maxAbsZ).toBeLessThan(5);
+  expectSameImage(a, b);
 }
 
 /** The three.js scene. */

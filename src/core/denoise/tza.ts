@@ -15,6 +15,9 @@
  * float32 exactly (every binary16 value is a float32 value), as OIDN's CPU device does.
  */
 import { FormatError } from '../util/format-error.ts';
+import { halfToFloat } from '../math/half.ts';
+
+export { halfToFloat };
 
 export interface TzaTensor {
   readonly name: string;
@@ -32,16 +35,6 @@ const MAX_NAME = 256;
 
 function fail(detail: string): never {
   throw new FormatError('TZA', detail);
-}
-
-/** binary16 → float32 (IEEE 754-2008 §3.6): subnormals, infinities and NaN included. */
-export function halfToFloat(h: number): number {
-  const sign = h & 0x8000 ? -1 : 1;
-  const exp = (h >> 10) & 0x1f;
-  const frac = h & 0x3ff;
-  if (exp === 0) return sign * frac * 2 ** -24;
-  if (exp === 31) return frac === 0 ? sign * Infinity : NaN;
-  return sign * (1 + frac / 1024) * 2 ** (exp - 15);
 }
 
 /** Parses a TZA file into its tensors by name; throws FormatError on any malformed byte. */
