@@ -87,12 +87,12 @@ export async function fromThree(
   const visit = (o: ThreeObject, path: string) => {
     if (!o.visible) return;
     const where = o.name ? `${path}/${JSON.stringify(o.name)}` : `${path}/${o.type ?? 'Object3D'}`;
-    if (o.isMesh && o.geometry) {
-      const list = Array.isArray(o.material) ? o.material : [o.material];
+    const list = Array.isArray(o.material) ? o.material : [o.material];
+    // A mesh whose materials are all hidden draws nothing, but its children still do.
+    if (o.isMesh && o.geometry && !list.every((m) => m?.visible === false)) {
       const converted: ConvertedMaterial[] = list.map((m: ThreeMaterial | undefined) =>
         materials.convert(m?.visible === false ? undefined : m, where),
       );
-      if (list.every((m) => m?.visible === false)) return;
       if (o.isSkinnedMesh) warn(`${where}: skinning ignored; rendered in the bind pose`);
       const mesh = geometry.mesh(o.geometry, converted, where);
       if (mesh !== null) {

@@ -346,3 +346,17 @@ describe('fromThree texture cache', () => {
     expect(await texel()).toEqual([0, 0, 0, 255]);
   });
 });
+
+describe('fromThree visibility', () => {
+  it('leaves out a mesh whose material is hidden, but not its children', async () => {
+    const scene = new THREE.Scene();
+    const parent = new THREE.Mesh(
+      new THREE.BoxGeometry(),
+      new THREE.MeshStandardMaterial({ visible: false }),
+    );
+    parent.add(new THREE.Mesh(new THREE.BoxGeometry(), new THREE.MeshStandardMaterial()));
+    scene.add(parent);
+    const { json } = await gltfJson(scene);
+    expect(json.nodes.length).toBe(1);
+  });
+});
