@@ -57,21 +57,19 @@ export function convertEnvironment(
     return null;
   }
   const n = texels.width * texels.height;
-  const rgb = new Float32Array(n * 3);
+  // encodePfm takes row 0 as the top (+y); the texels' row 0 (v = 0) is three's bottom
+  // (−y), so each row is written to its mirrored place.
+  const { width, height } = texels;
+  const top = new Float32Array(n * 3);
   const srgb = !texels.float && tex.colorSpace === 'srgb';
   for (let i = 0; i < n; i++) {
+    const o = ((height - 1 - Math.floor(i / width)) * width + (i % width)) * 3;
     for (let c = 0; c < 3; c++) {
       const v = texels.rgba[i * 4 + c];
       const x = texels.float ? v : srgb ? srgbToLinear(v / 255) : v / 255;
-      rgb[i * 3 + c] = Number.isFinite(x) && x > 0 ? x : 0;
+      top[o + c] = Number.isFinite(x) && x > 0 ? x : 0;
     }
   }
-  // PFM rows run bottom-up and encodePfm takes row 0 as the top: the texels' row 0
-  // (v = 0) is three's bottom (−y), so the rows are reversed on the way in.
-  const top = new Float32Array(n * 3);
-  const row = texels.width * 3;
-  for (let y = 0; y < texels.height; y++)
-    top.set(rgb.subarray((texels.height - 1 - y) * row, (texels.height - y) * row), y * row);
   files.set('environment.pfm', encodePfm(texels.width, texels.height, top));
   const rotation = scene.environmentRotation as { x: number; y: number; z: number } | undefined;
   if (rotation && (rotation.x !== 0 || rotation.z !== 0)) {
