@@ -79,6 +79,7 @@ async function run(threads: number): Promise<{ seconds: number; hash: string }> 
     sampler: DEFAULT_SAMPLER,
     camera: scene.camera,
     stripeRows,
+    aux: false,
     film: job instanceof SharedFilmJob ? job.filmBuffer : undefined,
     ctrl: job instanceof SharedFilmJob ? job.ctrlBuffer : undefined,
     journal: job instanceof SharedFilmJob ? job.journalBuffer : undefined,

@@ -44,7 +44,7 @@ export {
   type Estimator,
   type TracerOptions,
 } from './integrator/path-tracer.ts';
-export { Film, type AuxValues } from './film/film.ts';
+export { AUX_CHANNELS, Film, type AuxValues } from './film/film.ts';
 export { AuxSample, gltfAlbedo } from './integrator/aux.ts';
 export { Camera } from './camera/camera.ts';
 export { encodePfm, decodePfm, type PfmImage, type PfmDecodeOptions } from './io/pfm.ts';

@@ -25,9 +25,9 @@ export function mib(bytes: number): string {
   return `${m < 10 ? m.toFixed(1) : Math.round(m)} MiB`;
 }
 
-/** The most pixels a film may have under MAX_FILM_BYTES. */
-export function maxFilmPixels(): number {
-  return Math.floor(MAX_FILM_BYTES / Film.byteLength(1, 1));
+/** The most pixels a film may have under MAX_FILM_BYTES (fewer with albedo and normal planes). */
+export function maxFilmPixels(aux = false): number {
+  return Math.floor(MAX_FILM_BYTES / Film.byteLength(1, 1, aux));
 }
 
 /** Why a film of w × h may not be made, or null when it may. */
@@ -35,10 +35,11 @@ export function filmSizeProblem(
   width: number,
   height: number,
   maxSide = MAX_FILM_SIDE,
+  aux = false,
 ): string | null {
-  const bytes = Film.byteLength(width, height);
+  const bytes = Film.byteLength(width, height, aux);
   if (bytes > MAX_FILM_BYTES) {
-    return `a ${width}×${height} render needs ${mib(bytes)} for its accumulator, over the cap of ${mib(MAX_FILM_BYTES)} (${maxFilmPixels()} pixels)`;
+    return `a ${width}×${height} render needs ${mib(bytes)} for its accumulator${aux ? ' (with the denoiser’s albedo and normal)' : ''}, over the cap of ${mib(MAX_FILM_BYTES)} (${maxFilmPixels(aux)} pixels)`;
   }
   if (width > maxSide || height > maxSide) {
     return `a ${width}×${height} render is over the cap of ${maxSide} pixels a side`;
@@ -55,7 +56,8 @@ export function fitFactor(
   height: number,
   pixelFraction = 1,
   maxSide = MAX_FILM_SIDE,
+  aux = false,
 ): number {
-  const pixels = maxFilmPixels() * pixelFraction;
+  const pixels = maxFilmPixels(aux) * pixelFraction;
   return Math.min(1, Math.sqrt(pixels / (width * height)), maxSide / Math.max(width, height));
 }

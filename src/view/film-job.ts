@@ -13,6 +13,8 @@ export interface FilmJob {
   readonly width: number;
   readonly height: number;
   readonly stripeRows: number;
+  /** The film has first-hit albedo and normal planes (Film's aux), for the denoiser. */
+  readonly aux: boolean;
   /** Approximate bytes held for this film (sums, exact sums, control). */
   readonly memoryBytes: number;
   /** Clears the film and drops all work in flight. */

@@ -60,6 +60,11 @@ export class Films {
   private readonly compute: ComputeMode;
   private readonly workers: () => number;
   private readonly maxPixelRatio: number;
+  /**
+   * The full film records first-hit albedo and normal (the denoiser's guides): set while
+   * denoising is on; a full film without them is remade at the next restart.
+   */
+  aux = false;
   /** See PathTracerOptions.sizeStep; takes effect when the full film is next sized. */
   sizeStep: number;
   private pendingSize = '';
@@ -128,7 +133,7 @@ export class Films {
     let s = wanted;
     let size = this.sizeAt(css, s);
     // The cap: scaled down to fit, the aspect ratio kept (film-cap.ts).
-    const factor = fitFactor(size[0], size[1], this.memoryFraction, this.maxSide);
+    const factor = fitFactor(size[0], size[1], this.memoryFraction, this.maxSide, this.aux);
     if (factor < 1) {
       s *= factor;
       size = this.sizeAt(css, s);
@@ -152,7 +157,7 @@ export class Films {
   }
 
   private overCap(width: number, height: number): boolean {
-    const f = fitFactor(width, height, this.memoryFraction, this.maxSide);
+    const f = fitFactor(width, height, this.memoryFraction, this.maxSide, this.aux);
     return f < 1;
   }
 
@@ -178,19 +183,20 @@ export class Films {
    * A film job of w × h. Memory that cannot be had (the allocation throws a
    * RangeError, SharedArrayBuffer's included) is reported in plain words.
    */
-  private make(width: number, height: number, target: number): FilmJob {
+  private make(width: number, height: number, target: number, aux: boolean): FilmJob {
     try {
       if (this.compute === 'shared') {
         const rows = Math.max(1, Math.floor(height / SHARED_STRIPES_TARGET));
-        return new SharedFilmJob(width, height, rows, target);
+        return new SharedFilmJob(width, height, rows, target, aux);
       }
       // Each transferred stripe is a message both ways: keep them few.
-      return new TransferFilmJob(width, height, chooseStripeRows(height, this.workers()), target);
+      const rows = chooseStripeRows(height, this.workers());
+      return new TransferFilmJob(width, height, rows, target, aux);
     } catch (e) {
       if (!(e instanceof RangeError)) throw e;
       const what = this.compute === 'shared' ? 'shared memory (SharedArrayBuffer)' : 'memory';
       throw new FilmMemoryError(
-        `could not allocate ${what} for a ${width}×${height} film (${mib(Film.byteLength(width, height))}): ${e.message}`,
+        `could not allocate ${what} for a ${width}×${height} film (${mib(Film.byteLength(width, height, aux))}): ${e.message}`,
       );
     }
   }
@@ -204,21 +210,22 @@ export class Films {
    */
   ensureFull(target: number): boolean {
     let [w, h] = this.fullSize();
-    if (this.full && this.full.width === w && this.full.height === h) return false;
+    const full = this.full;
+    if (full && full.width === w && full.height === h && (full.aux || !this.aux)) return false;
     if (this.fixedSize) {
-      const problem = filmSizeProblem(w, h, this.maxSide);
+      const problem = filmSizeProblem(w, h, this.maxSide, this.aux);
       if (problem) throw new FilmMemoryError(problem);
     }
     let made: FilmJob;
     for (;;) {
       try {
-        made = this.make(w, h, target);
+        made = this.make(w, h, target, this.aux);
         break;
       } catch (e) {
         if (!(e instanceof FilmMemoryError) || this.fixedSize || w * h <= MIN_FALLBACK_PIXELS) {
           throw e;
         }
-        this.memoryFraction = Math.min(this.memoryFraction, (w * h) / maxFilmPixels()) / 2;
+        this.memoryFraction = Math.min(this.memoryFraction, (w * h) / maxFilmPixels(this.aux)) / 2;
         [w, h] = this.fullSize();
       }
     }
@@ -243,7 +250,7 @@ export class Films {
     const [fw, fh] = this.full ? [this.full.width, this.full.height] : this.fullSize();
     const [w, h] = Films.previewSize(fw, fh);
     if (!this.preview || this.preview.width !== w || this.preview.height !== h) {
-      const made = this.make(w, h, target);
+      const made = this.make(w, h, target, false);
       this.preview?.setVersion(-1);
       this.preview = made;
     }
@@ -259,7 +266,7 @@ export class Films {
     if (this.fixedSize) {
       // A fixed size that cannot be had fails before any preview of it.
       const [w, h] = this.fullSize();
-      const problem = filmSizeProblem(w, h, this.maxSide);
+      const problem = filmSizeProblem(w, h, this.maxSide, this.aux);
       if (problem) throw new FilmMemoryError(problem);
     }
     this.previewing = this.wantPreview;

@@ -99,6 +99,7 @@ export class RenderJob {
       sampler: DEFAULT_SAMPLER,
       camera: image.camera,
       stripeRows: active.stripeRows,
+      aux: active.aux,
       film: shared?.filmBuffer,
       ctrl: shared?.ctrlBuffer,
       journal: shared?.journalBuffer,

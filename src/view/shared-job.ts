@@ -68,8 +68,12 @@ export class SharedFilmJob implements FilmJob {
   private abandoned: Abandoned[] = [];
   private renewed = false;
 
-  constructor(width: number, height: number, stripeRows: number, target: number) {
+  /** The film has albedo and normal planes (for the denoiser). */
+  readonly aux: boolean;
+
+  constructor(width: number, height: number, stripeRows: number, target: number, aux = false) {
     this.width = width;
+    this.aux = aux;
     this.height = height;
     this.stripeRows = stripeRows;
     this.layout = new ControlLayout(height, stripeRows);
@@ -82,14 +86,14 @@ export class SharedFilmJob implements FilmJob {
 
   /** New, zeroed buffers (a RangeError when the memory is not there). */
   private allocate(): void {
-    const filmBuffer = new SharedArrayBuffer(Film.byteLength(this.width, this.height));
+    const filmBuffer = new SharedArrayBuffer(Film.byteLength(this.width, this.height, this.aux));
     const ctrlBuffer = new SharedArrayBuffer(controlWords(this.stripes, this.height) * 4);
-    const journalBuffer = new SharedArrayBuffer(Film.byteLength(this.width, 1));
+    const journalBuffer = new SharedArrayBuffer(Film.byteLength(this.width, 1, this.aux));
     this.filmBuffer = filmBuffer;
     this.ctrlBuffer = ctrlBuffer;
     this.journalBuffer = journalBuffer;
-    this.film = new Film(this.width, this.height, filmBuffer);
-    this.journal = new Film(this.width, 1, journalBuffer);
+    this.film = new Film(this.width, this.height, filmBuffer, 0, 0, this.aux);
+    this.journal = new Film(this.width, 1, journalBuffer, 0, 0, this.aux);
     this.ctrl = new Int32Array(ctrlBuffer);
     initControl(this.ctrl);
   }

@@ -36,12 +36,16 @@ export class TransferFilmJob implements FilmJob {
   private segments = 0;
   private rejectedCount = 0;
 
-  constructor(width: number, height: number, stripeRows: number, target: number) {
+  /** The film has albedo and normal planes (for the denoiser). */
+  readonly aux: boolean;
+
+  constructor(width: number, height: number, stripeRows: number, target: number, aux = false) {
     this.width = width;
+    this.aux = aux;
     this.height = height;
     this.stripeRows = stripeRows;
     this.stripes = Math.ceil(height / stripeRows);
-    this.film = new Film(width, height);
+    this.film = new Film(width, height, undefined, 0, 0, aux);
     this.target = target;
     this.done = new Int32Array(this.stripes);
     this.inFlight = new Uint8Array(this.stripes);
@@ -128,8 +132,8 @@ export class TransferFilmJob implements FilmJob {
     if (stripe === undefined) return null;
     const y0 = stripe * this.stripeRows;
     const rows = Math.min(this.height, y0 + this.stripeRows) - y0;
-    const buffer = new ArrayBuffer(Film.byteLength(this.width, rows));
-    const window = new Film(this.width, rows, buffer, y0);
+    const buffer = new ArrayBuffer(Film.byteLength(this.width, rows, this.aux));
+    const window = new Film(this.width, rows, buffer, y0, 0, this.aux);
     window.copyRowsFrom(this.film);
     this.inFlight[stripe] = 1;
     return {
@@ -163,7 +167,7 @@ export class TransferFilmJob implements FilmJob {
     const s = result.stripe;
     this.inFlight[s] = 0;
     if (result.rendered) {
-      const window = new Film(this.width, result.rows, result.buffer, result.y0);
+      const window = new Film(this.width, result.rows, result.buffer, result.y0, 0, this.aux);
       this.film.copyRowsFrom(window);
       this.done[s]++;
       // Collapsed when frames stop (a hidden tab) so the list stays small.

@@ -159,6 +159,12 @@ export interface JobConfig extends RenderSettings {
   scene?: PackedScene;
   camera: CameraDesc;
   stripeRows: number;
+  /**
+   * The film carries first-hit albedo and normal planes (integrator/aux.ts), for the
+   * denoiser: every film the worker makes for this job (shared film, row, journal,
+   * transferred windows) has them.
+   */
+  aux: boolean;
   /** Shared mode: the film's buffer and its control block. */
   film?: SharedArrayBuffer;
   ctrl?: SharedArrayBuffer;

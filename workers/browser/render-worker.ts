@@ -136,17 +136,21 @@ function configure(id: number, config: JobConfig): void {
   }
   const job: Job = { config: { ...config, scene: undefined }, compiled, tracer };
   if (config.mode === 'shared') {
+    const aux = config.aux;
     job.film =
       old?.config.film === config.film && old?.film
         ? old.film
-        : new Film(config.width, config.height, config.film!);
+        : new Film(config.width, config.height, config.film!, 0, 0, aux);
     job.ctrl =
       old?.config.ctrl === config.ctrl && old?.ctrl ? old.ctrl : new Int32Array(config.ctrl!);
-    job.row = old?.row && old.row.width === config.width ? old.row : new Film(config.width, 1);
+    job.row =
+      old?.row && old.row.width === config.width && (old.row.auxHi !== null) === aux
+        ? old.row
+        : new Film(config.width, 1, undefined, 0, 0, aux);
     job.journal =
       old?.config.journal === config.journal && old?.journal
         ? old.journal
-        : new Film(config.width, 1, config.journal!);
+        : new Film(config.width, 1, config.journal!, 0, 0, aux);
     job.layout =
       old?.layout &&
       old.layout.height === config.height &&
@@ -262,11 +266,11 @@ function renderOneStripe(job: Job): boolean {
     if (Atomics.load(ctrl, C_GEN) !== gen) return true;
     // Committed already by a worker that held this claim and died.
     if (Atomics.load(ctrl, layout.passBase + y) !== pass) continue;
-    const rowFilm = new Film(width, 1, row.buffer, y);
+    const rowFilm = new Film(width, 1, row.buffer, y, 0, row.auxHi !== null);
     copyFilmRow(rowFilm, 0, film, y);
     const segments = stats.segments;
     const rejected = stats.rejected;
-    job.tracer.renderRow(rowFilm, y, pass, pass + 1, stats);
+    job.tracer.renderRows(rowFilm, y, y + 1, pass, pass + 1, stats);
     lock(ctrl, token);
     commitRow(ctrl, layout, film, journal, rowFilm, y, pass, gen, hangAt);
     ctrl[C_SEGMENTS] = (ctrl[C_SEGMENTS] + (stats.segments - segments)) | 0;
@@ -290,7 +294,7 @@ function renderTask(task: StripeTask, port: MessagePort): void {
   const rejected = stats.rejected;
   let rendered = false;
   if (job && job.config.version === task.version) {
-    const film = new Film(job.config.width, task.rows, task.buffer, task.y0);
+    const film = new Film(job.config.width, task.rows, task.buffer, task.y0, 0, job.config.aux);
     job.tracer.renderRows(film, task.y0, task.y0 + task.rows, task.pass, task.pass + 1, stats);
     rendered = true;
   }

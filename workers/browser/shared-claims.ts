@@ -35,7 +35,7 @@
  * writes: the unit tests throw from it to kill a simulated worker at every
  * point of the protocol. Production passes nothing.
  */
-import type { Film } from '../../src/core/index.ts';
+import { AUX_CHANNELS, type Film } from '../../src/core/index.ts';
 import {
   C_CLAIM,
   C_COMMITS,
@@ -99,7 +99,8 @@ export function initControl(ctrl: Int32Array): void {
 
 /**
  * Copies row `fromRow` of `from` over row `toRow` of `to` (rows counted
- * within each film): every plane (the Float32 sums, the exact sums' limbs).
+ * within each film): every plane (the Float32 sums, the exact sums' limbs, and the
+ * albedo and normal planes when both films have them).
  */
 export function copyFilmRow(to: Film, toRow: number, from: Film, fromRow: number): void {
   const n = to.width * 4;
@@ -108,6 +109,11 @@ export function copyFilmRow(to: Film, toRow: number, from: Film, fromRow: number
   to.sums.set(from.sums.subarray(a, a + n), b);
   to.hi.set(from.hi.subarray(a, a + n), b);
   to.lo.set(from.lo.subarray(a, a + n), b);
+  if (to.auxHi !== null && from.auxHi !== null) {
+    const m = to.width * AUX_CHANNELS;
+    to.auxHi.set(from.auxHi.subarray(fromRow * m, (fromRow + 1) * m), toRow * m);
+    to.auxLo!.set(from.auxLo!.subarray(fromRow * m, (fromRow + 1) * m), toRow * m);
+  }
 }
 
 function minReclaimIndex(ctrl: Int32Array): number {

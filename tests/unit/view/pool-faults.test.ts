@@ -65,8 +65,8 @@ afterAll(() => {
   if (dir) rmSync(dir, { recursive: true, force: true });
 });
 
-function reference(): Film {
-  const film = new Film(WIDTH, HEIGHT);
+function reference(aux: boolean): Film {
+  const film = new Film(WIDTH, HEIGHT, undefined, 0, 0, aux);
   new PathTracer(compileScene(scene), {
     width: WIDTH,
     height: HEIGHT,
@@ -89,12 +89,13 @@ async function renderWithFaults(
   mode: 'shared' | 'transfer',
   kinds: ('kill' | 'crash' | 'hang')[],
   seed: number,
+  aux = false,
 ): Promise<{ film: Film; errors: string[] }> {
   const random = mulberry32(seed);
   const job: FilmJob =
     mode === 'shared'
-      ? new SharedFilmJob(WIDTH, HEIGHT, STRIPE_ROWS, SPP)
-      : new TransferFilmJob(WIDTH, HEIGHT, STRIPE_ROWS, SPP);
+      ? new SharedFilmJob(WIDTH, HEIGHT, STRIPE_ROWS, SPP, aux)
+      : new TransferFilmJob(WIDTH, HEIGHT, STRIPE_ROWS, SPP, aux);
   const shared = job instanceof SharedFilmJob ? job : null;
   const config = (): JobConfig => ({
     mode,
@@ -109,6 +110,7 @@ async function renderWithFaults(
     sampler: DEFAULT_SAMPLER,
     camera: scene.camera,
     stripeRows: STRIPE_ROWS,
+    aux,
     film: shared?.filmBuffer,
     ctrl: shared?.ctrlBuffer,
     journal: shared?.journalBuffer,
@@ -206,17 +208,22 @@ async function renderWithFaults(
 }
 
 describe('the browser pool with workers killed on real threads (Node)', () => {
-  const expected = reference();
+  const expected = reference(false);
+  // The shared test's film carries the denoiser's albedo and normal planes: a commit's
+  // journal and every repair must move them with the radiance.
+  const expectedAux = reference(true);
 
-  it('shared memory: kills, crashes and frozen lock holders, the film stays bit-identical', async () => {
+  it('shared memory (with albedo and normal planes): kills, crashes and frozen lock holders, the film stays bit-identical', async () => {
     const before = { ...faults };
     const { film, errors } = await renderWithFaults(
       'shared',
       ['kill', 'hang', 'crash', 'kill', 'kill', 'hang', 'crash', 'kill'],
       3,
+      true,
     );
+    expect(film.auxHi).not.toBeNull();
     expect(errors).toEqual([]);
-    expect(differingWords(film, expected)).toBe(0);
+    expect(differingWords(film, expectedAux)).toBe(0);
     const d = {
       killed: faults.killed - before.killed,
       crashed: faults.crashed - before.crashed,
@@ -248,5 +255,12 @@ describe('the browser pool with workers killed on real threads (Node)', () => {
     expect(errors).toEqual([]);
     expect(differingWords(film, expected)).toBe(0);
     expect(faults.tasksResent - before.tasksResent).toBeGreaterThanOrEqual(2);
+  });
+
+  it('transfer mode with albedo and normal planes: the windows carry them, bit-identical', async () => {
+    const { film, errors } = await renderWithFaults('transfer', ['kill'], 6, true);
+    expect(errors).toEqual([]);
+    expect(film.auxHi).not.toBeNull();
+    expect(differingWords(film, expectedAux)).toBe(0);
   });
 });
