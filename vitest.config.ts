@@ -6,7 +6,8 @@ export const VALIDATION_SUITE = ['tests/validation/consistency-*.test.ts'];
 export default defineConfig({
   test: {
     include: ['tests/**/*.test.ts'],
-    exclude: [...configDefaults.exclude, ...VALIDATION_SUITE],
+    // tests/timing runs alone after the rest (vitest.timing.config.ts).
+    exclude: [...configDefaults.exclude, ...VALIDATION_SUITE, 'tests/timing/**'],
     globalSetup: ['tests/global-setup.ts'],
     testTimeout: 120_000,
     hookTimeout: 180_000,

@@ -111,6 +111,9 @@ export function attachControls(c: Controller): Controls {
     (v) => void c.setWorkers(v),
   );
 
+  const denoise = byId<HTMLInputElement>('denoise');
+  denoise.addEventListener('change', () => c.setDenoise(denoise.checked));
+
   byId('reset-view').addEventListener('click', () => {
     const scene = c.scene;
     if (!scene) return;
@@ -129,6 +132,7 @@ export function attachControls(c: Controller): Controls {
   const sync = () => {
     const s = c.stats();
     workers.set(s.workers);
+    denoise.checked = c.denoise;
     showPause();
     refresh();
     if (!c.scene) return;

@@ -4,7 +4,7 @@
  * `?scene=spheres`, `?width=64&height=64&seed=1&spp=8`, `?shared=off`,
  * `?display=canvas2d` (or `webgl2`, even on a software renderer), `?workers=2`,
  * `?bench=2` (a 2-second benchmark), `?scale=1&dpr=3` (a fixed render scale;
- * devicePixelRatio counted up to 3 instead of 2).
+ * devicePixelRatio counted up to 3 instead of 2), `?denoise=1` (the Denoise switch on).
  */
 import type { PathTracerOptions } from '../view/index.ts';
 import { PRESETS, type PresetName } from './presets.ts';
@@ -52,6 +52,7 @@ export function readParams(search: string): DemoParams {
     maxPixelRatio: dpr > 0 ? dpr : undefined,
     display: displayParam(q.get('display')),
     shared: q.get('shared') === 'off' ? 'off' : 'auto',
+    denoise: q.get('denoise') === '1',
   };
   return {
     preset,

@@ -44,6 +44,14 @@ export function startStatsPanel(getController: () => Controller, onTick?: () => 
     text('s-res', `${s.width} × ${s.height}`);
     text('s-mem', formatBytes(s.memoryBytes));
     text('s-noise', formatNoise(s.noise));
+    text(
+      's-denoised',
+      s.denoised
+        ? `from ${s.denoised.spp} spp (${(s.denoised.ms / 1000).toFixed(2)} s)`
+        : c.denoise
+          ? 'when the view rests'
+          : 'off',
+    );
     bar.style.width = `${Math.min(100, fraction * 100).toFixed(2)}%`;
     onTick?.();
   }, REFRESH_MS);

@@ -47,6 +47,7 @@ import { MAX_FILM_SIDE } from './film-cap.ts';
 import { linearImage, pngBlob } from './film-export.ts';
 import { Fallbacks } from './fallbacks.ts';
 import { Films } from './films.ts';
+import { ViewDenoiser } from './denoise-view.ts';
 import { FirstPass, type Timeline } from './first-pass.ts';
 import { FocusPicker } from './focus-pick.ts';
 import { FrameLoop } from './frame-loop.ts';
@@ -106,6 +107,8 @@ export class Controller extends EventTarget implements PathTracerController {
   private interacting = false;
   /** The quick first pass of a new scene and the automatic scale. */
   private readonly firstPass: FirstPass;
+  /** The denoised picture of a resting view (options.denoise). */
+  private readonly denoiser: ViewDenoiser;
   constructor(canvas: HTMLCanvasElement, options: PathTracerOptions) {
     super();
     this.canvas = canvas;
@@ -130,6 +133,16 @@ export class Controller extends EventTarget implements PathTracerController {
     });
     const pool = sharedPool(options, options.workers);
     this.films = new Films(canvas, options, compute.compute, () => pool.size);
+    this.films.aux = options.denoise === true;
+    this.denoiser = new ViewDenoiser(options.denoise === true, {
+      show: (image) => {
+        this.screen.showDenoised(image);
+        const { spp, width, height, ms, sinceRestartMs } = image;
+        this.emit('denoised', { spp, width, height, ms, sinceRestartMs });
+        this.wake();
+      },
+      error: (message) => this.emit('error', { message }),
+    });
     // A film wider than a texture could not be shown.
     if (display instanceof StandInDisplay) {
       this.films.maxSide = Math.min(MAX_FILM_SIDE, display.maxTextureSize);
@@ -155,6 +168,10 @@ export class Controller extends EventTarget implements PathTracerController {
         paused: () => this.isPaused,
         interacting: () => this.interacting,
         restart: () => this.restart(),
+        denoise: (now, spp) => {
+          const full = this.films.full;
+          return full !== null && this.denoiser.update(full, spp, this.target, now);
+        },
       },
       this.films,
       this.firstPass,
@@ -259,6 +276,8 @@ export class Controller extends EventTarget implements PathTracerController {
   private restart(): void {
     if (!this.currentScene || !this.camera || this.destroyed) return;
     this.screen.captureBackdrop();
+    this.screen.dropDenoised();
+    this.denoiser.restarted(performance.now());
     this.films.wantPreview = this.interacting || this.firstPass.active;
     let active: FilmJob;
     try {
@@ -288,6 +307,8 @@ export class Controller extends EventTarget implements PathTracerController {
     const job = this.activeJob();
     if (!job || !this.config) return;
     this.screen.captureBackdrop();
+    this.screen.dropDenoised();
+    this.denoiser.restarted(performance.now());
     this.job.reset(job, this.isPaused);
     this.screen.dirty = true;
     this.meter.cleared();
@@ -366,6 +387,26 @@ export class Controller extends EventTarget implements PathTracerController {
     } catch (e) {
       this.fallbacks.filmFailed(e);
     }
+  }
+
+  get denoise(): boolean {
+    return this.denoiser.enabled;
+  }
+
+  setDenoise(on: boolean): void {
+    if (on === this.denoiser.enabled) return;
+    // Films made from now on record albedo and normal only while denoising is on; a
+    // full film without them is remade (a restart) when it is turned on.
+    this.films.aux = on;
+    if (!on) {
+      this.denoiser.disable();
+      this.screen.dropDenoised();
+      this.wake();
+      return;
+    }
+    this.denoiser.enable();
+    if (this.films.full && !this.films.full.aux) this.restart();
+    else this.wake();
   }
 
   /** See PathTracerOptions.sizeStep; applies from the next restart that sizes the film. */
@@ -468,6 +509,9 @@ export class Controller extends EventTarget implements PathTracerController {
       memoryBytes: this.films.memoryBytes + textureBytes + this.screen.backdropBytes,
       rejected: job?.rejected() ?? 0,
       paused: this.isPaused,
+      denoised: this.screen.shownDenoised
+        ? { spp: this.screen.shownDenoised.spp, ms: this.screen.shownDenoised.ms }
+        : null,
     };
   }
 
@@ -577,6 +621,7 @@ export class Controller extends EventTarget implements PathTracerController {
     this.requests.cancelModel();
     this.detachControls?.();
     this.films.park();
+    this.denoiser.destroy();
     this.job.release();
     this.screen.display.destroy();
   }

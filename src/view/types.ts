@@ -46,6 +46,19 @@ export interface RenderStatsInfo extends ProgressInfo {
   memoryBytes: number;
   rejected: number;
   paused: boolean;
+  /** The denoised picture on screen: the samples it was made from and the network's time. */
+  denoised: { spp: number; ms: number } | null;
+}
+
+/** A denoised picture replaced the noisy one (the `denoise` option). */
+export interface DenoisedInfo {
+  spp: number;
+  width: number;
+  height: number;
+  /** The network's time on its worker. */
+  ms: number;
+  /** From the film's last restart (a camera step, say) to this picture, in ms. */
+  sinceRestartMs: number;
 }
 
 /**
@@ -96,6 +109,12 @@ export interface PathTracerOptions extends BareModelChoices {
   autoplay?: boolean;
   /** Orbit on drag, dolly on wheel. */
   cameraControls?: boolean;
+  /**
+   * Show a denoised picture while the view rests (Open Image Denoise's network on a
+   * worker of its own, guided by the first-hit albedo and normal the film then records;
+   * docs/denoise.md says what it costs and when it misleads). Default false.
+   */
+  denoise?: boolean;
 }
 
 /** A stage of loading a scene or model (core/scene/load/load.ts LoadStage), `done` of `total`. */
@@ -118,6 +137,7 @@ export interface PathTracerEventMap {
   warning: CustomEvent<{ messages: string[] }>;
   progress: CustomEvent<ProgressInfo>;
   converged: CustomEvent<ProgressInfo>;
+  denoised: CustomEvent<DenoisedInfo>;
   error: CustomEvent<{ message: string }>;
   fallback: CustomEvent<FallbackInfo>;
 }
@@ -145,6 +165,9 @@ export interface PathTracerController extends EventTarget {
   setSeed(seed: number): void;
   /** A fixed render scale, or null for the automatic one (see PathTracerOptions.renderScale). */
   setRenderScale(scale: number | null): void;
+  /** Turns the denoised picture on or off (see PathTracerOptions.denoise). */
+  setDenoise(on: boolean): void;
+  readonly denoise: boolean;
   setWorkers(count: number): Promise<void>;
   getCamera(): CameraDesc;
   setCamera(camera: CameraDesc): void;

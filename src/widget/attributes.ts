@@ -17,6 +17,7 @@ export const OBSERVED_ATTRIBUTES = [
   'paused',
   'render-scale',
   'alt',
+  'denoise',
 ] as const;
 
 export type ObservedAttribute = (typeof OBSERVED_ATTRIBUTES)[number];

@@ -51,6 +51,7 @@ const FORWARDED_EVENTS = [
   'fallback',
   'loadprogress',
   'warning',
+  'denoised',
 ] as const;
 
 /** Words for a loading stage, shown while a model loads. */
@@ -166,6 +167,17 @@ export class PathwiseViewElement extends ElementBase {
   }
   set cameraControls(value: boolean) {
     writeBoolean(this, 'camera-controls', value);
+  }
+
+  /**
+   * Show a denoised picture while the view rests (PathTracerOptions.denoise;
+   * docs/denoise.md). A boolean attribute: present means on.
+   */
+  get denoise(): boolean {
+    return this.hasAttribute('denoise');
+  }
+  set denoise(value: boolean) {
+    writeBoolean(this, 'denoise', value);
   }
 
   /** Start tracing as soon as the scene loads (default true; `autoplay="false"` opts out). */
@@ -354,6 +366,9 @@ export class PathwiseViewElement extends ElementBase {
       case 'camera-controls':
         this.applyCameraControls();
         break;
+      case 'denoise':
+        tracer.setDenoise(this.denoise);
+        break;
       case 'paused':
         this.applyRunState();
         break;
@@ -371,6 +386,7 @@ export class PathwiseViewElement extends ElementBase {
       exposure: this.exposure,
       autoplay: this.shouldRun(),
       cameraControls: false,
+      denoise: this.denoise,
     };
     if (this.bounces !== null) options.bounces = this.bounces;
     if (this.renderScale !== null) options.renderScale = this.renderScale;

@@ -1,0 +1,65 @@
+/**
+ * The browser's denoiser thread (src/view/denoise-view.ts starts it on demand): Open
+ * Image Denoise's "RT" U-Net in TypeScript (src/core/denoise), with the weights OIDN runs
+ * at quality "fast" (rt_hdr_alb_nrm_small), which match native OIDN 2.5.1 at that
+ * quality (tests/unit/core/denoise-oidn.test.ts) and take half the base network's time,
+ * so a still view is denoised within a second or two on two cores. The weights are
+ * fetched once, on the first request; one workspace is kept for the tile size in use.
+ */
+import {
+  allocDenoiseWorkspace,
+  prepareDenoise,
+  runDenoiseTile,
+} from '../../src/core/denoise/denoise.ts';
+import { parseTza } from '../../src/core/denoise/tza.ts';
+import type { UNetWorkspace } from '../../src/core/denoise/unet.ts';
+import { unetWeights, type UNetWeights } from '../../src/core/denoise/unet-weights.ts';
+import {
+  BROWSER_MIN_TILE_SIDE,
+  BROWSER_TILE_PIXELS,
+  type DenoiseReply,
+  type DenoiseRequest,
+} from './denoise-protocol.ts';
+
+const WEIGHTS_URL = new URL('../../vendor/oidn-weights/rt_hdr_alb_nrm_small.tza', import.meta.url);
+
+let weights: Promise<UNetWeights> | null = null;
+let workspace: UNetWorkspace | null = null;
+
+async function loadWeights(): Promise<UNetWeights> {
+  const response = await fetch(WEIGHTS_URL);
+  if (!response.ok) throw new Error(`denoiser weights: HTTP ${response.status} for ${WEIGHTS_URL}`);
+  return unetWeights(parseTza(new Uint8Array(await response.arrayBuffer())));
+}
+
+function post(reply: DenoiseReply, transfer: Transferable[] = []): void {
+  (self as unknown as Worker).postMessage(reply, transfer);
+}
+
+self.onmessage = async (e: MessageEvent<DenoiseRequest>) => {
+  const req = e.data;
+  if (req?.type !== 'denoise') return;
+  try {
+    weights ??= loadWeights();
+    const w = await weights;
+    const t0 = performance.now();
+    const { width, height, color, albedo, normal } = req;
+    const job = prepareDenoise({ width, height, color, albedo, normal }, w, {
+      maxTilePixels: BROWSER_TILE_PIXELS,
+      minTileSide: BROWSER_MIN_TILE_SIDE,
+    });
+    if (workspace?.h !== job.plan.tileH || workspace.w !== job.plan.tileW) {
+      workspace = null; // the old one is garbage before the new one is allocated
+      workspace = allocDenoiseWorkspace(job);
+    }
+    const rgb = new Float32Array(width * height * 3);
+    for (let i = 0; i < job.plan.tiles.length; i++) runDenoiseTile(job, i, workspace, rgb);
+    post({ type: 'done', id: req.id, rgb, ms: performance.now() - t0 }, [rgb.buffer]);
+  } catch (err) {
+    // A failed weights fetch is tried again on the next request.
+    if (weights && (await weights.then(() => false, () => true))) weights = null;
+    post({ type: 'error', id: req.id, message: err instanceof Error ? err.message : String(err) });
+  }
+};
+
+post({ type: 'ready' });
