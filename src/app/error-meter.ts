@@ -2,8 +2,10 @@
  * Feeds the error plot: a few times a second, when the browser is idle,
  * reads the full film in place (no copy), computes the estimated and, where
  * the view has a reference, the true relMSE on the comparison grid
- * (error-grid.ts) and adds a point. A restart (any change of view or
- * settings) starts a new series. Nothing here runs on the tracing or
+ * (error-grid.ts) and adds a point; each new denoised picture (the Denoise
+ * switch) adds a point with its true relMSE, on the same grid, at the
+ * tracing time it appeared. A restart (any change of view or settings)
+ * starts a new series. Nothing here runs on the tracing or
  * drawing path: the workers never wait for it, and a frame never does.
  */
 import type { Controller } from '../view/index.ts';
@@ -32,12 +34,26 @@ export class ErrorMeter {
   private readonly plot: ErrorPlot;
   private version = -1;
   private lastSpp = -1;
+  /** Samples of the last denoised picture measured (-1: none in this series). */
+  private lastDenoisedSpp = -1;
   private preset: PresetName | null = null;
   private reference: ReferenceLuminance | null = null;
   private layoutKey = '';
   private layout: GridLayout | null = null;
   private timer: ReturnType<typeof setTimeout> | undefined;
   private stopped = false;
+
+  /**
+   * The latest estimated relative RMS error (√ of the estimated relMSE per cell), the
+   * figure the plot's caption calls "estimated" and the stats call Noise; NaN: none yet.
+   */
+  get noise(): number {
+    for (let i = this.points.length - 1; i >= 0; i--) {
+      const e = this.points[i]!.estimated;
+      if (e > 0) return Math.sqrt(e);
+    }
+    return NaN;
+  }
 
   constructor(controller: Controller, plot: ErrorPlot) {
     this.controller = controller;
@@ -89,8 +105,12 @@ export class ErrorMeter {
       this.version = snap.version;
       this.points = [];
       this.lastSpp = -1;
+      this.lastDenoisedSpp = -1;
     }
-    if (snap.spp < 1 || snap.spp === this.lastSpp) return;
+    const d = c.denoisedSnapshot();
+    const newDenoised = d !== null && d.version === snap.version && d.spp !== this.lastDenoisedSpp;
+    if (snap.spp < 1 || (snap.spp === this.lastSpp && !newDenoised)) return;
+    const newSamples = snap.spp !== this.lastSpp;
     this.lastSpp = snap.spp;
 
     const ref = this.preset ? this.reference : null;
@@ -119,13 +139,28 @@ export class ErrorMeter {
       this.plot.draw(this.points, note);
       return;
     }
-    const f = errorFigures(snap.width, snap.sums, snap, layout, useReference ? ref : null);
-    this.points.push({
-      seconds: snap.seconds,
-      spp: snap.spp,
-      estimated: f.estimatedRelMse,
-      truth: f.relMse,
-    });
+    if (newSamples) {
+      const f = errorFigures(snap.width, snap.sums, snap, layout, useReference ? ref : null);
+      this.points.push({
+        seconds: snap.seconds,
+        spp: snap.spp,
+        estimated: f.estimatedRelMse,
+        truth: f.relMse,
+        denoised: NaN,
+      });
+    }
+    if (newDenoised && d.width === snap.width && d.height === snap.height) {
+      this.lastDenoisedSpp = d.spp;
+      // One sample a pixel (A = 1): the figures read no squares then.
+      const f = errorFigures(d.width, d.sums, d.sums, layout, useReference ? ref : null);
+      this.points.push({
+        seconds: d.seconds,
+        spp: d.spp,
+        estimated: NaN,
+        truth: NaN,
+        denoised: f.relMse,
+      });
+    }
     if (this.points.length > MAX_POINTS) {
       this.points = this.points.filter((_, i) => i % 2 === 0 || i === this.points.length - 1);
     }

@@ -1,7 +1,8 @@
 /**
  * The log–log plot of error against tracing time: the relative RMS error
  * (√relMSE) estimated from the film's own variance, the true one against
- * the Mitsuba reference where the view has one, and a dashed line of slope
+ * the Mitsuba reference where the view has one, the true error of the denoised picture
+ * (the Denoise switch) against the same reference, and a dashed line of slope
  * −½ (error ∝ 1/√t, what Monte Carlo promises) through the first estimate.
  * Drawn with Canvas 2D a few times a second; the numbers also go to a text
  * line (and the canvas's label) for screen readers.
@@ -15,17 +16,21 @@ export interface ErrorPoint {
   estimated: number;
   /** relMSE against the reference (NaN: no reference for this view). */
   truth: number;
+  /** relMSE of the denoised picture against the reference (NaN: none at this point). */
+  denoised: number;
 }
 
 const COLORS = {
   estimated: '#e0a84a',
   truth: '#5ec8e5',
+  denoised: '#8fd16a',
   slope: '#9aa0a6',
   grid: 'rgba(255, 255, 255, 0.08)',
   label: '#9aa0a6',
 };
 
-function format(v: number): string {
+/** A relative RMS error as the plot's caption and the stats' Noise write it. */
+export function formatRelError(v: number): string {
   if (!Number.isFinite(v)) return '–';
   return v >= 0.01 ? v.toFixed(3) : v.toExponential(1);
 }
@@ -62,20 +67,26 @@ export class ErrorPlot {
 
     const est = points.filter((p) => p.seconds > 0 && p.estimated > 0);
     const truth = points.filter((p) => p.seconds > 0 && p.truth > 0);
+    const denoised = points.filter((p) => p.seconds > 0 && p.denoised > 0);
     const all = [
       ...est.map((p) => Math.sqrt(p.estimated)),
       ...truth.map((p) => Math.sqrt(p.truth)),
+      ...denoised.map((p) => Math.sqrt(p.denoised)),
     ];
-    const times = [...est, ...truth].map((p) => p.seconds);
+    const times = [...est, ...truth, ...denoised].map((p) => p.seconds);
     const last = points[points.length - 1];
     const lastEst = est[est.length - 1];
     const lastTruth = truth[truth.length - 1];
+    const lastDenoised = denoised[denoised.length - 1];
+    const denoisedText = lastDenoised
+      ? `, denoised ${formatRelError(Math.sqrt(lastDenoised.denoised))} (from ${lastDenoised.spp} spp)`
+      : '';
     this.caption.textContent =
       all.length === 0
         ? `Waiting for two samples per pixel… ${note}`
-        : `At ${last.seconds.toFixed(1)} s (${last.spp} spp): estimated ${format(
+        : `At ${last.seconds.toFixed(1)} s (${last.spp} spp): estimated ${formatRelError(
             lastEst ? Math.sqrt(lastEst.estimated) : NaN,
-          )}, true ${format(lastTruth ? Math.sqrt(lastTruth.truth) : NaN)} (relative RMS error, √relMSE). ${note}`;
+          )}, true ${formatRelError(lastTruth ? Math.sqrt(lastTruth.truth) : NaN)}${denoisedText} (relative RMS error per cell, √relMSE). ${note}`;
     canvas.setAttribute('aria-label', `Error against time, log–log. ${this.caption.textContent}`);
 
     const left = 34;
@@ -149,6 +160,7 @@ export class ErrorPlot {
     };
     line(est, (p) => p.estimated, COLORS.estimated);
     line(truth, (p) => p.truth, COLORS.truth);
+    line(denoised, (p) => p.denoised, COLORS.denoised);
     ctx.restore();
   }
 }

@@ -6,10 +6,6 @@ export function formatBytes(bytes: number): string {
   return `${(bytes / (1024 * 1024)).toFixed(1)} MiB`;
 }
 
-export function formatNoise(noise: number): string {
-  return Number.isFinite(noise) ? `${(noise * 100).toFixed(noise < 0.1 ? 2 : 1)} %` : '–';
-}
-
 export function formatRate(raysPerSecond: number): string {
   return raysPerSecond > 0 ? (raysPerSecond / 1e6).toFixed(2) : '–';
 }

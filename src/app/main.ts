@@ -174,7 +174,11 @@ document.getElementById('save-pfm')!.addEventListener('click', () => {
   download(new Blob([bytes.slice().buffer]), `${baseName()}.pfm`);
 });
 
-const panel = startStatsPanel(() => controller, controls.refresh);
+const panel = startStatsPanel(
+  () => controller,
+  () => meter.noise,
+  controls.refresh,
+);
 
 const benchButton = document.getElementById('benchmark') as HTMLButtonElement;
 const benchResult = document.getElementById('bench-result') as HTMLElement;

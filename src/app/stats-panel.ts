@@ -1,12 +1,16 @@
 /**
  * The live numbers: samples per pixel with a progress bar toward the
- * target, FPS, M rays/s, main-thread frame time, resolution, memory and
- * the noise estimate. Refreshed a few times a second, not every frame.
+ * target, FPS, M rays/s, main-thread frame time, resolution, memory, the
+ * noise estimate and the denoised picture's samples. Noise is the error
+ * plot's own estimate (ErrorMeter.noise: the relative RMS error per grid
+ * cell, √ of the estimated relMSE), written as the plot's caption writes it,
+ * so the two numbers on the page are one figure. Refreshed a few times a second, not every frame.
  * While the benchmark runs, progress is its elapsed time, not samples
  * toward the (deliberately unreachable) target it sets.
  */
 import type { Controller } from '../view/index.ts';
-import { formatBytes, formatNoise, formatRate } from './format.ts';
+import { formatRelError } from './error-plot.ts';
+import { formatBytes, formatRate } from './format.ts';
 
 const REFRESH_MS = 250;
 
@@ -21,7 +25,11 @@ export interface StatsPanel {
   stop(): void;
 }
 
-export function startStatsPanel(getController: () => Controller, onTick?: () => void): StatsPanel {
+export function startStatsPanel(
+  getController: () => Controller,
+  noise: () => number,
+  onTick?: () => void,
+): StatsPanel {
   const bar = document.getElementById('progress-bar') as HTMLElement;
   let bench: { start: number; seconds: number } | null = null;
   const timer = setInterval(() => {
@@ -43,7 +51,7 @@ export function startStatsPanel(getController: () => Controller, onTick?: () => 
     text('s-frame', `${s.frameMs.toFixed(2)} ms`);
     text('s-res', `${s.width} × ${s.height}`);
     text('s-mem', formatBytes(s.memoryBytes));
-    text('s-noise', formatNoise(s.noise));
+    text('s-noise', formatRelError(noise()));
     text(
       's-denoised',
       s.denoised

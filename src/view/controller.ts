@@ -47,7 +47,7 @@ import { MAX_FILM_SIDE } from './film-cap.ts';
 import { linearImage, pngBlob } from './film-export.ts';
 import { Fallbacks } from './fallbacks.ts';
 import { Films } from './films.ts';
-import { ViewDenoiser } from './denoise-view.ts';
+import { ViewDenoiser, type DenoisedImage } from './denoise-view.ts';
 import { FirstPass, type Timeline } from './first-pass.ts';
 import { FocusPicker } from './focus-pick.ts';
 import { FrameLoop } from './frame-loop.ts';
@@ -142,6 +142,7 @@ export class Controller extends EventTarget implements PathTracerController {
         this.wake();
       },
       error: (message) => this.emit('error', { message }),
+      seconds: (now) => this.job.clock.seconds(now),
     });
     // A film wider than a texture could not be shown.
     if (display instanceof StandInDisplay) {
@@ -589,6 +590,15 @@ export class Controller extends EventTarget implements PathTracerController {
       bounces: this.bounces,
       seed: this.seed,
     };
+  }
+
+  /**
+   * The denoised picture on screen (RGBA sums with A = 1, a film's layout), with the
+   * configuration version it belongs to; null when none is shown. Live, not a copy.
+   */
+  denoisedSnapshot(): (DenoisedImage & { version: number }) | null {
+    const d = this.screen.shownDenoised;
+    return d && !this.films.previewing ? { ...d, version: this.job.version } : null;
   }
 
   // ---- output ------------------------------------------------------------

@@ -33,12 +33,16 @@ export interface DenoisedImage {
   ms: number;
   /** From the camera's last restart to this picture on screen (performance.now() ms). */
   sinceRestartMs: number;
+  /** The film's tracing seconds when it arrived (the error plot's time axis). */
+  seconds: number;
 }
 
 export interface DenoiseHost {
   /** A denoised picture for the current configuration arrived (show it, wake the loop). */
   show(image: DenoisedImage): void;
   error(message: string): void;
+  /** The film's tracing seconds now. */
+  seconds(now: number): number;
 }
 
 interface InFlight {
@@ -117,9 +121,12 @@ export class ViewDenoiser {
     if (this.worker) return this.worker;
     try {
       const Worker = ModuleWorker;
-      this.worker = new Worker(new URL('../../workers/browser/denoise-worker.ts', import.meta.url), {
-        type: 'module',
-      });
+      this.worker = new Worker(
+        new URL('../../workers/browser/denoise-worker.ts', import.meta.url),
+        {
+          type: 'module',
+        },
+      );
     } catch (e) {
       this.fail(`the denoiser could not start: ${e instanceof Error ? e.message : String(e)}`);
       return null;
@@ -172,6 +179,7 @@ export class ViewDenoiser {
       sums,
       ms: reply.ms,
       sinceRestartMs: now - this.restartedAt,
+      seconds: this.host.seconds(now),
     });
   }
 
