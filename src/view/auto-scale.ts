@@ -25,6 +25,26 @@ export const PASS_BUDGET_S = 0.2;
  * the tracer), and a very slow or busy machine still gets a usable picture.
  */
 export const MIN_AUTO_PIXELS = 65_536;
+/**
+ * With the denoiser on (the `denoise` option), the automatic scale also keeps one denoise
+ * of the full film within this long, so that a denoised picture follows a camera stop
+ * within about two seconds. bench/denoise-scale.mjs measured the demo's denoised error
+ * after 5 s on a 2-core machine (Cornell, the error plot's grid, medians of 3): flat at
+ * 7–8e-5 for films of 192×128 to 382×256, ten times worse at 478×320 (one denoise took
+ * 3.5 s, so the picture at 5 s was still the 1-spp one); full resolution did not win.
+ */
+export const DENOISE_BUDGET_MS = 1200;
+/**
+ * The denoiser's cost per pixel until it is measured on this machine: 382×256 took
+ * 1.5–2.0 s with two render workers beside it on two cores (tests/timing).
+ */
+export const DENOISE_MS_PER_PIXEL = 0.018;
+
+/** The most pixels the automatic scale gives a film that is denoised at `msPerPixel`. */
+export function denoisePixelCap(msPerPixel = DENOISE_MS_PER_PIXEL): number {
+  return DENOISE_BUDGET_MS / msPerPixel;
+}
+
 /** The speed is measured over at least this long (rAF granularity is ~16 ms). */
 export const PROBE_MIN_MS = 20;
 /** The warm measurement runs over this long, from the end of the full film's first pass. */
@@ -36,19 +56,22 @@ export const RESCALE_MIN_GAIN = 1.3;
  * The render scale (relative to CSS size × capped devicePixelRatio) whose
  * pass takes `budgetS` at `samplesPerSecond`, for a canvas of `cssPixels`
  * × pixelRatio² device pixels: at most 1, and at least the scale of
- * MIN_AUTO_PIXELS.
+ * MIN_AUTO_PIXELS. `maxPixels` caps the film (the denoiser's budget,
+ * denoisePixelCap), below the floor too.
  */
 export function chooseRenderScale(
   samplesPerSecond: number,
   cssPixels: number,
   pixelRatio: number,
   budgetS = PASS_BUDGET_S,
+  maxPixels = Infinity,
 ): number {
   const full = cssPixels * pixelRatio * pixelRatio;
   if (!(full > 0)) return 1;
-  const floor = Math.min(1, Math.sqrt(MIN_AUTO_PIXELS / full));
+  const cap = Math.min(1, Math.sqrt(maxPixels / full));
+  const floor = Math.min(1, Math.sqrt(MIN_AUTO_PIXELS / full), cap);
   const scale = samplesPerSecond > 0 ? Math.sqrt((samplesPerSecond * budgetS) / full) : 0;
-  return Math.max(floor, Math.min(1, scale));
+  return Math.max(floor, Math.min(cap, scale));
 }
 
 /**

@@ -47,6 +47,7 @@ import { MAX_FILM_SIDE } from './film-cap.ts';
 import { linearImage, pngBlob } from './film-export.ts';
 import { Fallbacks } from './fallbacks.ts';
 import { Films } from './films.ts';
+import { denoisePixelCap, RESCALE_MIN_GAIN } from './auto-scale.ts';
 import { ViewDenoiser, type DenoisedImage } from './denoise-view.ts';
 import { FirstPass, type Timeline } from './first-pass.ts';
 import { FocusPicker } from './focus-pick.ts';
@@ -109,6 +110,10 @@ export class Controller extends EventTarget implements PathTracerController {
   private readonly firstPass: FirstPass;
   /** The denoised picture of a resting view (options.denoise). */
   private readonly denoiser: ViewDenoiser;
+  /** The denoiser's warm cost per pixel on this machine (NaN: not measured yet). */
+  private denoiseMsPerPixel = NaN;
+  /** The automatic scale followed the measured denoiser cost in this scene. */
+  private denoiseScaled = false;
   constructor(canvas: HTMLCanvasElement, options: PathTracerOptions) {
     super();
     this.canvas = canvas;
@@ -134,9 +139,11 @@ export class Controller extends EventTarget implements PathTracerController {
     const pool = sharedPool(options, options.workers);
     this.films = new Films(canvas, options, compute.compute, () => pool.size);
     this.films.aux = options.denoise === true;
+    if (options.denoise === true) this.films.maxAutoPixels = denoisePixelCap();
     this.denoiser = new ViewDenoiser(options.denoise === true, {
       show: (image) => {
         this.screen.showDenoised(image);
+        this.denoiseMeasured(image);
         const { spp, width, height, ms, sinceRestartMs } = image;
         this.emit('denoised', { spp, width, height, ms, sinceRestartMs });
         this.wake();
@@ -169,9 +176,9 @@ export class Controller extends EventTarget implements PathTracerController {
         paused: () => this.isPaused,
         interacting: () => this.interacting,
         restart: () => this.restart(),
-        denoise: (now, spp) => {
+        denoise: (spp) => {
           const full = this.films.full;
-          return full !== null && this.denoiser.update(full, spp, this.target, now);
+          return full !== null && this.denoiser.update(full, spp, this.target);
         },
       },
       this.films,
@@ -262,6 +269,7 @@ export class Controller extends EventTarget implements PathTracerController {
     this.packed = packed;
     this.focus.invalidate();
     this.sceneId++;
+    this.denoiseScaled = false;
     this.camera = { ...scene.camera };
     this.bounces =
       first && this.options.bounces !== undefined
@@ -397,17 +405,55 @@ export class Controller extends EventTarget implements PathTracerController {
   setDenoise(on: boolean): void {
     if (on === this.denoiser.enabled) return;
     // Films made from now on record albedo and normal only while denoising is on; a
-    // full film without them is remade (a restart) when it is turned on.
+    // full film without them is remade (a restart) when it is turned on. The automatic
+    // scale takes the denoiser's budget into account (auto-scale.ts, DENOISE_BUDGET_MS).
     this.films.aux = on;
-    if (!on) {
+    this.films.maxAutoPixels = on ? denoisePixelCap(this.warmDenoiseCost()) : Infinity;
+    if (on) this.denoiser.enable();
+    else {
       this.denoiser.disable();
       this.screen.dropDenoised();
+    }
+    this.rescale(on);
+  }
+
+  private warmDenoiseCost(): number | undefined {
+    return this.denoiseMsPerPixel > 0 ? this.denoiseMsPerPixel : undefined;
+  }
+
+  /** The automatic scale chosen again (the pixel cap changed); restarts when the film must change. */
+  private rescale(needAux: boolean): void {
+    const films = this.films;
+    if (films.autoScale && this.firstPass.rate > 0) {
+      films.renderScale = this.firstPass.scaleFor(this.firstPass.rate);
+    }
+    const full = films.full;
+    if (!full || films.previewing || this.firstPass.active) {
       this.wake();
       return;
     }
-    this.denoiser.enable();
-    if (this.films.full && !this.films.full.aux) this.restart();
+    const [w, h] = films.fullSize();
+    if (full.width !== w || full.height !== h || (needAux && !full.aux)) this.restart();
     else this.wake();
+  }
+
+  /**
+   * After a denoised picture: its cost per pixel, once warm (from the second picture on),
+   * becomes the automatic scale's budget, once a scene, when it moves the cap by at
+   * least RESCALE_MIN_GAIN (a faster or slower machine than the default assumes).
+   */
+  private denoiseMeasured(image: DenoisedImage): void {
+    if (this.denoiser.count < 2) return;
+    const cost = image.ms / (image.width * image.height);
+    this.denoiseMsPerPixel =
+      this.denoiseMsPerPixel > 0 ? Math.min(this.denoiseMsPerPixel, cost) : cost;
+    if (this.denoiseScaled || !this.films.autoScale) return;
+    this.denoiseScaled = true;
+    const cap = denoisePixelCap(this.denoiseMsPerPixel);
+    const ratio = cap / this.films.maxAutoPixels;
+    if (ratio < RESCALE_MIN_GAIN && ratio > 1 / RESCALE_MIN_GAIN) return;
+    this.films.maxAutoPixels = cap;
+    this.rescale(true);
   }
 
   /** See PathTracerOptions.sizeStep; applies from the next restart that sizes the film. */

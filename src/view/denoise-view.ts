@@ -5,11 +5,12 @@
  * render workers, started on first use) and the result replaces the noisy picture
  * (Presenter.showDenoised) until the next restart.
  *
- * Refreshes follow the samples: the next denoise starts when the previous one is back,
- * the film has RefreshGrowth× its samples, and at least as long as the last denoise
- * took has passed since it came back, so the denoiser holds at most about half of one
- * core; the render's workers keep tracing meanwhile. The last pass (the target reached)
- * is always denoised. Results of an older configuration are dropped.
+ * Refreshes follow the samples: the next denoise starts when the previous one is back
+ * and the film has REFRESH_GROWTH× its samples, so the picture on screen is as fresh as
+ * one thread can make it while samples pour in (the first seconds), and refreshes thin
+ * out geometrically after. The denoiser holds at most one core; the render's workers
+ * keep tracing meanwhile. The last pass (the target reached) is always denoised.
+ * Results for an older film (a restart or reset since) are dropped.
  */
 import type { DenoiseReply, DenoiseRequest } from '../../workers/browser/denoise-protocol.ts';
 import type { FilmJob } from './film-job.ts';
@@ -63,14 +64,24 @@ export class ViewDenoiser {
   /** The film generation and samples of the last denoised picture, and when. */
   private lastGeneration = -1;
   private lastSpp = 0;
-  private lastEnd = 0;
-  private lastMs = 0;
+  /** The network's time on the worker for the last picture, and that picture's pixels. */
+  lastMs = 0;
+  lastPixels = 0;
   /** When the film last started over (restart or reset). */
   private restartedAt = 0;
   /** Counts the film's restarts and resets: results for an older one are dropped. */
   private generation = 0;
   /** Denoised pictures shown (tests, stats). */
   count = 0;
+  /**
+   * The id of the request still wanted, shared with the worker so that a restart drops
+   * the picture in progress at its next layer (isolated pages; elsewhere it finishes and
+   * is dropped here).
+   */
+  private readonly wanted =
+    typeof SharedArrayBuffer === 'function' && globalThis.crossOriginIsolated === true
+      ? new Int32Array(new SharedArrayBuffer(4))
+      : null;
 
   constructor(enabled: boolean, host: DenoiseHost) {
     this.enabled = enabled;
@@ -81,21 +92,20 @@ export class ViewDenoiser {
   restarted(now: number): void {
     this.generation++;
     this.restartedAt = now;
+    if (this.wanted) Atomics.store(this.wanted, 0, 0);
   }
 
   /**
    * Called each frame with the full film while the view rests. Starts a denoise when
    * one is due; returns true while one is in flight or due (the loop keeps running).
    */
-  update(job: FilmJob, spp: number, target: number, now: number): boolean {
+  update(job: FilmJob, spp: number, target: number): boolean {
     if (!this.enabled || this.failed || !job.aux || spp < 1) return false;
     if (this.inFlight !== null) return true;
     const fresh = this.lastGeneration !== this.generation;
     const grown = spp >= Math.max(this.lastSpp + 1, Math.ceil(this.lastSpp * REFRESH_GROWTH));
     const last = spp >= target && this.lastSpp < target;
     if (!fresh && !grown && !last) return false;
-    // Hold the duty cycle to about half a core, but never delay the first picture.
-    if (!fresh && now - this.lastEnd < this.lastMs) return true;
     this.start(job, spp);
     return this.inFlight !== null;
   }
@@ -112,7 +122,9 @@ export class ViewDenoiser {
       color: film.mean(),
       albedo: film.auxMean(0),
       normal: film.auxMean(3),
+      stop: this.wanted ? (this.wanted.buffer as SharedArrayBuffer) : null,
     };
+    if (this.wanted) Atomics.store(this.wanted, 0, req.id);
     this.inFlight = { id: req.id, generation: this.generation, spp, width, height };
     worker.postMessage(req, [req.color.buffer, req.albedo.buffer, req.normal.buffer]);
   }
@@ -153,12 +165,13 @@ export class ViewDenoiser {
     if (!job || reply.id !== job.id) return;
     this.inFlight = null;
     const now = performance.now();
+    if (reply.type === 'cancelled') return;
     if (reply.type === 'error') {
       this.fail(`denoising failed: ${reply.message}`);
       return;
     }
-    this.lastEnd = now;
     this.lastMs = reply.ms;
+    this.lastPixels = job.width * job.height;
     if (job.generation !== this.generation || !this.enabled) return;
     this.lastGeneration = job.generation;
     this.lastSpp = job.spp;
@@ -186,6 +199,7 @@ export class ViewDenoiser {
   /** Turned off: nothing in flight is shown; the worker stays for the next time. */
   disable(): void {
     this.enabled = false;
+    if (this.wanted) Atomics.store(this.wanted, 0, 0);
     this.lastGeneration = -1;
     this.lastSpp = 0;
   }

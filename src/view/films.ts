@@ -65,6 +65,8 @@ export class Films {
    * denoising is on; a full film without them is remade at the next restart.
    */
   aux = false;
+  /** The automatic scale's cap on the full film's pixels (the denoiser's budget while it is on). */
+  maxAutoPixels = Infinity;
   /** See PathTracerOptions.sizeStep; takes effect when the full film is next sized. */
   sizeStep: number;
   private pendingSize = '';

@@ -12,7 +12,13 @@
  * It also keeps the timeline of the latest scene (load, first picture,
  * first full image) for the benchmarks.
  */
-import { chooseRenderScale, RESCALE_MIN_GAIN, SpeedProbe, STEADY_PROBE_MS } from './auto-scale.ts';
+import {
+  chooseRenderScale,
+  PASS_BUDGET_S,
+  RESCALE_MIN_GAIN,
+  SpeedProbe,
+  STEADY_PROBE_MS,
+} from './auto-scale.ts';
 import type { FilmJob } from './film-job.ts';
 import type { Films } from './films.ts';
 
@@ -121,8 +127,17 @@ export class FirstPass {
     if (Number.isNaN(this.times.firstImage) && spp >= 1) this.times.firstImage = now;
   }
 
-  private scaleFor(samplesPerSecond: number): number {
-    const css = this.films.cssSize();
-    return chooseRenderScale(samplesPerSecond, css.width * css.height, css.pixelRatio);
+  /** The automatic scale for `samplesPerSecond`, under the films' pixel cap (the denoiser's). */
+  scaleFor(samplesPerSecond: number): number {
+    const films = this.films;
+    const css = films.cssSize();
+    const pixels = css.width * css.height;
+    return chooseRenderScale(
+      samplesPerSecond,
+      pixels,
+      css.pixelRatio,
+      PASS_BUDGET_S,
+      films.maxAutoPixels,
+    );
   }
 }

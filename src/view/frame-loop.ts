@@ -27,7 +27,7 @@ export interface LoopHost {
    * The full film rests at `spp` samples: a denoised picture may be due
    * (denoise-view.ts). True while one is in flight or due.
    */
-  denoise(now: number, spp: number): boolean;
+  denoise(spp: number): boolean;
 }
 
 export class FrameLoop {
@@ -103,7 +103,7 @@ export class FrameLoop {
     const spp = films.previewing ? 0 : job.passesDone();
     if (drew) firstPass.drew(now, job, spp);
     meter.update(now, job, spp);
-    const denoising = !films.previewing && !host.interacting() && host.denoise(now, spp);
+    const denoising = !films.previewing && !host.interacting() && host.denoise(spp);
     // Another frame only while the picture can still change: samples are
     // (or may soon be) arriving, a draw or an event is owed, a resize is
     // settling or the pointer drags the preview.

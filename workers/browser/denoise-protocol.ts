@@ -13,12 +13,19 @@ export interface DenoiseRequest {
   color: Float32Array;
   albedo: Float32Array;
   normal: Float32Array;
+  /**
+   * One Int32 holding the id of the request still wanted (isolated pages): the worker
+   * asks it between the network's layers and drops this request once it changed.
+   */
+  stop: SharedArrayBuffer | null;
 }
 
 export type DenoiseReply =
   | { type: 'ready' }
   /** The denoised radiance, RGB row-major (transferred), and the network's time on the worker. */
   | { type: 'done'; id: number; rgb: Float32Array; ms: number }
+  /** Dropped half way: a newer picture is wanted (DenoiseRequest.stop). */
+  | { type: 'cancelled'; id: number }
   | { type: 'error'; id: number; message: string };
 
 /**

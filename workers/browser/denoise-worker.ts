@@ -53,7 +53,14 @@ self.onmessage = async (e: MessageEvent<DenoiseRequest>) => {
       workspace = allocDenoiseWorkspace(job);
     }
     const rgb = new Float32Array(width * height * 3);
-    for (let i = 0; i < job.plan.tiles.length; i++) runDenoiseTile(job, i, workspace, rgb);
+    const flag = req.stop ? new Int32Array(req.stop) : null;
+    const stop = flag ? () => Atomics.load(flag, 0) !== req.id : undefined;
+    for (let i = 0; i < job.plan.tiles.length; i++) {
+      if (!runDenoiseTile(job, i, workspace, rgb, stop)) {
+        post({ type: 'cancelled', id: req.id });
+        return;
+      }
+    }
     post({ type: 'done', id: req.id, rgb, ms: performance.now() - t0 }, [rgb.buffer]);
   } catch (err) {
     // A failed weights fetch is tried again on the next request.

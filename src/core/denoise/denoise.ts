@@ -63,13 +63,17 @@ export function allocDenoiseWorkspace(job: DenoiseJob): UNetWorkspace {
   return allocUNetWorkspace(job.weights, job.plan.tileH, job.plan.tileW);
 }
 
-/** Denoises tile `index` of the job into `output` (RGB, the image's size). */
+/**
+ * Denoises tile `index` of the job into `output` (RGB, the image's size). Returns false,
+ * leaving the tile's output unwritten, when `stop` (asked between layers) said to stop.
+ */
 export function runDenoiseTile(
   job: DenoiseJob,
   index: number,
   ws: UNetWorkspace,
   output: Float32Array,
-): void {
+  stop?: () => boolean,
+): boolean {
   const tile = job.plan.tiles[index];
   if (!tile) throw new RangeError(`denoise: no tile ${index}`);
   const { width, color, albedo, normal } = job.images;
@@ -88,7 +92,7 @@ export function runDenoiseTile(
         for (let c = 0; c < 3; c++) input.data[q + (6 + c) * plane] = encodeNormal(normal[p + c]!);
     }
   }
-  runUNet(job.weights, ws);
+  if (!runUNet(job.weights, ws, stop)) return false;
   const out = ws.output;
   const outputScale = scale !== 0 ? 1 / scale : 0;
   for (let y = 0; y < tile.outH; y++) {
@@ -99,6 +103,7 @@ export function runDenoiseTile(
         output[p + c] = decodeHdr(out.data[q + c * out.plane]!) * outputScale;
     }
   }
+  return true;
 }
 
 /** Denoises the whole image on this thread. */

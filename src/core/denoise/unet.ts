@@ -69,8 +69,12 @@ function byName(weights: UNetWeights): (n: string) => ConvLayer {
   };
 }
 
-/** Runs the network on ws.input; the result is in ws.output (channels 0–2). */
-export function runUNet(weights: UNetWeights, ws: UNetWorkspace): void {
+/**
+ * Runs the network on ws.input; the result is in ws.output (channels 0–2). `stop`, when
+ * given, is asked between layers: the pass ends early (returning false, the output
+ * undefined) once it answers true, so a caller can drop a picture no longer wanted.
+ */
+export function runUNet(weights: UNetWeights, ws: UNetWorkspace, stop?: () => boolean): boolean {
   const [e0, e1, e2, e3, e4, e5a, e5b, d4a, d4b, d3a, d3b, d2a, d2b, d1a, d1b, d0] =
     weights.layers as [
       ConvLayer,
@@ -98,30 +102,53 @@ export function runUNet(weights: UNetWeights, ws: UNetWorkspace): void {
     readonly [Planes, Planes],
   ];
   const [p1, p2, p3, p4] = ws.pool as [Planes, Planes, Planes, Planes];
-  // Encoder.
-  conv3x3Relu(ws.input, null, e0, x0[0]);
-  conv3x3Relu(x0[0], null, e1, x0[1]);
-  maxPool2x2(x0[1], p1);
-  conv3x3Relu(p1, null, e2, x1[0]);
-  maxPool2x2(x1[0], p2);
-  conv3x3Relu(p2, null, e3, x2[0]);
-  maxPool2x2(x2[0], p3);
-  conv3x3Relu(p3, null, e4, x3[0]);
-  maxPool2x2(x3[0], p4);
-  conv3x3Relu(p4, null, e5a, x4[0]);
-  conv3x3Relu(x4[0], null, e5b, x4[1]);
-  // Decoder: upsample, then convolve [upsampled, skip].
-  upsample2x(x4[1], x3[0]);
-  conv3x3Relu(x3[0], p3, d4a, x3[1]);
-  conv3x3Relu(x3[1], null, d4b, x3[0]);
-  upsample2x(x3[0], x2[0]);
-  conv3x3Relu(x2[0], p2, d3a, x2[1]);
-  conv3x3Relu(x2[1], null, d3b, x2[0]);
-  upsample2x(x2[0], x1[0]);
-  conv3x3Relu(x1[0], p1, d2a, x1[1]);
-  conv3x3Relu(x1[1], null, d2b, x1[0]);
-  upsample2x(x1[0], x0[0]);
-  conv3x3Relu(x0[0], ws.input, d1a, x0[1]);
-  conv3x3Relu(x0[1], null, d1b, x0[0]);
-  conv3x3Relu(x0[0], null, d0, x0[1]);
+  const steps: (() => void)[] = [
+    // Encoder.
+    () => conv3x3Relu(ws.input, null, e0, x0[0]),
+    () => conv3x3Relu(x0[0], null, e1, x0[1]),
+    () => {
+      maxPool2x2(x0[1], p1);
+      conv3x3Relu(p1, null, e2, x1[0]);
+    },
+    () => {
+      maxPool2x2(x1[0], p2);
+      conv3x3Relu(p2, null, e3, x2[0]);
+    },
+    () => {
+      maxPool2x2(x2[0], p3);
+      conv3x3Relu(p3, null, e4, x3[0]);
+    },
+    () => {
+      maxPool2x2(x3[0], p4);
+      conv3x3Relu(p4, null, e5a, x4[0]);
+      conv3x3Relu(x4[0], null, e5b, x4[1]);
+    },
+    // Decoder: upsample, then convolve [upsampled, skip].
+    () => {
+      upsample2x(x4[1], x3[0]);
+      conv3x3Relu(x3[0], p3, d4a, x3[1]);
+      conv3x3Relu(x3[1], null, d4b, x3[0]);
+    },
+    () => {
+      upsample2x(x3[0], x2[0]);
+      conv3x3Relu(x2[0], p2, d3a, x2[1]);
+    },
+    () => conv3x3Relu(x2[1], null, d3b, x2[0]),
+    () => {
+      upsample2x(x2[0], x1[0]);
+      conv3x3Relu(x1[0], p1, d2a, x1[1]);
+    },
+    () => conv3x3Relu(x1[1], null, d2b, x1[0]),
+    () => {
+      upsample2x(x1[0], x0[0]);
+      conv3x3Relu(x0[0], ws.input, d1a, x0[1]);
+    },
+    () => conv3x3Relu(x0[1], null, d1b, x0[0]),
+    () => conv3x3Relu(x0[0], null, d0, x0[1]),
+  ];
+  for (const step of steps) {
+    if (stop?.()) return false;
+    step();
+  }
+  return true;
 }
