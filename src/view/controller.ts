@@ -47,8 +47,8 @@ import { MAX_FILM_SIDE } from './film-cap.ts';
 import { linearImage, pngBlob } from './film-export.ts';
 import { Fallbacks } from './fallbacks.ts';
 import { Films } from './films.ts';
-import { denoisePixelCap, RESCALE_MIN_GAIN } from './auto-scale.ts';
-import { ViewDenoiser, type DenoisedImage } from './denoise-view.ts';
+import { DenoiseControl } from './denoise-control.ts';
+import type { DenoisedImage } from './denoise-view.ts';
 import { FirstPass, type Timeline } from './first-pass.ts';
 import { FocusPicker } from './focus-pick.ts';
 import { FrameLoop } from './frame-loop.ts';
@@ -109,11 +109,7 @@ export class Controller extends EventTarget implements PathTracerController {
   /** The quick first pass of a new scene and the automatic scale. */
   private readonly firstPass: FirstPass;
   /** The denoised picture of a resting view (options.denoise). */
-  private readonly denoiser: ViewDenoiser;
-  /** The denoiser's warm cost per pixel on this machine (NaN: not measured yet). */
-  private denoiseMsPerPixel = NaN;
-  /** The automatic scale followed the measured denoiser cost in this scene. */
-  private denoiseScaled = false;
+  private readonly denoising: DenoiseControl;
   constructor(canvas: HTMLCanvasElement, options: PathTracerOptions) {
     super();
     this.canvas = canvas;
@@ -138,24 +134,20 @@ export class Controller extends EventTarget implements PathTracerController {
     });
     const pool = sharedPool(options, options.workers);
     this.films = new Films(canvas, options, compute.compute, () => pool.size);
-    this.films.aux = options.denoise === true;
-    if (options.denoise === true) this.films.maxAutoPixels = denoisePixelCap();
-    this.denoiser = new ViewDenoiser(options.denoise === true, {
-      show: (image) => {
-        this.screen.showDenoised(image);
-        this.denoiseMeasured(image);
-        const { spp, width, height, ms, sinceRestartMs } = image;
-        this.emit('denoised', { spp, width, height, ms, sinceRestartMs });
-        this.wake();
-      },
-      error: (message) => this.emit('error', { message }),
-      seconds: (now) => this.job.clock.seconds(now),
-    });
     // A film wider than a texture could not be shown.
     if (display instanceof StandInDisplay) {
       this.films.maxSide = Math.min(MAX_FILM_SIDE, display.maxTextureSize);
     }
     this.firstPass = new FirstPass(this.films);
+    this.denoising = new DenoiseControl(options.denoise === true, {
+      films: this.films,
+      firstPass: this.firstPass,
+      screen: this.screen,
+      restart: () => this.restart(),
+      wake: () => this.wake(),
+      emit: (type, detail) => this.emit(type, detail),
+      seconds: (now) => this.job.clock.seconds(now),
+    });
     if (options.workers !== undefined && options.workers !== pool.size) {
       void pool.setSize(options.workers);
     }
@@ -176,10 +168,7 @@ export class Controller extends EventTarget implements PathTracerController {
         paused: () => this.isPaused,
         interacting: () => this.interacting,
         restart: () => this.restart(),
-        denoise: (spp) => {
-          const full = this.films.full;
-          return full !== null && this.denoiser.update(full, spp, this.target);
-        },
+        denoise: (spp) => this.denoising.update(spp, this.target),
       },
       this.films,
       this.firstPass,
@@ -269,7 +258,7 @@ export class Controller extends EventTarget implements PathTracerController {
     this.packed = packed;
     this.focus.invalidate();
     this.sceneId++;
-    this.denoiseScaled = false;
+    this.denoising.sceneLoaded();
     this.camera = { ...scene.camera };
     this.bounces =
       first && this.options.bounces !== undefined
@@ -285,8 +274,7 @@ export class Controller extends EventTarget implements PathTracerController {
   private restart(): void {
     if (!this.currentScene || !this.camera || this.destroyed) return;
     this.screen.captureBackdrop();
-    this.screen.dropDenoised();
-    this.denoiser.restarted(performance.now());
+    this.denoising.restarted(performance.now());
     this.films.wantPreview = this.interacting || this.firstPass.active;
     let active: FilmJob;
     try {
@@ -316,8 +304,7 @@ export class Controller extends EventTarget implements PathTracerController {
     const job = this.activeJob();
     if (!job || !this.config) return;
     this.screen.captureBackdrop();
-    this.screen.dropDenoised();
-    this.denoiser.restarted(performance.now());
+    this.denoising.restarted(performance.now());
     this.job.reset(job, this.isPaused);
     this.screen.dirty = true;
     this.meter.cleared();
@@ -399,61 +386,11 @@ export class Controller extends EventTarget implements PathTracerController {
   }
 
   get denoise(): boolean {
-    return this.denoiser.enabled;
+    return this.denoising.on;
   }
 
   setDenoise(on: boolean): void {
-    if (on === this.denoiser.enabled) return;
-    // Films made from now on record albedo and normal only while denoising is on; a
-    // full film without them is remade (a restart) when it is turned on. The automatic
-    // scale takes the denoiser's budget into account (auto-scale.ts, DENOISE_BUDGET_MS).
-    this.films.aux = on;
-    this.films.maxAutoPixels = on ? denoisePixelCap(this.warmDenoiseCost()) : Infinity;
-    if (on) this.denoiser.enable();
-    else {
-      this.denoiser.disable();
-      this.screen.dropDenoised();
-    }
-    this.rescale(on);
-  }
-
-  private warmDenoiseCost(): number | undefined {
-    return this.denoiseMsPerPixel > 0 ? this.denoiseMsPerPixel : undefined;
-  }
-
-  /** The automatic scale chosen again (the pixel cap changed); restarts when the film must change. */
-  private rescale(needAux: boolean): void {
-    const films = this.films;
-    if (films.autoScale && this.firstPass.rate > 0) {
-      films.renderScale = this.firstPass.scaleFor(this.firstPass.rate);
-    }
-    const full = films.full;
-    if (!full || films.previewing || this.firstPass.active) {
-      this.wake();
-      return;
-    }
-    const [w, h] = films.fullSize();
-    if (full.width !== w || full.height !== h || (needAux && !full.aux)) this.restart();
-    else this.wake();
-  }
-
-  /**
-   * After a denoised picture: its cost per pixel, once warm (from the second picture on),
-   * becomes the automatic scale's budget, once a scene, when it moves the cap by at
-   * least RESCALE_MIN_GAIN (a faster or slower machine than the default assumes).
-   */
-  private denoiseMeasured(image: DenoisedImage): void {
-    if (this.denoiser.count < 2) return;
-    const cost = image.ms / (image.width * image.height);
-    this.denoiseMsPerPixel =
-      this.denoiseMsPerPixel > 0 ? Math.min(this.denoiseMsPerPixel, cost) : cost;
-    if (this.denoiseScaled || !this.films.autoScale) return;
-    this.denoiseScaled = true;
-    const cap = denoisePixelCap(this.denoiseMsPerPixel);
-    const ratio = cap / this.films.maxAutoPixels;
-    if (ratio < RESCALE_MIN_GAIN && ratio > 1 / RESCALE_MIN_GAIN) return;
-    this.films.maxAutoPixels = cap;
-    this.rescale(true);
+    this.denoising.set(on);
   }
 
   /** See PathTracerOptions.sizeStep; applies from the next restart that sizes the film. */
@@ -556,9 +493,7 @@ export class Controller extends EventTarget implements PathTracerController {
       memoryBytes: this.films.memoryBytes + textureBytes + this.screen.backdropBytes,
       rejected: job?.rejected() ?? 0,
       paused: this.isPaused,
-      denoised: this.screen.shownDenoised
-        ? { spp: this.screen.shownDenoised.spp, ms: this.screen.shownDenoised.ms }
-        : null,
+      denoised: this.denoising.info(),
     };
   }
 
@@ -643,8 +578,7 @@ export class Controller extends EventTarget implements PathTracerController {
    * configuration version it belongs to; null when none is shown. Live, not a copy.
    */
   denoisedSnapshot(): (DenoisedImage & { version: number }) | null {
-    const d = this.screen.shownDenoised;
-    return d && !this.films.previewing ? { ...d, version: this.job.version } : null;
+    return this.denoising.snapshot(this.job.version);
   }
 
   // ---- output ------------------------------------------------------------
@@ -677,7 +611,7 @@ export class Controller extends EventTarget implements PathTracerController {
     this.requests.cancelModel();
     this.detachControls?.();
     this.films.park();
-    this.denoiser.destroy();
+    this.denoising.destroy();
     this.job.release();
     this.screen.display.destroy();
   }
