@@ -32,7 +32,12 @@ export interface ProgressInfo {
   target: number;
   /** Segments (camera, bounce and shadow rays) per second, recent average. */
   raysPerSecond: number;
-  /** Relative standard error of the image mean luminance, from per-pixel variance. */
+  /**
+   * The RMS over pixels of each pixel's standard error (from its samples' variance),
+   * over the image's mean luminance (core/film/noise.ts estimateNoise): the typical
+   * error of one pixel, relative to the image's brightness. (The demo's Noise is its
+   * error plot's per-cell figure instead.)
+   */
   noise: number;
 }
 
