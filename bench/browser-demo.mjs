@@ -1,5 +1,8 @@
 // Speed of the browser demo in headless Chromium, against the command line:
-//   node bench/browser-demo.mjs [--width 1280] [--height 520]
+//   node bench/browser-demo.mjs [--width 1280] [--height 520] [--ab 3]
+// With --ab N it only runs N interleaved rounds of the demo's Benchmark at the default
+// display, with the resting draw cap (REST_DRAW_MS, src/view/frame-loop.ts) and without
+// it (`?restdraw=0`), and reports the medians and their ratio.
 // Reports (issue 3): M rays/s of the demo's Benchmark on the Cornell box
 // with all workers vs `pathwise render` msegments_per_s at the same size;
 // main-thread ms per frame for upload + display; time from a camera change
@@ -156,6 +159,14 @@ async function cameraLatency(page, preview, trials) {
 }
 
 /** One display mode: frame times, camera latencies and the Benchmark button's 10 s run. */
+async function benchmarkButton(page) {
+  await page.click('#benchmark');
+  await page.waitForFunction(() => document.getElementById('bench-result')?.dataset.mrays, null, {
+    timeout: (seconds + 60) * 1000,
+  });
+  return Number(await page.evaluate(() => document.getElementById('bench-result').dataset.mrays));
+}
+
 async function measure(display) {
   const page = await open(`seed=1${display ? `&display=${display}` : ''}`);
   const mode = await page.evaluate(() => window.__pathwise.controller.mode);
@@ -195,6 +206,45 @@ const info = await (async () => {
   await page.close();
   return r;
 })();
+const abRounds = arg('ab', 0);
+if (abRounds > 0) {
+  const capped = [];
+  const every = [];
+  for (let i = 0; i < abRounds; i++) {
+    for (const [query, into] of [
+      ['seed=1', capped],
+      ['seed=1&restdraw=0', every],
+    ]) {
+      const page = await open(query);
+      const mrays = await benchmarkButton(page);
+      const fps = await page.evaluate(() => window.__pathwise.controller.stats().fps);
+      into.push({ mrays, fps });
+      await page.close();
+    }
+  }
+  await browser.close();
+  await new Promise((resolve) => server.httpServer.close(resolve));
+  rmSync(tmp, { recursive: true, force: true });
+  const m = (xs, k) => median(xs.map((x) => x[k]));
+  console.log(
+    JSON.stringify(
+      {
+        size: `${width}x${height}`,
+        rounds: abRounds,
+        capped: { runs: capped, medianMrays: m(capped, 'mrays') },
+        everyFrame: { runs: every, medianMrays: m(every, 'mrays') },
+        ratio: m(capped, 'mrays') / m(every, 'mrays'),
+        cliMsegmentsPerSecond16spp: cliLong.msegments_per_s,
+        cappedVsCli: m(capped, 'mrays') / cliLong.msegments_per_s,
+        everyFrameVsCli: m(every, 'mrays') / cliLong.msegments_per_s,
+        loadAverage: loadavg(),
+      },
+      null,
+      2,
+    ),
+  );
+  process.exit(0);
+}
 // The default ('auto': Canvas 2D where WebGL2 runs in software) and each path by name.
 const auto = await measure(null);
 const webgl2 = await measure('webgl2');

@@ -4,7 +4,8 @@
  * `?scene=spheres`, `?width=64&height=64&seed=1&spp=8`, `?shared=off`,
  * `?display=canvas2d` (or `webgl2`, even on a software renderer), `?workers=2`,
  * `?bench=2` (a 2-second benchmark), `?scale=1&dpr=3` (a fixed render scale;
- * devicePixelRatio counted up to 3 instead of 2), `?denoise=1` (the Denoise switch on).
+ * devicePixelRatio counted up to 3 instead of 2), `?denoise=1` (the Denoise switch on),
+ * `?restdraw=0` (draw every frame while the view rests; bench/browser-demo.mjs compares).
  */
 import type { PathTracerOptions } from '../view/index.ts';
 import { PRESETS, type PresetName } from './presets.ts';
@@ -53,6 +54,7 @@ export function readParams(search: string): DemoParams {
     display: displayParam(q.get('display')),
     shared: q.get('shared') === 'off' ? 'off' : 'auto',
     denoise: q.get('denoise') === '1',
+    restDrawMs: nonNegativeInt(q.get('restdraw')),
   };
   return {
     preset,

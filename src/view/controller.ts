@@ -51,7 +51,7 @@ import { DenoiseControl } from './denoise-control.ts';
 import type { DenoisedImage } from './denoise-view.ts';
 import { FirstPass, type Timeline } from './first-pass.ts';
 import { FocusPicker } from './focus-pick.ts';
-import { FrameLoop } from './frame-loop.ts';
+import { FrameLoop, REST_DRAW_MS } from './frame-loop.ts';
 import { attachCameraControls } from './interaction.ts';
 import { chooseCompute, createDisplay } from './mode.ts';
 import { dollyCamera, orbitCamera } from './orbit.ts';
@@ -167,6 +167,7 @@ export class Controller extends EventTarget implements PathTracerController {
         target: () => this.target,
         paused: () => this.isPaused,
         interacting: () => this.interacting,
+        restDrawMs: () => this.options.restDrawMs ?? REST_DRAW_MS,
         restart: () => this.restart(),
         denoise: (spp) => this.denoising.update(spp, this.target),
       },

@@ -7,6 +7,14 @@
  * arriving, a pending resize, a redraw asked for. Paused, converged or in a
  * hidden tab it stops asking for frames (a page of idle views costs
  * nothing), and every call that can change the picture wakes it again.
+ *
+ * While the view rests and the film has two whole passes, new samples are drawn
+ * at most every REST_DRAW_MS: each draw costs the page's thread an upload
+ * and a composite of the whole canvas (in software, 0.4–0.5 of a core at
+ * 40–60 fps on a 2-core machine, taken from the render workers), and a
+ * picture refining ten times a second looks no different. Dragging, the
+ * first pass after a restart, an exposure change and a new denoised picture
+ * are drawn at once.
  */
 import type { Fallbacks } from './fallbacks.ts';
 import type { Films } from './films.ts';
@@ -21,6 +29,8 @@ export interface LoopHost {
   paused(): boolean;
   /** The pointer (or keyboard) is moving the camera. */
   interacting(): boolean;
+  /** The least time between draws of new samples while the view rests (REST_DRAW_MS). */
+  restDrawMs(): number;
   /** A new configuration version and reset of the active film (Controller.restart). */
   restart(): void;
   /**
@@ -29,6 +39,9 @@ export interface LoopHost {
    */
   denoise(spp: number): boolean;
 }
+
+/** The least time between draws of new samples while the view rests (PathTracerOptions.restDrawMs). */
+export const REST_DRAW_MS = 100;
 
 export class FrameLoop {
   private readonly host: LoopHost;
@@ -41,6 +54,8 @@ export class FrameLoop {
   private raf = 0;
   /** Animation frames the loop has run (see Controller.framesRun). */
   count = 0;
+  /** When the picture was last drawn (frame time). */
+  private lastDraw = -Infinity;
 
   constructor(
     host: LoopHost,
@@ -96,11 +111,17 @@ export class FrameLoop {
     }
     const segments = job.takeSegments();
     meter.traced(now, segments);
-    const t0 = performance.now();
-    const drew = this.screen.present(job, false);
-    if (drew) meter.drew(now, performance.now() - t0);
     // Preview passes are not the image's samples: the full film has none yet.
     const spp = films.previewing ? 0 : job.passesDone();
+    // From the second pass on: the first whole image is drawn the frame it completes.
+    const resting = !films.previewing && !host.interacting() && spp >= 2;
+    const held = resting && !this.screen.pending && now - this.lastDraw < host.restDrawMs();
+    const t0 = performance.now();
+    const drew = !held && this.screen.present(job, false);
+    if (drew) {
+      this.lastDraw = now;
+      meter.drew(now, performance.now() - t0);
+    }
     if (drew) firstPass.drew(now, job, spp);
     meter.update(now, job, spp);
     const denoising = !films.previewing && !host.interacting() && host.denoise(spp);
@@ -111,6 +132,7 @@ export class FrameLoop {
     const owed = meter.owed(spp) || this.screen.dirty;
     if (
       drew ||
+      held ||
       denoising ||
       segments > 0 ||
       tracing ||

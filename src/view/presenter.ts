@@ -58,6 +58,11 @@ export class Presenter {
     this.dirty = true;
   }
 
+  /** A draw is owed now: the exposure changed, or a denoised picture is waiting. */
+  get pending(): boolean {
+    return this.dirty || this.denoisedNew;
+  }
+
   /** The denoised picture on screen, if any. */
   get shownDenoised(): DenoisedImage | null {
     return this.denoised;

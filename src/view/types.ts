@@ -115,6 +115,12 @@ export interface PathTracerOptions extends BareModelChoices {
   /** Orbit on drag, dolly on wheel. */
   cameraControls?: boolean;
   /**
+   * While the view rests (from the second pass on), new samples are drawn at most this
+   * often, in ms (default 100): each draw takes the page's thread from the render
+   * workers. 0 draws every animation frame.
+   */
+  restDrawMs?: number;
+  /**
    * Show a denoised picture while the view rests (Open Image Denoise's network on a
    * worker of its own, guided by the first-hit albedo and normal the film then records;
    * docs/denoise.md says what it costs and when it misleads). Default false.
