@@ -139,15 +139,19 @@ export class Controller extends EventTarget implements PathTracerController {
       this.films.maxSide = Math.min(MAX_FILM_SIDE, display.maxTextureSize);
     }
     this.firstPass = new FirstPass(this.films);
-    this.denoising = new DenoiseControl(options.denoise === true, {
-      films: this.films,
-      firstPass: this.firstPass,
-      screen: this.screen,
-      restart: () => this.restart(),
-      wake: () => this.wake(),
-      emit: (type, detail) => this.emit(type, detail),
-      seconds: (now) => this.job.clock.seconds(now),
-    });
+    this.denoising = new DenoiseControl(
+      options.denoise === true,
+      {
+        films: this.films,
+        firstPass: this.firstPass,
+        screen: this.screen,
+        restart: () => this.restart(),
+        wake: () => this.wake(),
+        emit: (type, detail) => this.emit(type, detail),
+        seconds: (now) => this.job.clock.seconds(now),
+      },
+      options.denoiseWorkers,
+    );
     if (options.workers !== undefined && options.workers !== pool.size) {
       void pool.setSize(options.workers);
     }

@@ -31,21 +31,26 @@ export class DenoiseControl {
   /** The automatic scale followed the measured cost in this scene. */
   private scaled = false;
 
-  constructor(on: boolean, host: DenoiseControlHost) {
+  /** `workers`: denoise threads (PathTracerOptions.denoiseWorkers; default from the cores). */
+  constructor(on: boolean, host: DenoiseControlHost, workers?: number) {
     this.host = host;
     host.films.aux = on;
     host.films.maxAutoPixels = on ? denoisePixelCap() : Infinity;
-    this.denoiser = new ViewDenoiser(on, {
-      show: (image) => {
-        host.screen.showDenoised(image);
-        this.measured(image);
-        const { spp, width, height, ms, sinceRestartMs } = image;
-        host.emit('denoised', { spp, width, height, ms, sinceRestartMs });
-        host.wake();
+    this.denoiser = new ViewDenoiser(
+      on,
+      {
+        show: (image) => {
+          host.screen.showDenoised(image);
+          this.measured(image);
+          const { spp, width, height, ms, sinceRestartMs } = image;
+          host.emit('denoised', { spp, width, height, ms, sinceRestartMs });
+          host.wake();
+        },
+        error: (message) => host.emit('error', { message }),
+        seconds: (now) => host.seconds(now),
       },
-      error: (message) => host.emit('error', { message }),
-      seconds: (now) => host.seconds(now),
-    });
+      workers,
+    );
   }
 
   get on(): boolean {

@@ -1,18 +1,30 @@
 /**
  * The denoised picture of a still view (the widget's `denoise`, the demo's switch):
  * while the full film renders and the camera rests, its mean radiance, albedo and normal
- * go to the denoise worker (workers/browser/denoise-worker.ts, one thread beside the
+ * go to the denoise workers (workers/browser/denoise-worker.ts, threads beside the
  * render workers, started on first use) and the result replaces the noisy picture
  * (Presenter.showDenoised) until the next restart.
  *
+ * The image is cut into OIDN's overlapped tiles (src/core/denoise/tiles.ts) and the
+ * tiles are dealt out to the workers; each writes its tiles' own regions, and a tile's
+ * bits depend only on the image, so the picture is the same bits for any worker count.
+ * One worker on small machines (a quarter of the cores, at most four): on two cores a
+ * second denoise thread would only take time from the render's two.
+ *
  * Refreshes follow the samples: the next denoise starts when the previous one is back
  * and the film has REFRESH_GROWTH× its samples, so the picture on screen is as fresh as
- * one thread can make it while samples pour in (the first seconds), and refreshes thin
- * out geometrically after. The denoiser holds at most one core; the render's workers
- * keep tracing meanwhile. The last pass (the target reached) is always denoised.
- * Results for an older film (a restart or reset since) are dropped.
+ * the denoiser can make it while samples pour in (the first seconds), and refreshes thin
+ * out geometrically after. The render's workers keep tracing meanwhile. The last pass
+ * (the target reached) is always denoised. Results for an older film (a restart or reset
+ * since) are dropped; on isolated pages the picture in progress stops at its next layer.
  */
-import type { DenoiseReply, DenoiseRequest } from '../../workers/browser/denoise-protocol.ts';
+import {
+  BROWSER_MIN_TILE_SIDE,
+  BROWSER_TILE_PIXELS,
+  type DenoiseReply,
+  type DenoiseRequest,
+} from '../../workers/browser/denoise-protocol.ts';
+import { planTiles, TILE_OVERLAP, type TileOptions, type TilePlan } from '../core/denoise/tiles.ts';
 import type { FilmJob } from './film-job.ts';
 import { startModuleWorker } from './worker-source.ts';
 
@@ -23,6 +35,30 @@ const ModuleWorker = function (url: URL): Worker {
 
 /** A denoise is due again once the film has this many times its samples. */
 const REFRESH_GROWTH = 1.5;
+/** At most this many denoise workers. */
+const MAX_DENOISE_WORKERS = 4;
+
+/** The default number of denoise workers for `cores` logical cores. */
+export function denoiseWorkerCount(cores: number): number {
+  return Math.max(1, Math.min(MAX_DENOISE_WORKERS, Math.floor(cores / 4)));
+}
+
+/**
+ * The tile options for a w × h image and `workers` workers: OIDN's tiles of at most
+ * BROWSER_TILE_PIXELS for one worker; with more, tiles small enough that each worker
+ * gets one, but never under 4 × the overlap a side (smaller tiles are mostly overlap).
+ */
+export function denoiseTileOptions(width: number, height: number, workers: number): TileOptions {
+  if (workers <= 1) {
+    return { maxTilePixels: BROWSER_TILE_PIXELS, minTileSide: BROWSER_MIN_TILE_SIDE };
+  }
+  const minSide = 4 * TILE_OVERLAP;
+  const share = Math.ceil((width * height) / workers);
+  return {
+    maxTilePixels: Math.min(BROWSER_TILE_PIXELS, Math.max(minSide * minSide, share)),
+    minTileSide: minSide,
+  };
+}
 
 /** A denoised picture, as the display takes film sums: RGBA with A = 1. */
 export interface DenoisedImage {
@@ -30,7 +66,7 @@ export interface DenoisedImage {
   width: number;
   height: number;
   sums: Float32Array;
-  /** The network's time on the worker. */
+  /** From the request to the last tile back, in ms (the network's wall time). */
   ms: number;
   /** From the camera's last restart to this picture on screen (performance.now() ms). */
   sinceRestartMs: number;
@@ -52,21 +88,26 @@ interface InFlight {
   spp: number;
   width: number;
   height: number;
+  plan: TilePlan;
+  /** Workers yet to answer, and whether one said it stopped. */
+  pending: number;
+  cancelled: boolean;
+  started: number;
+  /** The picture as tiles come back: RGBA, A = 1. */
+  sums: Float32Array;
 }
 
 export class ViewDenoiser {
   enabled: boolean;
   private readonly host: DenoiseHost;
-  private worker: Worker | null = null;
+  private readonly maxWorkers: number;
+  private workers: Worker[] = [];
   private failed = false;
   private nextId = 1;
   private inFlight: InFlight | null = null;
-  /** The film generation and samples of the last denoised picture, and when. */
+  /** The film generation and samples of the last denoised picture. */
   private lastGeneration = -1;
   private lastSpp = 0;
-  /** The network's time on the worker for the last picture, and that picture's pixels. */
-  lastMs = 0;
-  lastPixels = 0;
   /** When the film last started over (restart or reset). */
   private restartedAt = 0;
   /** Counts the film's restarts and resets: results for an older one are dropped. */
@@ -74,7 +115,7 @@ export class ViewDenoiser {
   /** Denoised pictures shown (tests, stats). */
   count = 0;
   /**
-   * The id of the request still wanted, shared with the worker so that a restart drops
+   * The id of the request still wanted, shared with the workers so that a restart drops
    * the picture in progress at its next layer (isolated pages; elsewhere it finishes and
    * is dropped here).
    */
@@ -83,9 +124,12 @@ export class ViewDenoiser {
       ? new Int32Array(new SharedArrayBuffer(4))
       : null;
 
-  constructor(enabled: boolean, host: DenoiseHost) {
+  /** `workers`: denoise threads (default denoiseWorkerCount of the cores). */
+  constructor(enabled: boolean, host: DenoiseHost, workers?: number) {
     this.enabled = enabled;
     this.host = host;
+    const cores = typeof navigator !== 'undefined' ? navigator.hardwareConcurrency || 2 : 2;
+    this.maxWorkers = Math.max(1, Math.floor(workers ?? denoiseWorkerCount(cores)));
   }
 
   /** The film started over (a restart or reset): what is in flight is for the old one. */
@@ -111,51 +155,75 @@ export class ViewDenoiser {
   }
 
   private start(job: FilmJob, spp: number): void {
-    const worker = this.ensureWorker();
-    if (!worker) return;
     const { width, height, film } = job;
-    const req: DenoiseRequest = {
-      type: 'denoise',
-      id: this.nextId++,
+    const tileOptions = denoiseTileOptions(width, height, this.maxWorkers);
+    const plan = planTiles(width, height, tileOptions);
+    const lanes = Math.min(this.maxWorkers, plan.tiles.length);
+    const workers = this.ensureWorkers(lanes);
+    if (!workers) return;
+    const id = this.nextId++;
+    const color = film.mean();
+    const albedo = film.auxMean(0);
+    const normal = film.auxMean(3);
+    if (this.wanted) Atomics.store(this.wanted, 0, id);
+    this.inFlight = {
+      id,
+      generation: this.generation,
+      spp,
       width,
       height,
-      color: film.mean(),
-      albedo: film.auxMean(0),
-      normal: film.auxMean(3),
-      stop: this.wanted ? (this.wanted.buffer as SharedArrayBuffer) : null,
+      plan,
+      pending: lanes,
+      cancelled: false,
+      started: performance.now(),
+      sums: new Float32Array(width * height * 4),
     };
-    if (this.wanted) Atomics.store(this.wanted, 0, req.id);
-    this.inFlight = { id: req.id, generation: this.generation, spp, width, height };
-    worker.postMessage(req, [req.color.buffer, req.albedo.buffer, req.normal.buffer]);
+    for (let k = 0; k < lanes; k++) {
+      const req: DenoiseRequest = {
+        type: 'denoise',
+        id,
+        width,
+        height,
+        color,
+        albedo,
+        normal,
+        tiles: plan.tiles.map((_, i) => i).filter((i) => i % lanes === k),
+        tileOptions,
+        stop: this.wanted ? (this.wanted.buffer as SharedArrayBuffer) : null,
+      };
+      // The last worker takes the arrays themselves; the others get copies.
+      const transfer = k === lanes - 1 ? [color.buffer, albedo.buffer, normal.buffer] : [];
+      workers[k]!.postMessage(req, transfer);
+    }
   }
 
-  private ensureWorker(): Worker | null {
-    if (this.worker) return this.worker;
+  private ensureWorkers(count: number): Worker[] | null {
     try {
-      const Worker = ModuleWorker;
-      this.worker = new Worker(
-        new URL('../../workers/browser/denoise-worker.ts', import.meta.url),
-        {
-          type: 'module',
-        },
-      );
+      while (this.workers.length < count) {
+        const Worker = ModuleWorker;
+        const worker = new Worker(
+          new URL('../../workers/browser/denoise-worker.ts', import.meta.url),
+          { type: 'module' },
+        );
+        worker.onmessage = (e: MessageEvent<DenoiseReply>) => this.onReply(e.data);
+        worker.onerror = (e: ErrorEvent) => {
+          e.preventDefault();
+          this.fail(`the denoiser stopped: ${e.message || 'its script did not load'}`);
+        };
+        this.workers.push(worker);
+      }
     } catch (e) {
       this.fail(`the denoiser could not start: ${e instanceof Error ? e.message : String(e)}`);
       return null;
     }
-    this.worker.onmessage = (e: MessageEvent<DenoiseReply>) => this.onReply(e.data);
-    this.worker.onerror = (e: ErrorEvent) => {
-      e.preventDefault();
-      this.fail(`the denoiser stopped: ${e.message || 'its script did not load'}`);
-    };
-    return this.worker;
+    return this.workers;
   }
 
   private fail(message: string): void {
     this.failed = true;
     this.inFlight = null;
-    this.worker?.terminate();
-    this.worker = null;
+    for (const w of this.workers) w.terminate();
+    this.workers = [];
     this.host.error(message);
   }
 
@@ -163,40 +231,48 @@ export class ViewDenoiser {
     if (reply.type === 'ready') return;
     const job = this.inFlight;
     if (!job || reply.id !== job.id) return;
-    this.inFlight = null;
-    const now = performance.now();
-    if (reply.type === 'cancelled') return;
     if (reply.type === 'error') {
       this.fail(`denoising failed: ${reply.message}`);
       return;
     }
-    this.lastMs = reply.ms;
-    this.lastPixels = job.width * job.height;
-    if (job.generation !== this.generation || !this.enabled) return;
+    if (reply.type === 'cancelled') job.cancelled = true;
+    else {
+      // This worker's tiles, from its full-size output into the picture.
+      const { width } = job;
+      const rgb = reply.rgb;
+      const sums = job.sums;
+      for (const i of reply.tiles) {
+        const t = job.plan.tiles[i]!;
+        for (let y = t.outY; y < t.outY + t.outH; y++) {
+          for (let x = t.outX; x < t.outX + t.outW; x++) {
+            const p = y * width + x;
+            sums[4 * p] = rgb[3 * p]!;
+            sums[4 * p + 1] = rgb[3 * p + 1]!;
+            sums[4 * p + 2] = rgb[3 * p + 2]!;
+            sums[4 * p + 3] = 1;
+          }
+        }
+      }
+    }
+    if (--job.pending > 0) return;
+    this.inFlight = null;
+    if (job.cancelled || job.generation !== this.generation || !this.enabled) return;
+    const now = performance.now();
     this.lastGeneration = job.generation;
     this.lastSpp = job.spp;
-    const n = job.width * job.height;
-    const sums = new Float32Array(n * 4);
-    const rgb = reply.rgb;
-    for (let p = 0; p < n; p++) {
-      sums[4 * p] = rgb[3 * p]!;
-      sums[4 * p + 1] = rgb[3 * p + 1]!;
-      sums[4 * p + 2] = rgb[3 * p + 2]!;
-      sums[4 * p + 3] = 1;
-    }
     this.count++;
     this.host.show({
       spp: job.spp,
       width: job.width,
       height: job.height,
-      sums,
-      ms: reply.ms,
+      sums: job.sums,
+      ms: now - job.started,
       sinceRestartMs: now - this.restartedAt,
       seconds: this.host.seconds(now),
     });
   }
 
-  /** Turned off: nothing in flight is shown; the worker stays for the next time. */
+  /** Turned off: nothing in flight is shown; the workers stay for the next time. */
   disable(): void {
     this.enabled = false;
     if (this.wanted) Atomics.store(this.wanted, 0, 0);
@@ -210,8 +286,8 @@ export class ViewDenoiser {
   }
 
   destroy(): void {
-    this.worker?.terminate();
-    this.worker = null;
+    for (const w of this.workers) w.terminate();
+    this.workers = [];
     this.inFlight = null;
   }
 }

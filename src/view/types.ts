@@ -126,6 +126,11 @@ export interface PathTracerOptions extends BareModelChoices {
    * docs/denoise.md says what it costs and when it misleads). Default false.
    */
   denoise?: boolean;
+  /**
+   * Denoise threads (default: a quarter of the cores, 1 to 4). The image's tiles are
+   * dealt out to them; the picture is the same bits for any number.
+   */
+  denoiseWorkers?: number;
 }
 
 /** A stage of loading a scene or model (core/scene/load/load.ts LoadStage), `done` of `total`. */

@@ -65,6 +65,7 @@ describe('demo accessibility (Chromium)', () => {
     expect(await page.getByRole('img', { name: /Cornell box, path-traced image/ }).count()).toBe(1);
     expect(await page.getByRole('img', { name: /Error against time/ }).count()).toBe(1);
     expect(await page.getByRole('button', { name: 'Open scene…' }).count()).toBe(1);
+    expect(await page.getByRole('checkbox', { name: 'Denoise' }).count()).toBe(1);
     await page.close();
   });
 
@@ -95,6 +96,7 @@ describe('demo accessibility (Chromium)', () => {
       '#aperture',
       '#scale',
       '#workers',
+      '#denoise',
       '#benchmark',
     ];
     expect(stops).toEqual(expected);

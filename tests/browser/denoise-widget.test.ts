@@ -15,23 +15,25 @@ import { launchBrowser, startDemoServer } from './harness.ts';
 import { WAIT, addView } from './widget-page.ts';
 
 let browser: Browser;
-const servers: { isolated: boolean; server: ViteDevServer; url: string }[] = [];
+let isolatedServer: { server: ViteDevServer; url: string } | undefined;
 
 beforeAll(async () => {
   browser = await launchBrowser();
-  for (const isolated of [true, false])
-    servers.push({ isolated, ...(await startDemoServer(isolated)) });
+  isolatedServer = await startDemoServer(true);
 });
 
 afterAll(async () => {
   await browser?.close();
-  for (const s of servers) await s.server.close();
+  await isolatedServer?.server.close();
 });
 
 describe('<pathwise-view denoise> (Chromium)', () => {
   for (const isolated of [true, false]) {
     it(`${isolated ? 'isolated page (shared memory)' : 'page without COOP/COEP (transferred stripes)'}: denoised pictures, switched off, no worker left`, async () => {
-      const { url } = servers.find((s) => s.isolated === isolated)!;
+      // The plain server is started for this test alone, as tests/browser/fallbacks.test.ts
+      // does (one started long before its page loads could leave the page waiting).
+      const plain = isolated ? null : await startDemoServer(false);
+      const url = plain?.url ?? isolatedServer!.url;
       const context = await browser.newContext({ viewport: { width: 800, height: 600 } });
       const page = await context.newPage();
       const errors: string[] = [];
@@ -59,8 +61,10 @@ describe('<pathwise-view denoise> (Chromium)', () => {
           el.denoisedLog = [];
           el.addEventListener('denoised', (e) => el.denoisedLog.push(e.detail));
         })()`);
+        // The picture on screen from the target's samples (an automatic rescale may
+        // restart the film once after a picture: wait for the one on screen).
         await page.waitForFunction(
-          `document.querySelector('#v').denoisedLog.some((d) => d.spp >= 8)`,
+          `document.querySelector('#v').controller.denoisedSnapshot()?.spp >= 8`,
           undefined,
           WAIT,
         );
@@ -68,6 +72,7 @@ describe('<pathwise-view denoise> (Chromium)', () => {
           const el = document.querySelector('#v');
           const c = el.controller;
           const d = c.denoisedSnapshot();
+          if (!d) return { lost: true };
           const film = c.readLinear();
           const lum = (a, i) => 0.2126 * a[i] + 0.7152 * a[i + 1] + 0.0722 * a[i + 2];
           let dl = 0, fl = 0, finite = true;
@@ -78,6 +83,7 @@ describe('<pathwise-view denoise> (Chromium)', () => {
           }
           return { mode: c.mode.compute, property: el.denoise, stats: c.stats().denoised, size: [d.width, d.height], film: [film.width, film.height], finite, ratio: dl / fl };
         })()`)) as {
+          lost?: boolean;
           mode: string;
           property: boolean;
           stats: { spp: number } | null;
@@ -86,6 +92,7 @@ describe('<pathwise-view denoise> (Chromium)', () => {
           finite: boolean;
           ratio: number;
         };
+        expect(r.lost).toBeUndefined();
         expect(r.mode).toBe(isolated ? 'shared' : 'transfer');
         expect(r.property).toBe(true);
         expect(r.stats?.spp).toBe(8);
@@ -106,7 +113,52 @@ describe('<pathwise-view denoise> (Chromium)', () => {
         expect(errors).toEqual([]);
       } finally {
         await context.close();
+        await plain?.server.close();
       }
     });
   }
+
+  it('the same bits from 1 and 2 denoise workers (a 512×384 film: one tile, or two overlapped ones)', async () => {
+    const { url } = isolatedServer!;
+    const page = await browser.newPage();
+    const errors: string[] = [];
+    page.on('pageerror', (e) => errors.push(e.message));
+    try {
+      await page.goto(`${url}?width=32&height=32&spp=1`);
+      await page.waitForFunction(() => 'controller' in ((window as any).__pathwise ?? {}));
+      const r = (await page.evaluate(`(async () => {
+        const { createPathTracer } = window.__pathwise;
+        const run = (workers) => new Promise((resolve, reject) => {
+          const canvas = document.createElement('canvas');
+          document.body.append(canvas);
+          const c = createPathTracer(canvas, {
+            src: '/scenes/cornell.json', width: 512, height: 384, spp: 1, seed: 4,
+            denoise: true, denoiseWorkers: workers,
+          });
+          c.addEventListener('error', (e) => reject(new Error(e.detail.message)));
+          c.addEventListener('denoised', (e) => {
+            if (e.detail.spp < 1) return;
+            const d = c.denoisedSnapshot();
+            const bits = new Uint32Array(d.sums.buffer.slice(0));
+            c.destroy();
+            canvas.remove();
+            resolve(bits);
+          });
+        });
+        const one = await run(1);
+        const two = await run(2);
+        const diff = (a, b) => { let n = a.length === b.length ? 0 : -1; for (let i = 0; n >= 0 && i < a.length; i++) if (a[i] !== b[i]) n++; return n; };
+        let finite = true;
+        const f = new Float32Array(one.buffer);
+        for (let i = 0; i < f.length; i++) if (!Number.isFinite(f[i])) finite = false;
+        return { length: one.length, two: diff(one, two), finite };
+      })()`)) as { length: number; two: number; finite: boolean };
+      expect(r.length).toBe(512 * 384 * 4);
+      expect(r.finite).toBe(true);
+      expect(r.two).toBe(0);
+      expect(errors).toEqual([]);
+    } finally {
+      await page.close();
+    }
+  });
 });

@@ -3,6 +3,7 @@
  * or without the cross-origin isolation headers) and Debian's Chromium
  * driven by playwright-core.
  */
+import demoConfig from '../../vite.config.ts';
 import { mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
@@ -26,9 +27,10 @@ export async function startDemoServer(
     root,
     cacheDir,
     configFile: isolated ? undefined : false,
-    ...(isolated
-      ? {}
-      : { worker: { format: 'es' as const }, optimizeDeps: { include: ['comlink'] } }),
+    // Without the config file (its headers isolate the page), but with its dependency
+    // list: a plain server that discovers dependencies as pages load re-optimises and
+    // cannot reload the page (no HMR), which left pages waiting on a loaded machine.
+    ...(isolated ? {} : { worker: demoConfig.worker, optimizeDeps: demoConfig.optimizeDeps }),
     server: { host: '127.0.0.1', port: 0, strictPort: false, hmr: false },
     logLevel: 'error',
   });
