@@ -113,8 +113,10 @@ export class FrameLoop {
     meter.traced(now, segments);
     // Preview passes are not the image's samples: the full film has none yet.
     const spp = films.previewing ? 0 : job.passesDone();
-    // From the second pass on: the first whole image is drawn the frame it completes.
-    const resting = !films.previewing && !host.interacting() && spp >= 2;
+    // From the second pass on (the first whole image is drawn the frame it completes),
+    // and not the last one or a paused render's (their frames are the loop's last).
+    const resting =
+      !films.previewing && !host.interacting() && spp >= 2 && spp < host.target() && !host.paused();
     const held = resting && !this.screen.pending && now - this.lastDraw < host.restDrawMs();
     const t0 = performance.now();
     const drew = !held && this.screen.present(job, false);
