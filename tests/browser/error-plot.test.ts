@@ -99,6 +99,9 @@ describe('live error plot (Chromium)', () => {
     const caption = (await page.locator('#error-caption').textContent()) ?? '';
     expect(caption).toMatch(new RegExp(`\\(${SPP} spp\\): estimated [\\d.e-]+, true [\\d.e-]+`));
     expect(await page.locator('#error-plot').getAttribute('aria-label')).toContain(caption);
+    // The stats' Noise is the same figure as the caption's "estimated" (one definition).
+    const estimated = /estimated ([\d.e-]+),/.exec(caption)![1]!;
+    await expect.poll(() => page.locator('#s-noise').textContent()).toBe(estimated);
     const colours = await page.evaluate(() => {
       const canvas = document.getElementById('error-plot') as HTMLCanvasElement;
       const data = canvas.getContext('2d')!.getImageData(0, 0, canvas.width, canvas.height).data;
