@@ -89,6 +89,10 @@ export class SharedFilmJob implements FilmJob {
     const filmBuffer = new SharedArrayBuffer(Film.byteLength(this.width, this.height, this.aux));
     const ctrlBuffer = new SharedArrayBuffer(controlWords(this.stripes, this.height) * 4);
     const journalBuffer = new SharedArrayBuffer(Film.byteLength(this.width, 1, this.aux));
+    // Written once here, before a worker reads it (as the command line does, src/cli/render.ts):
+    // a page first read by a worker maps the zero page, and its first write then interrupts
+    // every core running the page's threads (a TLB shootdown).
+    new Uint8Array(filmBuffer).fill(0);
     this.filmBuffer = filmBuffer;
     this.ctrlBuffer = ctrlBuffer;
     this.journalBuffer = journalBuffer;
