@@ -41,12 +41,18 @@ export class DenoiseControl {
       {
         show: (image) => {
           host.screen.showDenoised(image);
-          this.measured(image);
           const { spp, width, height, ms, sinceRestartMs } = image;
           host.emit('denoised', { spp, width, height, ms, sinceRestartMs });
           host.wake();
+          // After the event: a rescale it causes restarts, and drops this picture.
+          this.measured(image);
         },
-        error: (message) => host.emit('error', { message }),
+        // The denoiser stopped (it switched itself off): the film's own picture again.
+        error: (message) => {
+          host.screen.dropDenoised();
+          host.emit('error', { message });
+          host.wake();
+        },
         seconds: (now) => host.seconds(now),
       },
       workers,

@@ -150,7 +150,13 @@ export class ViewDenoiser {
     const grown = spp >= Math.max(this.lastSpp + 1, Math.ceil(this.lastSpp * REFRESH_GROWTH));
     const last = spp >= target && this.lastSpp < target;
     if (!fresh && !grown && !last) return false;
-    this.start(job, spp);
+    try {
+      this.start(job, spp);
+    } catch (e) {
+      // No memory for the images, or a message that could not be sent: said once, and
+      // denoising stops (the frame loop must not see the exception).
+      this.fail(`denoising failed: ${e instanceof Error ? e.message : String(e)}`);
+    }
     return this.inFlight !== null;
   }
 
@@ -166,7 +172,7 @@ export class ViewDenoiser {
     const albedo = film.auxMean(0);
     const normal = film.auxMean(3);
     if (this.wanted) Atomics.store(this.wanted, 0, id);
-    this.inFlight = {
+    const inFlight: InFlight = {
       id,
       generation: this.generation,
       spp,
@@ -195,6 +201,8 @@ export class ViewDenoiser {
       const transfer = k === lanes - 1 ? [color.buffer, albedo.buffer, normal.buffer] : [];
       workers[k]!.postMessage(req, transfer);
     }
+    // Only once every worker has its part: a post that threw leaves nothing waiting.
+    this.inFlight = inFlight;
   }
 
   private ensureWorkers(count: number): Worker[] | null {
@@ -210,6 +218,8 @@ export class ViewDenoiser {
           e.preventDefault();
           this.fail(`the denoiser stopped: ${e.message || 'its script did not load'}`);
         };
+        worker.onmessageerror = () =>
+          this.fail('the denoiser sent a message that could not be read');
         this.workers.push(worker);
       }
     } catch (e) {
@@ -219,8 +229,10 @@ export class ViewDenoiser {
     return this.workers;
   }
 
+  /** Denoising stops (switched off: the caller may switch it on again to retry). */
   private fail(message: string): void {
     this.failed = true;
+    this.enabled = false;
     this.inFlight = null;
     for (const w of this.workers) w.terminate();
     this.workers = [];

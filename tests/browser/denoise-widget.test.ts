@@ -161,4 +161,40 @@ describe('<pathwise-view denoise> (Chromium)', () => {
       await page.close();
     }
   });
+
+  it("weights that cannot be fetched: one error, the film's own picture, denoising off, the render goes on", async () => {
+    const { url } = isolatedServer!;
+    const page = await browser.newPage();
+    const errors: string[] = [];
+    page.on('pageerror', (e) => errors.push(e.message));
+    await page.route('**/rt_hdr_alb_nrm_small.tza*', (route) => route.fulfill({ status: 404 }));
+    try {
+      await page.goto(`${url}?width=32&height=32&spp=1`);
+      await page.waitForFunction(() => 'controller' in ((window as any).__pathwise ?? {}));
+      const r = (await page.evaluate(`(async () => {
+        const { createPathTracer } = window.__pathwise;
+        const canvas = document.createElement('canvas');
+        document.body.append(canvas);
+        const c = createPathTracer(canvas, {
+          src: '/scenes/cornell.json', width: 64, height: 64, spp: 4, seed: 2, denoise: true,
+        });
+        const messages = [];
+        c.addEventListener('error', (e) => messages.push(e.detail.message));
+        const until = async (test) => { while (!test()) await new Promise((r) => setTimeout(r, 20)); };
+        await until(() => messages.length > 0);
+        await until(() => c.stats().spp >= 4);
+        const out = { messages, denoise: c.denoise, shown: c.stats().denoised, spp: c.stats().spp };
+        c.destroy();
+        return out;
+      })()`)) as { messages: string[]; denoise: boolean; shown: unknown; spp: number };
+      expect(r.messages).toHaveLength(1);
+      expect(r.messages[0]).toMatch(/denoising failed: denoiser weights: HTTP 404/);
+      expect(r.denoise).toBe(false);
+      expect(r.shown).toBeNull();
+      expect(r.spp).toBe(4);
+      expect(errors).toEqual([]);
+    } finally {
+      await page.close();
+    }
+  });
 });
