@@ -598,7 +598,14 @@ export class Controller extends EventTarget implements PathTracerController {
   }
 
   toBlob(): Promise<Blob> {
-    return pngBlob(this.films.full, this.screen.exposure);
+    // The picture on screen: the denoised one while it is shown (the PFM stays raw).
+    const denoised = this.denoising.snapshot(this.job.version);
+    const full = this.films.full;
+    const sums =
+      denoised && full && denoised.width === full.width && denoised.height === full.height
+        ? denoised.sums
+        : full?.film.sums;
+    return pngBlob(full, this.screen.exposure, sums);
   }
 
   toPFM(): Uint8Array {

@@ -1,7 +1,8 @@
 /**
  * The full film as files: its linear mean radiance (for PFM) and a PNG
  * tone mapped at the display's exposure, at the film's own size whatever
- * the canvas shows.
+ * the canvas shows. The PNG is the picture on screen: the denoised one while
+ * it is shown (`sums`, RGBA with A = 1); the PFM is always the raw, unbiased film.
  */
 import { tonemapSums } from '../core/index.ts';
 import type { FilmJob } from './film-job.ts';
@@ -16,10 +17,14 @@ export function linearImage(job: FilmJob | null): {
   return { width: job.width, height: job.height, rgb: job.film.mean() };
 }
 
-export function pngBlob(job: FilmJob | null, exposure: number): Promise<Blob> {
+export function pngBlob(
+  job: FilmJob | null,
+  exposure: number,
+  sums: Float32Array = job?.film.sums ?? new Float32Array(0),
+): Promise<Blob> {
   if (!job) return Promise.reject(new Error('no image yet'));
   const image = new ImageData(job.width, job.height);
-  tonemapSums(job.film.sums, exposure, image.data);
+  tonemapSums(sums, exposure, image.data);
   const canvas = document.createElement('canvas');
   canvas.width = job.width;
   canvas.height = job.height;

@@ -196,6 +196,7 @@ export interface PathTracerController extends EventTarget {
   stats(): RenderStatsInfo;
   /** Linear mean radiance, RGB float32, row 0 at the top. */
   readLinear(): { width: number; height: number; rgb: Float32Array };
+  /** The picture on screen as PNG (the denoised one while it is shown), at the film's size. */
   toBlob(): Promise<Blob>;
   toPFM(): Uint8Array;
   destroy(): void;

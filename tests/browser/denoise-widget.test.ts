@@ -99,6 +99,9 @@ describe('<pathwise-view denoise> (Chromium)', () => {
         expect(r.size).toEqual(r.film);
         expect(r.finite).toBe(true);
         expect(Math.abs(r.ratio - 1)).toBeLessThan(0.1);
+        // The PNG is the picture on screen: denoised now, the film's own once switched off.
+        const png = `(async () => Array.from(new Uint8Array(await (await document.querySelector('#v').toBlob()).arrayBuffer())))()`;
+        const denoisedPng = (await page.evaluate(png)) as number[];
         // Off: the film's own picture, and no more denoised ones.
         await page.evaluate(`document.querySelector('#v').removeAttribute('denoise')`);
         await page.waitForFunction(
@@ -107,6 +110,9 @@ describe('<pathwise-view denoise> (Chromium)', () => {
           WAIT,
         );
         expect(await page.evaluate(`document.querySelector('#v').denoise`)).toBe(false);
+        const rawPng = (await page.evaluate(png)) as number[];
+        expect(rawPng.length).toBeGreaterThan(0);
+        expect(rawPng).not.toEqual(denoisedPng);
         expect(denoisers.started).toBe(1);
         await page.evaluate(`document.querySelector('${view}').remove()`);
         await expect.poll(() => denoisers.closed).toBe(1);
