@@ -179,11 +179,15 @@ describe('render workers dying mid-render (Chromium)', () => {
     // The render is held until each crash has landed: all eight do.
     expect(done.crash).toBe(8);
     expect(f.crashed).toBe(done.crash);
-    // Each crashed worker held a stripe with one of its two rows committed:
-    // that row was kept, the other re-rendered by another worker.
+    // Each crashed worker held a stripe with some of its two rows committed: the
+    // crash comes after its first commit. Those rows were kept, the rest re-rendered by
+    // another worker. Usually one row; both when the crashing worker had taken over a
+    // stripe reclaimed from an earlier crash (its first row already kept, so the crash
+    // came after the second), which a fast machine's timing allows now and then.
     expect(f.reclaimed).toBe(f.crashed);
     expect(f.partial).toBe(f.crashed);
-    expect(f.rowsKept).toBe(f.crashed);
+    expect(f.rowsKept).toBeGreaterThanOrEqual(f.crashed);
+    expect(f.rowsKept).toBeLessThanOrEqual(2 * f.crashed);
     expect(bitDifferences((await readLinear(page)).rgb, expected())).toBe(0);
     console.log(`shared, crashed: ${JSON.stringify(f)}`);
     await page.close();
