@@ -1,8 +1,8 @@
 import { defineConfig } from 'vitest/config';
 
 /**
- * Tests that time something a user waits for (tests/timing): run by `npm test` after
- * every other file, one at a time, so that no other test shares the two cores with them.
+ * Tests that time something a user waits for (tests/timing): run by `npm run test:timing`
+ * (CI calls it after `npm test`), one at a time, so that no other test shares the two cores with them.
  */
 export default defineConfig({
   test: {

@@ -10,7 +10,7 @@
  * the denoiser's measured cost on this machine, as it does for a user after the first
  * few seconds.
  *
- * It times, so it runs alone: `npm test` runs tests/timing after every other file
+ * It times, so it runs alone: CI runs `npm run test:timing` after `npm test`
  * (vitest.timing.config.ts), never beside them on two cores.
  *
  * A last stop is Reset view (the scene's own camera, which has a Mitsuba reference): the
