@@ -10,6 +10,7 @@ import { Hit, Ray } from '../geometry/ray.ts';
 import { intersectScene } from '../accel/trace.ts';
 import { EnvironmentSample } from '../lights/environment-map.ts';
 import { LightSample } from '../lights/lights.ts';
+import type { LightBvh } from '../lights/light-bvh.ts';
 import { TriangleSurface } from './triangle-surface.ts';
 import { GltfWork } from './gltf-surface.ts';
 import { DIM_PER_BOUNCE, DEFAULT_SAMPLER, Sampler } from '../sampling/sampler.ts';
@@ -30,7 +31,18 @@ export type { Estimator, RenderSettings };
  * passed as it is.
  */
 export type TracerOptions = Pick<RenderSettings, 'width' | 'height' | 'maxBounces'> &
-  Partial<RenderSettings> & { camera: CameraDesc };
+  Partial<RenderSettings> & {
+    camera: CameraDesc;
+    /**
+     * How next-event estimation chooses a light: by the light BVH (the default, and
+     * what every render uses), or by power alone, kept to measure the BVH against
+     * (bench/many-lights.ts) and for the validation that compares the two.
+     */
+    lightSampler?: LightSamplerKind;
+  };
+
+/** Light choice of next-event estimation (see TracerOptions.lightSampler). */
+export type LightSamplerKind = 'bvh' | 'power';
 
 export class PathTracer {
   readonly scene: CompiledScene;
@@ -40,6 +52,8 @@ export class PathTracer {
   maxBounces: number;
   readonly estimator: Estimator;
   readonly sampler: Sampler;
+  /** The scene's light BVH, or null where lights are chosen by power (trace-path.ts). */
+  readonly lightBvh: LightBvh | null;
   /** Radiance of the last traced path. */
   lr = 0;
   lg = 0;
@@ -69,6 +83,7 @@ export class PathTracer {
     this.height = options.height;
     this.maxBounces = options.maxBounces;
     this.estimator = options.estimator ?? 'nee-mis';
+    this.lightBvh = options.lightSampler === 'power' ? null : scene.lightBvh();
     this.sampler = new Sampler(options.seed ?? 0, options.sampler ?? DEFAULT_SAMPLER);
     this.camera = new Camera(options.camera, options.width, options.height);
   }

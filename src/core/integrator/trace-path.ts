@@ -111,6 +111,8 @@ export function trace(
   const spheres = scene.spheres;
   const quads = scene.quads;
   const lights = scene.lights;
+  // The light BVH when it chooses among the lights, null for the choice by power.
+  const lightBvh = this.lightBvh;
   const sampler = this.sampler;
   const ray = this.ray;
   const hit = this.hit;
@@ -145,6 +147,10 @@ export function trace(
   let prevX = 0,
     prevY = 0,
     prevZ = 0;
+  // The previous vertex's normal: the light BVH's choice there depended on it.
+  let prevNx = 0,
+    prevNy = 0,
+    prevNz = 0;
   // Alpha surfaces the current segment passed through (see gltf-surface.ts).
   let crossings = 0;
   // KHR_materials_volume: the absorbing solid the path is inside, if any — σa
@@ -165,7 +171,7 @@ export function trace(
         env.eval(ray.dx, ray.dy, ray.dz, es);
         let w = 1;
         if (nee && !specular) {
-          const pl = environmentLightPdf(lights!, ray.dx, ray.dy, ray.dz);
+          const pl = environmentLightPdf(lights!, lightBvh, ray.dx, ray.dy, ray.dz);
           w = (prevPdf * prevPdf) / (prevPdf * prevPdf + pl * pl);
         }
         lr += br * es.r * w;
@@ -311,10 +317,25 @@ export function trace(
         // lightPdf's quad case written out: the call, not inlined, boxed
         // its five double arguments and its result on the heap.
         const pl =
-          lights!.kind[light] === SHAPE_QUAD
+          lightBvh === null && lights!.kind[light] === SHAPE_QUAD
             ? (lights!.prob[light] * d * d) /
               (quads[lights!.shape[light] * QUAD_STRIDE + Q_AREA] * cosO)
-            : lightPdf(lights!, spheres, quads, light, prevX, prevY, prevZ, d, cosO);
+            : lightPdf(
+                lights!,
+                lightBvh,
+                spheres,
+                quads,
+                light,
+                index,
+                prevX,
+                prevY,
+                prevZ,
+                prevNx,
+                prevNy,
+                prevNz,
+                d,
+                cosO,
+              );
         w = (prevPdf * prevPdf) / (prevPdf * prevPdf + pl * pl);
       }
       if (isGltf) {
@@ -396,7 +417,11 @@ export function trace(
     const sampleLights = nee && materials[mo + M_DELTA] === 0;
     sampler.fillRange(
       DIM_BOUNCE + depth * DIM_PER_BOUNCE,
-      sampleLights ? (lights!.count > 1 ? DIM_LIGHT_CHOICE : DIM_LIGHT_POINT) : DIM_BSDF,
+      sampleLights
+        ? lightBvh !== null || lights!.count > 1
+          ? DIM_LIGHT_CHOICE
+          : DIM_LIGHT_POINT
+        : DIM_BSDF,
       depth + 1 >= ROULETTE_DEPTH ? DIM_ROULETTE + 1 : DIM_ROULETTE,
       u,
     );
@@ -416,7 +441,16 @@ export function trace(
     // Next-event estimation.
     if (sampleLights) {
       const ls = this.ls;
-      const l = lights!.choose(u[DIM_LIGHT_CHOICE]);
+      // The choice: by the light BVH at this point (−1 when no light can reach it), or
+      // by power; either way ls.pick is its probability.
+      let l: number;
+      if (lightBvh === null) {
+        l = lights!.choose(u[DIM_LIGHT_CHOICE]);
+        ls.pick = lights!.prob[l];
+        ls.triangle = -1;
+      } else {
+        l = lightBvh.choose(u[DIM_LIGHT_CHOICE], x, y, z, nx, ny, nz, ls) ? ls.light : -1;
+      }
       // The sampled direction, the shadow ray's far end and the density.
       let sampled = false;
       let wix = 0,
@@ -430,7 +464,9 @@ export function trace(
       // A punctual light (lights/punctual.ts): no BSDF-sampled ray finds it, so its
       // sample's MIS weight is 1 (pbr-book 4e §13.4: pdf_bsdf counts as 0).
       let delta = false;
-      if (lights!.kind[l] === SHAPE_QUAD) {
+      if (l < 0) {
+        // No light sample at this vertex.
+      } else if (lights!.kind[l] === SHAPE_QUAD) {
         // sampleLight's quad case (and finishAreaSample) written out,
         // the same arithmetic: the call was not inlined.
         const o = lights!.shape[l] * QUAD_STRIDE;
@@ -457,7 +493,7 @@ export function trace(
             lpx = qx + lift * qnx;
             lpy = qy + lift * qny;
             lpz = qz + lift * qnz;
-            lpdf = (lights!.prob[l] * d2) / (quads[o + Q_AREA] * cosLight);
+            lpdf = (ls.pick * d2) / (quads[o + Q_AREA] * cosLight);
             sampled = lpdf < Infinity;
           }
         }
@@ -646,6 +682,9 @@ export function trace(
     prevX = x;
     prevY = y;
     prevZ = z;
+    prevNx = nx;
+    prevNy = ny;
+    prevNz = nz;
 
     if (depth + 1 >= ROULETTE_DEPTH) {
       // Survival in proportion to throughput; etaScale undoes the (n1/n2)²

@@ -14,6 +14,12 @@
  * Point, spot and directional lights are delta lights (punctual.ts): chosen by
  * power like the rest, never hit by a ray, so lightPdf is never asked for them.
  *
+ * The choice by power from a CDF is one of two: the light BVH (light-bvh.ts) chooses
+ * by an estimate of each emitter's contribution at the reference point, and each
+ * triangle of an emissive mesh on its own. The caller makes the choice and writes it
+ * into the LightSample (`pick`, and `triangle` for a mesh), which `sampleLight` then
+ * samples; `lightPdf` takes the BVH (or null for the CDF) to find the same `pick`.
+ *
  * The shadow ray's far end is the sampled point lifted off the emitter, toward
  * the reference point, by a distance relative to the emitter's coordinates
  * (`OFFSET_SCALE`, the same rule the integrator uses to lift ray origins off
@@ -39,6 +45,7 @@ import { Distribution1D } from '../sampling/distribution.ts';
 import { EnvironmentSample, type EnvironmentMap } from './environment-map.ts';
 import { MeshLightSample, type MeshLight } from './mesh-light.ts';
 import { samplePunctual } from './punctual.ts';
+import type { LightBvh } from './light-bvh.ts';
 
 /**
  * In: the reference point and two random numbers (set by the caller; a
@@ -64,11 +71,14 @@ export class LightSample {
   pz = 0;
   /** Solid-angle density including the probability of choosing this light. */
   pdf = 0;
+  /** In: the probability with which the light was chosen. */
+  pick = 0;
   /** Index of the chosen light in the light list. */
   light = -1;
   /**
    * On a mesh light: the triangle and the point's barycentrics (weights of its
    * vertices 1 and 2), for emission that varies over the mesh (glTF textures).
+   * In: the triangle the light BVH chose, or −1 to draw one by area over the mesh.
    */
   triangle = -1;
   b1 = 0;
@@ -120,6 +130,11 @@ export class LightList {
   readonly punctual: Float64Array;
   /** Index of the environment map in the list, or −1. */
   readonly environmentLight: number;
+  /**
+   * The light BVH over these lights, once built (CompiledScene.lightBvh); sampleLight
+   * reads its triangle areas.
+   */
+  bvh: LightBvh | null = null;
   /** Scratch records of sampleLight (one list per thread, so never shared). */
   readonly meshSample = new MeshLightSample();
   readonly envSample = new EnvironmentSample();
@@ -162,14 +177,20 @@ export function sampleLight(
   const u0 = out.u0,
     u1 = out.u1;
   const s = lights.shape[l];
-  const choose = lights.prob[l];
+  const choose = out.pick;
   const lift = lights.offset[l];
   out.light = l;
   const kind = lights.kind[l];
   if (kind === SHAPE_TRIANGLE) {
     const mesh = lights.meshLights[s]!;
     const ms = lights.meshSample;
-    mesh.sample(u0, u1, ms);
+    let area = mesh.area;
+    if (out.triangle >= 0) {
+      // Chosen by the light BVH: this triangle alone, uniformly by its area.
+      const bvh = lights.bvh!;
+      area = bvh.primArea[bvh.primOf(l, out.triangle)];
+      mesh.sampleTriangle(out.triangle, u0, u1, ms);
+    } else mesh.sample(u0, u1, ms);
     out.triangle = ms.triangle;
     out.b1 = ms.b1;
     out.b2 = ms.b2;
@@ -183,7 +204,7 @@ export function sampleLight(
       ms.nx,
       ms.ny,
       ms.nz,
-      mesh.area,
+      area,
       choose,
       lift,
       out,
@@ -376,28 +397,42 @@ function finishAreaSample(
 
 /**
  * Solid-angle pdf with which `sampleLight` would have produced the point of
- * light l hit from (x, y, z) at distance t with emitter cosine cosLight —
- * the density MIS needs when a BSDF-sampled ray lands on an emitter.
+ * light l (triangle `triangle` of a mesh, else −1) hit from (x, y, z) with normal
+ * (nx, ny, nz) at distance t with emitter cosine cosLight, the light chosen by `bvh`
+ * (null: by power): the density MIS needs when a BSDF-sampled ray lands on an emitter.
  */
 export function lightPdf(
   lights: LightList,
+  bvh: LightBvh | null,
   spheres: Float64Array,
   quads: Float64Array,
   l: number,
+  triangle: number,
   x: number,
   y: number,
   z: number,
+  nx: number,
+  ny: number,
+  nz: number,
   t: number,
   cosLight: number,
 ): number {
   const s = lights.shape[l];
-  const choose = lights.prob[l];
   const kind = lights.kind[l];
+  let choose: number;
+  let prim = -1;
+  if (bvh === null) choose = lights.prob[l];
+  else {
+    prim = bvh.primOf(l, kind === SHAPE_TRIANGLE ? triangle : -1);
+    choose = bvh.pmf(prim, x, y, z, nx, ny, nz);
+  }
+  if (!(choose > 0)) return 0;
   if (kind === SHAPE_QUAD) {
     return (choose * t * t) / (quads[s * QUAD_STRIDE + Q_AREA] * cosLight);
   }
   if (kind === SHAPE_TRIANGLE) {
-    return (choose * t * t) / (lights.meshLights[s]!.area * cosLight);
+    const area = bvh === null ? lights.meshLights[s]!.area : bvh.primArea[prim];
+    return (choose * t * t) / (area * cosLight);
   }
   const o = s * SPHERE_STRIDE;
   const r = spheres[o + 3];
@@ -412,10 +447,18 @@ export function lightPdf(
 }
 
 /**
- * Solid-angle pdf with which `sampleLight` would have chosen the environment map and
- * drawn the unit direction d: what MIS needs when a path escapes.
+ * Solid-angle pdf with which `sampleLight` would have chosen the environment map (by
+ * `bvh`, or by power when null) and drawn the unit direction d: what MIS needs when a
+ * path escapes.
  */
-export function environmentLightPdf(lights: LightList, dx: number, dy: number, dz: number): number {
+export function environmentLightPdf(
+  lights: LightList,
+  bvh: LightBvh | null,
+  dx: number,
+  dy: number,
+  dz: number,
+): number {
   const l = lights.environmentLight;
-  return l < 0 ? 0 : lights.prob[l] * lights.environment!.pdf(dx, dy, dz);
+  if (l < 0) return 0;
+  return (bvh === null ? lights.prob[l] : bvh.infinitePick) * lights.environment!.pdf(dx, dy, dz);
 }

@@ -69,14 +69,16 @@ export class MeshLight {
     const k = d.find(u0);
     const b = BARY;
     squareToUniformTriangle(d.remap(u0, k), u1, b);
-    const t = this.first + k;
+    this.writePoint(this.first + k, b.x, b.y, out);
+  }
+
+  /** The point of triangle t with barycentrics (b0, b1), its normal and barycentrics. */
+  private writePoint(t: number, b0: number, b1: number, out: MeshLightSample): void {
     const p = this.positions;
     const i0 = this.indices[3 * t] * 3,
       i1 = this.indices[3 * t + 1] * 3,
       i2 = this.indices[3 * t + 2] * 3;
-    const b0 = b.x,
-      b1 = b.y,
-      b2 = 1 - b.x - b.y;
+    const b2 = 1 - b0 - b1;
     out.px = b0 * p[i0] + b1 * p[i1] + b2 * p[i2];
     out.py = b0 * p[i0 + 1] + b1 * p[i1 + 1] + b2 * p[i2 + 1];
     out.pz = b0 * p[i0 + 2] + b1 * p[i1 + 2] + b2 * p[i2 + 2];
@@ -84,6 +86,16 @@ export class MeshLight {
     out.triangle = t;
     out.b1 = b1;
     out.b2 = b2;
+  }
+
+  /**
+   * A point uniformly by area on triangle t alone (one of this mesh's), for a choice of
+   * triangle made elsewhere (the light BVH).
+   */
+  sampleTriangle(t: number, u0: number, u1: number, out: MeshLightSample): void {
+    const b = BARY;
+    squareToUniformTriangle(u0, u1, b);
+    this.writePoint(t, b.x, b.y, out);
   }
 
   /** The (u0, u1) that `sample` takes to the point of triangle t with barycentrics (b0, b1). */

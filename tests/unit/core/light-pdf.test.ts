@@ -74,11 +74,14 @@ describe('light densities', () => {
       ls.refZ = 3 * hashToUnit(key, 2) - 1.5;
       ls.u0 = hashToUnit(key, 3);
       ls.u1 = hashToUnit(key, 4);
+      // Chosen by power (the light BVH's choice: light-bvh.test.ts).
+      ls.pick = lights.prob[l];
+      ls.triangle = -1;
       if (!sampleLight(lights, scene.spheres, scene.quads, l, ls)) continue;
       const kind = lights.kind[l];
       let pdf: number;
       if (kind === LIGHT_ENVIRONMENT) {
-        pdf = environmentLightPdf(lights, ls.wx, ls.wy, ls.wz);
+        pdf = environmentLightPdf(lights, null, ls.wx, ls.wy, ls.wz);
       } else if (kind === SHAPE_TRIANGLE) {
         // The emitter's cosine as the integrator computes it where a ray hits: the
         // triangle's normal against the direction back to the reference point.
@@ -87,12 +90,17 @@ describe('light densities', () => {
         const cos = -(n.nx * ls.wx + n.ny * ls.wy + n.nz * ls.wz);
         pdf = lightPdf(
           lights,
+          null,
           scene.spheres,
           scene.quads,
           l,
+          -1,
           ls.refX,
           ls.refY,
           ls.refZ,
+          0,
+          0,
+          0,
           ls.distance,
           cos,
         );

@@ -30,13 +30,15 @@ import {
 } from '../../geometry/shapes.ts';
 import { EnvironmentMap } from '../../lights/environment-map.ts';
 import { LightList } from '../../lights/lights.ts';
-import { MeshLight } from '../../lights/mesh-light.ts';
+import { LightBvh } from '../../lights/light-bvh.ts';
+import { lightBvhInput } from '../../lights/light-bvh-input.ts';
+import { MeshLight, triangleArea } from '../../lights/mesh-light.ts';
 import { compilePunctualLights } from '../../lights/punctual.ts';
 import { sceneRadius } from './bounds.ts';
 import { CompiledMeshes, compileMeshArrays, type MeshArrays } from './compile-meshes.ts';
 import { compileGltfShapes } from './compile-gltf.ts';
 import { GltfScene } from './gltf-scene.ts';
-import { gltfMeshPower, selectionWeights } from './light-power.ts';
+import { gltfMeshPower, gltfTrianglePowers, selectionWeights } from './light-power.ts';
 import type { GltfDesc, MeshDesc, QuadDesc, Scene, SphereDesc } from '../format/types.ts';
 
 /**
@@ -87,6 +89,11 @@ export interface SceneData extends MeshArrays, InstanceArrays {
   lightPower: Float64Array;
   lightScale: Float64Array;
   lightMaterial: Int32Array;
+  /**
+   * Per triangle of each emissive mesh, in light-list order: its power, for the light
+   * BVH's choice among them (lights/light-bvh-input.ts).
+   */
+  lightTrianglePower: Float64Array;
   /** Punctual lights' records (lights/punctual.ts); empty without them. */
   punctual: Float64Array;
   /** Constant environment radiance, RGB. */
@@ -127,6 +134,7 @@ export const SCENE_ARRAYS = [
   'lightPower',
   'lightScale',
   'lightMaterial',
+  'lightTrianglePower',
   'punctual',
   'environment',
   'envTexels',
@@ -189,6 +197,7 @@ export class CompiledScene implements SceneGeometry {
   readonly triRay = new TriangleRay();
   readonly triHit = new TriangleHit();
   readonly lights: LightList | null;
+  private lightBvhBuilt = false;
   /** The environment map, or null for the constant environment (envR, envG, envB). */
   readonly envMap: EnvironmentMap | null;
   readonly envR: number;
@@ -303,6 +312,30 @@ export class CompiledScene implements SceneGeometry {
     this.blasStack = new Int32Array((data.blasDepth[0] ?? 0) + 2);
     this.blasStackT = new Float64Array(this.blasStack.length);
   }
+
+  /**
+   * The light BVH over this scene's emitters (lights/light-bvh.ts), built on first use
+   * (each thread's scene builds its own, bit-identical); null when there is at most one
+   * light to choose, where the choice by power is the same and cheaper.
+   */
+  lightBvh(): LightBvh | null {
+    const lights = this.lights;
+    if (lights === null) return null;
+    if (!this.lightBvhBuilt) {
+      this.lightBvhBuilt = true;
+      const d = this.data;
+      const input = lightBvhInput(
+        lights,
+        d.spheres,
+        d.quads,
+        d.triPositions,
+        d.triIndices,
+        d.lightTrianglePower,
+      );
+      if (input.light.length + input.infinite.length > 1) lights.bvh = new LightBvh(input);
+    }
+    return lights.bvh;
+  }
 }
 
 export function compileScene(scene: Scene, options: CompileOptions = {}): CompiledScene {
@@ -391,6 +424,7 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
   const powerLog: number[] = [];
   const scale: number[] = [];
   const material: number[] = [];
+  const trianglePower: number[] = [];
   const emitted = (m: number): number => {
     const o = m * MATERIAL_STRIDE;
     if (materials[o + M_EMISSIVE] === 0) return 0;
@@ -447,6 +481,13 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
             gltfMeshPower(mesh, first, count, gltf!.table, gm, gltf!.textures),
             1e-6 * lum * area,
           );
+    if (gm < 0) {
+      for (let t = first; t < first + count; t++) {
+        trianglePower.push(triangleArea(mesh.triPositions, mesh.triIndices, t));
+      }
+    } else {
+      gltfTrianglePowers(mesh, first, count, gltf!.table, gm, gltf!.textures, lum, trianglePower);
+    }
     power.push(p);
     powerLog.push(p > 0 && p < Infinity ? Math.log2(p) : Math.log2(lum) + Math.log2(area));
     scale.push(mesh.meshScale[k]);
@@ -536,6 +577,7 @@ export function compileScene(scene: Scene, options: CompileOptions = {}): Compil
     lightPower: Float64Array.from(selectionWeights(power, powerLog)),
     lightScale: Float64Array.from(scale),
     lightMaterial: Int32Array.from(material),
+    lightTrianglePower: Float64Array.from(trianglePower),
     punctual,
     environment: Float64Array.from(scene.environment),
     envTexels,

@@ -47,6 +47,72 @@ export function gltfMeshPower(
 }
 
 /**
+ * Per triangle of an emissive glTF mesh, appended to `out`: its power for the light
+ * BVH's choice among triangles (lights/light-bvh-input.ts), area × the mean luminance
+ * a light sample sees at seven points spread over it (its centroid, and points toward
+ * each vertex and each edge), so that an emissive texture's bright texels draw the
+ * samples. Floored at 10⁻⁶ of what the factor alone would give, so a triangle whose
+ * points all miss its texture's bright texels is still chosen now and then; as above,
+ * each sample is weighted by its exact emission, so the estimate costs noise, never bias.
+ */
+export function gltfTrianglePowers(
+  mesh: MeshArrays,
+  first: number,
+  count: number,
+  table: Float64Array,
+  material: number,
+  textures: TextureStore,
+  floorLuminance: number,
+  out: number[],
+): void {
+  const attributes: VertexAttributes = {
+    uv0: mesh.triUV0.length > 0 ? mesh.triUV0 : null,
+    uv1: mesh.triUV1.length > 0 ? mesh.triUV1 : null,
+    colors: mesh.triColors.length > 0 ? mesh.triColors : null,
+    tangents: null,
+  };
+  const hit = new HitAttributes();
+  const e = { r: 0, g: 0, b: 0 };
+  const ix = mesh.triIndices;
+  for (let t = first; t < first + count; t++) {
+    let lum = 0;
+    for (let k = 0; k < SPREAD.length; k += 2) {
+      interpolateAttributes(
+        attributes,
+        ix[3 * t],
+        ix[3 * t + 1],
+        ix[3 * t + 2],
+        SPREAD[k],
+        SPREAD[k + 1],
+        hit,
+      );
+      gltfEmission(table, textures, material, hit, e);
+      lum += 0.2126 * e.r + 0.7152 * e.g + 0.0722 * e.b;
+    }
+    const area = triangleArea(mesh.triPositions, ix, t);
+    out.push(Math.max((lum / (SPREAD.length / 2)) * area, 1e-6 * floorLuminance * area));
+  }
+}
+
+/** Barycentrics (weights of vertices 1 and 2) of gltfTrianglePowers' seven points. */
+const SPREAD = [
+  1 / 3,
+  1 / 3,
+  1 / 6,
+  1 / 6,
+  2 / 3,
+  1 / 6,
+  1 / 6,
+  2 / 3,
+  5 / 12,
+  5 / 12,
+  1 / 6,
+  5 / 12,
+  5 / 12,
+  1 / 6,
+];
+
+/**
  * The lights' selection weights: their powers as computed, unless a power or their sum
  * overflows (an emitter of radiance 10¹² and area 10³⁰⁰, or an environment map around
  * a scene 10¹⁶⁰ across: both finite, as the format allows). Then Distribution1D would

@@ -1,0 +1,360 @@
+/**
+ * Many-light sampling: a BVH over every bounded emitter — each emissive sphere, quad
+ * and punctual point or spot light, and each triangle of an emissive mesh — that picks
+ * one for a reference point in proportion to an estimate of its contribution there
+ * (light-bounds.ts), after pbrt-v4's `BVHLightSampler` (pbr-book 4e §12.6.3; Conty
+ * Estevez and Kulla 2018). The environment map and directional lights, which no box
+ * bounds, are chosen on their own: with n of them, each with probability 1 / (n + 1),
+ * the BVH with the rest (pbrt's pInfinite).
+ *
+ * The choice walks down from the root with one number, picking a child in proportion
+ * to its importance and rescaling the number into the child's share, so a stratified
+ * number stays stratified over the lights. Its probability is the product of those
+ * shares; `pmf` recomputes the same products in the same order, from the root down,
+ * so MIS reads exactly the probability with which the light was chosen. A child of
+ * importance 0 is never chosen and has probability 0; emitters it holds are then
+ * reached by BSDF sampling alone (MIS weight 1), which keeps the estimate unbiased
+ * whether or not the bounds are tight.
+ *
+ * Leaves hold one emitter each. The build splits by pbrt's surface-area–orientation
+ * heuristic over 12 buckets per axis; past MAX_SAH_DEPTH it halves the range, so the
+ * tree is at most MAX_SAH_DEPTH + log2(n) deep whatever the input.
+ */
+import {
+  LB_MAX,
+  LB_MIN,
+  LB_PHI,
+  LB_STRIDE,
+  copyBounds,
+  importance,
+  orientationMeasure,
+  unionBounds,
+} from './light-bounds.ts';
+
+/** What the BVH is built from: one bounds record per emitter, and what each one is. */
+export interface LightBvhInput {
+  /** LB_STRIDE numbers per emitter (light-bounds.ts); phi relative to the largest. */
+  bounds: Float64Array;
+  /** The light-list entry of each emitter. */
+  light: Int32Array;
+  /** The triangle of a mesh emitter, −1 for the others. */
+  triangle: Int32Array;
+  /** Light-list entries of the unbounded lights (environment, directional). */
+  infinite: Int32Array;
+  /** Area of each mesh emitter's triangle (0 for the others). */
+  area: Float64Array;
+  /**
+   * Per light-list entry: its emitter, or for a mesh the emitter of its first triangle
+   * (the mesh's triangles follow in order); −1 for the unbounded ones.
+   */
+  primBase: Int32Array;
+  /** Per light-list entry: a mesh's first triangle (0 for the others). */
+  firstTriangle: Int32Array;
+}
+
+/** What `choose` writes. */
+export interface LightChoice {
+  light: number;
+  triangle: number;
+  /** Probability of the choice. */
+  pick: number;
+}
+
+const BUCKETS = 12;
+const MAX_SAH_DEPTH = 48;
+const ONE_MINUS_EPSILON = 1 - 2 ** -53;
+
+export class LightBvh {
+  /** Bounded emitters. */
+  readonly count: number;
+  readonly primLight: Int32Array;
+  readonly primTriangle: Int32Array;
+  readonly primArea: Float64Array;
+  readonly primBase: Int32Array;
+  readonly firstTriangle: Int32Array;
+  readonly infinite: Int32Array;
+  /** Probability of choosing each unbounded light. */
+  readonly infinitePick: number;
+  /** Probability of choosing the BVH (1 − n · infinitePick). */
+  readonly bvhPick: number;
+  /** Node bounds, LB_STRIDE numbers per node; node 0 is the root. */
+  readonly nodes: Float64Array;
+  /** Per node: the right child (the left is the next node), or −1 − the emitter at a leaf. */
+  readonly child: Int32Array;
+  readonly parent: Int32Array;
+  /** The leaf node of each emitter. */
+  readonly leafOf: Int32Array;
+  readonly depth: number;
+  /** Scratch path of pmf (one BVH per thread's light list). */
+  private readonly path: Int32Array;
+
+  constructor(input: LightBvhInput) {
+    const n = input.light.length;
+    this.count = n;
+    this.primLight = input.light;
+    this.primTriangle = input.triangle;
+    this.primArea = input.area;
+    this.primBase = input.primBase;
+    this.firstTriangle = input.firstTriangle;
+    this.infinite = input.infinite;
+    const ni = input.infinite.length;
+    this.infinitePick = ni > 0 ? 1 / (ni + (n > 0 ? 1 : 0)) : 0;
+    this.bvhPick = n > 0 ? 1 - ni * this.infinitePick : 0;
+    const nodeCount = Math.max(0, 2 * n - 1);
+    this.nodes = new Float64Array(nodeCount * LB_STRIDE);
+    this.child = new Int32Array(nodeCount);
+    this.parent = new Int32Array(nodeCount).fill(-1);
+    this.leafOf = new Int32Array(n);
+    const order = new Int32Array(n);
+    for (let i = 0; i < n; i++) order[i] = i;
+    const b = new Builder(input.bounds, order, this);
+    const depth = n > 0 ? b.build(0, n, 0) : 0;
+    this.depth = depth;
+    this.path = new Int32Array(depth + 1);
+  }
+
+  /** The emitter of light-list entry l (its triangle t for a mesh; else t is ignored). */
+  primOf(l: number, t: number): number {
+    return this.primBase[l] + (t >= 0 ? t - this.firstTriangle[l] : 0);
+  }
+
+  /**
+   * Chooses a light for the point (x, y, z) with normal (nx, ny, nz) from u in [0, 1).
+   * Returns false when none can contribute (then out is not written).
+   */
+  choose(
+    u: number,
+    x: number,
+    y: number,
+    z: number,
+    nx: number,
+    ny: number,
+    nz: number,
+    out: LightChoice,
+  ): boolean {
+    const ni = this.infinite.length;
+    const pInf = ni * this.infinitePick;
+    if (u < pInf) {
+      const i = Math.min(Math.floor((u / pInf) * ni), ni - 1);
+      out.light = this.infinite[i];
+      out.triangle = -1;
+      out.pick = this.infinitePick;
+      return true;
+    }
+    if (this.count === 0) return false;
+    u = Math.min((u - pInf) / (1 - pInf), ONE_MINUS_EPSILON);
+    const nodes = this.nodes;
+    const child = this.child;
+    let node = 0;
+    let pick = this.bvhPick;
+    for (;;) {
+      const c = child[node];
+      if (c < 0) {
+        if (node === 0 && !(importance(nodes, 0, x, y, z, nx, ny, nz) > 0)) return false;
+        const p = -1 - c;
+        out.light = this.primLight[p];
+        out.triangle = this.primTriangle[p];
+        out.pick = pick;
+        return true;
+      }
+      let c0 = importance(nodes, (node + 1) * LB_STRIDE, x, y, z, nx, ny, nz);
+      let c1 = importance(nodes, c * LB_STRIDE, x, y, z, nx, ny, nz);
+      if (c0 === Infinity || c1 === Infinity) {
+        // Overflow (a point on a point light, say): the infinite ones share equally.
+        c0 = c0 === Infinity ? 1 : 0;
+        c1 = c1 === Infinity ? 1 : 0;
+      }
+      const sum = c0 + c1;
+      if (!(sum > 0)) return false;
+      const p0 = c0 / sum;
+      if (u < p0) {
+        u = Math.min(u / p0, ONE_MINUS_EPSILON);
+        pick *= p0;
+        node = node + 1;
+      } else {
+        u = Math.min((u - p0) / (1 - p0), ONE_MINUS_EPSILON);
+        pick *= c1 / sum;
+        node = c;
+      }
+    }
+  }
+
+  /**
+   * The probability with which `choose` picks emitter `prim` at the point: the same
+   * shares, multiplied in the same order.
+   */
+  pmf(prim: number, x: number, y: number, z: number, nx: number, ny: number, nz: number): number {
+    const nodes = this.nodes;
+    const path = this.path;
+    let k = 0;
+    for (let node = this.leafOf[prim]; node >= 0; node = this.parent[node]) path[k++] = node;
+    if (k === 1) return importance(nodes, 0, x, y, z, nx, ny, nz) > 0 ? this.bvhPick : 0;
+    let pick = this.bvhPick;
+    for (let i = k - 1; i > 0; i--) {
+      const node = path[i];
+      const c = this.child[node];
+      let c0 = importance(nodes, (node + 1) * LB_STRIDE, x, y, z, nx, ny, nz);
+      let c1 = importance(nodes, c * LB_STRIDE, x, y, z, nx, ny, nz);
+      if (c0 === Infinity || c1 === Infinity) {
+        c0 = c0 === Infinity ? 1 : 0;
+        c1 = c1 === Infinity ? 1 : 0;
+      }
+      const sum = c0 + c1;
+      if (!(sum > 0)) return 0;
+      pick *= (path[i - 1] === node + 1 ? c0 : c1) / sum;
+    }
+    return pick;
+  }
+}
+
+/** The top-down build (pbrt-v4 `BVHLightSampler::buildBVH`), nodes in depth-first order. */
+class Builder {
+  private next = 0;
+  /** Scratch bounds: the buckets, and the running unions of a sweep. */
+  private readonly bucket = new Float64Array(BUCKETS * LB_STRIDE);
+  private readonly below = new Float64Array(BUCKETS * LB_STRIDE);
+  private readonly acc = new Float64Array(LB_STRIDE);
+  private readonly count = new Int32Array(BUCKETS);
+  private readonly scratch: Int32Array;
+
+  constructor(
+    private readonly prims: Float64Array,
+    private readonly order: Int32Array,
+    private readonly bvh: LightBvh,
+  ) {
+    this.scratch = new Int32Array(order.length);
+  }
+
+  /** Builds the node for order[start, end); returns the subtree's depth. */
+  build(start: number, end: number, depth: number): number {
+    const node = this.next++;
+    const nodes = this.bvh.nodes;
+    const o = node * LB_STRIDE;
+    const prims = this.prims;
+    const order = this.order;
+    if (end - start === 1) {
+      const p = order[start];
+      copyBounds(prims, p * LB_STRIDE, nodes, o);
+      this.bvh.child[node] = -1 - p;
+      this.bvh.leafOf[p] = node;
+      return 0;
+    }
+    const mid = this.split(start, end, depth);
+    const d0 = this.build(start, mid, depth + 1);
+    const right = this.next;
+    const d1 = this.build(mid, end, depth + 1);
+    this.bvh.child[node] = right;
+    this.bvh.parent[node + 1] = node;
+    this.bvh.parent[right] = node;
+    unionBounds(nodes, (node + 1) * LB_STRIDE, nodes, right * LB_STRIDE, nodes, o);
+    return 1 + Math.max(d0, d1);
+  }
+
+  /** Orders order[start, end) and returns where its second part starts. */
+  private split(start: number, end: number, depth: number): number {
+    const half = (start + end) >> 1;
+    if (depth >= MAX_SAH_DEPTH) return half;
+    const prims = this.prims;
+    const order = this.order;
+    // Bounds of everything and of the centroids.
+    const lo = [Infinity, Infinity, Infinity];
+    const hi = [-Infinity, -Infinity, -Infinity];
+    const clo = [Infinity, Infinity, Infinity];
+    const chi = [-Infinity, -Infinity, -Infinity];
+    for (let i = start; i < end; i++) {
+      const o = order[i] * LB_STRIDE;
+      for (let k = 0; k < 3; k++) {
+        const a = prims[o + LB_MIN + k],
+          b = prims[o + LB_MAX + k];
+        lo[k] = Math.min(lo[k], a);
+        hi[k] = Math.max(hi[k], b);
+        const c = 0.5 * a + 0.5 * b;
+        clo[k] = Math.min(clo[k], c);
+        chi[k] = Math.max(chi[k], c);
+      }
+    }
+    const extent = [
+      0.5 * hi[0] - 0.5 * lo[0],
+      0.5 * hi[1] - 0.5 * lo[1],
+      0.5 * hi[2] - 0.5 * lo[2],
+    ];
+    const maxExtent = Math.max(extent[0], extent[1], extent[2]);
+    let bestCost = Infinity;
+    let bestDim = -1;
+    let bestBucket = -1;
+    const bucket = this.bucket;
+    const below = this.below;
+    const acc = this.acc;
+    for (let dim = 0; dim < 3; dim++) {
+      if (!(chi[dim] > clo[dim])) continue;
+      const scale = BUCKETS / (chi[dim] - clo[dim]);
+      if (!(scale < Infinity)) continue;
+      bucket.fill(0);
+      this.count.fill(0);
+      for (let i = start; i < end; i++) {
+        const o = order[i] * LB_STRIDE;
+        const b = this.bucketOf(o, dim, clo[dim], scale);
+        const bo = b * LB_STRIDE;
+        if (this.count[b]++ === 0) copyBounds(prims, o, bucket, bo);
+        else unionBounds(bucket, bo, prims, o, bucket, bo);
+      }
+      // Sweep from the left: below[i] = union of buckets 0…i.
+      for (let i = 0; i < BUCKETS; i++) {
+        if (i === 0) copyBounds(bucket, 0, below, 0);
+        else unionBounds(below, (i - 1) * LB_STRIDE, bucket, i * LB_STRIDE, below, i * LB_STRIDE);
+      }
+      // From the right, costing each split between buckets i and i + 1.
+      const kr = extent[dim] > 0 ? maxExtent / extent[dim] : Infinity;
+      let rightCount = 0;
+      let leftCount = end - start;
+      for (let i = BUCKETS - 1; i > 0; i--) {
+        rightCount += this.count[i];
+        leftCount -= this.count[i];
+        if (i === BUCKETS - 1) copyBounds(bucket, i * LB_STRIDE, acc, 0);
+        else unionBounds(acc, 0, bucket, i * LB_STRIDE, acc, 0);
+        if (rightCount === 0 || leftCount === 0) continue;
+        const cost = kr * (cost1(below, (i - 1) * LB_STRIDE) + cost1(acc, 0));
+        if (cost < bestCost) {
+          bestCost = cost;
+          bestDim = dim;
+          bestBucket = i;
+        }
+      }
+    }
+    if (bestDim < 0) return half;
+    // A stable partition: buckets below bestBucket first.
+    const scale = BUCKETS / (chi[bestDim] - clo[bestDim]);
+    const scratch = this.scratch;
+    let a = start;
+    let c = 0;
+    for (let i = start; i < end; i++) {
+      const p = order[i];
+      if (this.bucketOf(p * LB_STRIDE, bestDim, clo[bestDim], scale) < bestBucket) order[a++] = p;
+      else scratch[c++] = p;
+    }
+    for (let i = 0; i < c; i++) order[a + i] = scratch[i];
+    return a === start || a === end ? half : a;
+  }
+
+  private bucketOf(o: number, dim: number, lo: number, scale: number): number {
+    const prims = this.prims;
+    const c = 0.5 * prims[o + LB_MIN + dim] + 0.5 * prims[o + LB_MAX + dim];
+    const b = Math.floor((c - lo) * scale);
+    return b < 0 ? 0 : b >= BUCKETS ? BUCKETS - 1 : b;
+  }
+}
+
+/**
+ * One side's cost (pbrt-v4 `EvaluateCost` without Kr): power × orientation measure ×
+ * surface area of the box (computed on half-extents, so it does not overflow).
+ */
+function cost1(b: Float64Array, o: number): number {
+  const phi = b[o + LB_PHI];
+  if (!(phi > 0)) return 0;
+  const dx = 0.5 * b[o + LB_MAX] - 0.5 * b[o + LB_MIN];
+  const dy = 0.5 * b[o + LB_MAX + 1] - 0.5 * b[o + LB_MIN + 1];
+  const dz = 0.5 * b[o + LB_MAX + 2] - 0.5 * b[o + LB_MIN + 2];
+  // The surface area up to a factor 8; a flat box (one emitter's plane) still counts.
+  const area = dx * dy + dy * dz + dz * dx;
+  return phi * orientationMeasure(b, o) * (area > 0 ? area : Number.MIN_VALUE);
+}

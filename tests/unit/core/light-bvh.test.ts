@@ -1,0 +1,255 @@
+/**
+ * The light BVH (src/core/lights/light-bvh.ts): its choice of light is distributed as
+ * its `pmf` says (Pearson's χ² at several reference points, with the false-alarm rate
+ * below), the densities MIS reads back (`lightPdf`, `environmentLightPdf` given the
+ * BVH) equal those of the samples drawn through it for every kind of emitter, and the
+ * shares of the emitters sum to the probability of choosing one at all.
+ *
+ * False alarms: each χ² test rejects at p < 1e-4 (Bonferroni over the 8 points keeps
+ * the file's rate below 1e-3); the numbers are fixed hashes, so it cannot flake.
+ */
+import { describe, expect, it } from 'vitest';
+import { compileScene, validateScene } from '../../../src/core/index.ts';
+import {
+  LIGHT_ENVIRONMENT,
+  LIGHT_POINT,
+  SHAPE_QUAD,
+  SHAPE_SPHERE,
+  SHAPE_TRIANGLE,
+} from '../../../src/core/geometry/ray.ts';
+import { QUAD_STRIDE, Q_NORMAL } from '../../../src/core/geometry/shapes.ts';
+import {
+  LightSample,
+  environmentLightPdf,
+  lightPdf,
+  sampleLight,
+} from '../../../src/core/lights/lights.ts';
+import { hashToUnit, sampleKey } from '../../../src/core/rng/pcg.ts';
+import { chi2Test } from '../../helpers/chi2.ts';
+import { icosphere } from '../../helpers/mesh-gen.ts';
+
+/** A room of many emitters of every kind: meshes, spheres, quads, point and spot lights, a map, a sun. */
+function manyLightScene(withInfinite: boolean) {
+  const lamp = icosphere(1, 0.3, [0.5, 1.5, 0.2]);
+  const shapes: unknown[] = [
+    {
+      type: 'mesh',
+      material: 'lamp',
+      positions: Array.from(lamp.positions),
+      indices: Array.from(lamp.indices),
+    },
+    {
+      type: 'mesh',
+      material: 'dim',
+      positions: [-1, 2, -1, 1, 2, -1, 1, 2, 1, 5, 2, 1],
+      indices: [0, 1, 2, 0, 2, 3],
+    },
+    { type: 'quad', corner: [-2, 0, -2], u: [0, 0, 4], v: [4, 0, 0], material: 'floor' },
+  ];
+  for (let i = 0; i < 60; i++) {
+    const key = sampleKey(91, i, 0);
+    const x = 4 * hashToUnit(key, 0) - 2;
+    const y = 0.3 + 2.5 * hashToUnit(key, 1);
+    const z = 4 * hashToUnit(key, 2) - 2;
+    const s = 0.02 + 0.1 * hashToUnit(key, 3);
+    if (i % 2 === 0) {
+      shapes.push({
+        type: 'sphere',
+        center: [x, y, z],
+        radius: s,
+        material: i % 4 ? 'lamp' : 'dim',
+      });
+    } else {
+      // Quads facing every way.
+      const a = 2 * Math.PI * hashToUnit(key, 4);
+      shapes.push({
+        type: 'quad',
+        corner: [x, y, z],
+        u: [s * Math.cos(a), 0, s * Math.sin(a)],
+        v: [0, i % 3 === 0 ? s : -s, 0],
+        material: 'lamp',
+      });
+    }
+  }
+  const scene = validateScene({
+    format: 'pathwise-scene/1',
+    camera: { position: [0, 1, -4], target: [0, 1, 0], up: [0, 1, 0], fovY: 40 },
+    materials: {
+      lamp: { type: 'diffuse', albedo: [0, 0, 0], emission: [5, 4, 3] },
+      dim: { type: 'diffuse', albedo: [0, 0, 0], emission: [0.5, 0.5, 0.5] },
+      floor: { type: 'diffuse', albedo: [0.5, 0.5, 0.5] },
+    },
+    shapes,
+    lights: [
+      { type: 'point', position: [0.2, 2.2, 0.1], intensity: 3 },
+      { type: 'point', position: [-1.5, 0.5, 1.2], intensity: 0.5, color: [1, 0.2, 0.2] },
+      {
+        type: 'spot',
+        position: [1, 2.5, -1],
+        direction: [0, -1, 0.3],
+        intensity: 20,
+        outerConeAngle: 25,
+      },
+      ...(withInfinite ? [{ type: 'directional', direction: [-1, -2, -1], intensity: 0.3 }] : []),
+    ],
+  });
+  if (withInfinite) {
+    const w = 16;
+    const h = 8;
+    const rgb = new Float32Array(w * h * 3);
+    for (let i = 0; i < rgb.length; i++) rgb[i] = ((i * 7) % 11) / 5;
+    scene.environmentMap = {
+      type: 'map',
+      file: 'test.pfm',
+      scale: [1, 1, 1],
+      rotationY: 40,
+      image: { width: w, height: h, rgb },
+    };
+  }
+  return compileScene(scene);
+}
+
+/** Reference points with normals: on the floor, in the air, on a wall. */
+const POINTS: [number, number, number, number, number, number][] = [
+  [0, 0, 0, 0, 1, 0],
+  [1.5, 0, -1.5, 0, 1, 0],
+  [0.4, 1.6, 0.2, 1, 0, 0],
+  [-1.9, 1, 0.5, 1, 0, 0],
+  [0, 2.9, 0, 0, -1, 0],
+  [0.5, 1.5, 0.2, 0, 0.6, 0.8],
+  [3, 3, 3, -0.577, -0.577, -0.577],
+  [-1, 0.3, -1.9, 0, 0, 1],
+];
+
+describe('light BVH', () => {
+  for (const withInfinite of [false, true]) {
+    const what = withInfinite ? 'with a map and a sun' : 'bounded lights only';
+    it(`chooses every emitter with the probability pmf gives (χ², ${what})`, () => {
+      const scene = manyLightScene(withInfinite);
+      const bvh = scene.lightBvh()!;
+      const lights = scene.lights!;
+      expect(bvh.count).toBe(80 + 2 + 60 + 3);
+      const cells = bvh.count + bvh.infinite.length;
+      const ls = new LightSample();
+      const n = 200_000;
+      for (const [i, [x, y, z, nx, ny, nz]] of POINTS.entries()) {
+        const expected = new Float64Array(cells + 1);
+        const picks = new Float64Array(bvh.count);
+        let total = 0;
+        for (let p = 0; p < bvh.count; p++) {
+          const pick = bvh.pmf(p, x, y, z, nx, ny, nz);
+          picks[p] = pick;
+          expected[p] = n * pick;
+          total += pick;
+        }
+        bvh.infinite.forEach((_, k) => {
+          expected[bvh.count + k] = n * bvh.infinitePick;
+          total += bvh.infinitePick;
+        });
+        // The last cell: no light chosen.
+        expected[cells] = n * Math.max(0, 1 - total);
+        const observed = new Float64Array(cells + 1);
+        let mismatched = 0;
+        for (let s = 0; s < n; s++) {
+          const u = hashToUnit(sampleKey(7, i, s), 0);
+          if (!bvh.choose(u, x, y, z, nx, ny, nz, ls)) {
+            observed[cells]++;
+            continue;
+          }
+          const inf = bvh.infinite.indexOf(ls.light);
+          const p = inf >= 0 ? bvh.count + inf : bvh.primOf(ls.light, ls.triangle);
+          // The probability the choice reports is the one pmf gives, to the bit.
+          if (inf < 0 && ls.pick !== picks[p]) mismatched++;
+          observed[p]++;
+        }
+        expect(mismatched).toBe(0);
+        expect(total).toBeLessThanOrEqual(1 + 1e-12);
+        const r = chi2Test(observed, expected);
+        expect(r.impossible, `point ${i}`).toBeNull();
+        expect(r.pValue, `point ${i}: χ² ${r.stat.toFixed(1)}, ${r.dof} dof`).toBeGreaterThan(1e-4);
+        // Most emitters are seen from most points: the test is not vacuous.
+        expect(r.dof).toBeGreaterThan(20);
+      }
+      expect(lights.bvh).toBe(bvh);
+    });
+  }
+
+  it('gives MIS the density of each sample drawn through it, for every kind of emitter', () => {
+    const scene = manyLightScene(true);
+    const bvh = scene.lightBvh()!;
+    const lights = scene.lights!;
+    const ls = new LightSample();
+    const checked = new Map<number, number>();
+    for (let i = 0; i < 20_000; i++) {
+      const key = sampleKey(13, i, 0);
+      const x = 4 * hashToUnit(key, 0) - 2;
+      const y = 0.01 + 2.8 * hashToUnit(key, 1);
+      const z = 4 * hashToUnit(key, 2) - 2;
+      const a = 2 * Math.PI * hashToUnit(key, 3);
+      const nx = Math.cos(a) * 0.6;
+      const nz = Math.sin(a) * 0.6;
+      const ny = 0.8;
+      if (!bvh.choose(hashToUnit(key, 4), x, y, z, nx, ny, nz, ls)) continue;
+      const l = ls.light;
+      ls.refX = x;
+      ls.refY = y;
+      ls.refZ = z;
+      ls.u0 = hashToUnit(key, 5);
+      ls.u1 = hashToUnit(key, 6);
+      if (!sampleLight(lights, scene.spheres, scene.quads, l, ls)) continue;
+      const kind = lights.kind[l];
+      let pdf: number;
+      if (kind === LIGHT_ENVIRONMENT) {
+        pdf = environmentLightPdf(lights, bvh, ls.wx, ls.wy, ls.wz);
+      } else if (kind >= LIGHT_POINT) {
+        // Delta lights: the pdf is the choice alone, and no ray finds them.
+        expect(ls.pdf).toBe(ls.pick);
+        checked.set(kind, (checked.get(kind) ?? 0) + 1);
+        continue;
+      } else {
+        // The emitter's cosine as the integrator computes it where a ray hits.
+        let cos: number;
+        if (kind === SHAPE_QUAD) {
+          const o = lights.shape[l] * QUAD_STRIDE + Q_NORMAL;
+          cos = -(scene.quads[o] * ls.wx + scene.quads[o + 1] * ls.wy + scene.quads[o + 2] * ls.wz);
+        } else if (kind === SHAPE_TRIANGLE) {
+          const ms = lights.meshSample;
+          cos = -(ms.nx * ls.wx + ms.ny * ls.wy + ms.nz * ls.wz);
+        } else cos = 1; // a sphere seen from outside: lightPdf does not read it
+        pdf = lightPdf(
+          lights,
+          bvh,
+          scene.spheres,
+          scene.quads,
+          l,
+          ls.triangle,
+          x,
+          y,
+          z,
+          nx,
+          ny,
+          nz,
+          ls.distance,
+          cos,
+        );
+      }
+      expect(Math.abs(pdf / ls.pdf - 1), `light ${l} (kind ${kind})`).toBeLessThan(1e-9);
+      checked.set(kind, (checked.get(kind) ?? 0) + 1);
+    }
+    for (const kind of [SHAPE_SPHERE, SHAPE_QUAD, SHAPE_TRIANGLE, LIGHT_ENVIRONMENT, LIGHT_POINT]) {
+      expect(checked.get(kind) ?? 0, `kind ${kind}`).toBeGreaterThan(100);
+    }
+  });
+
+  it('is not built for a single light, where the choice by power is the same', () => {
+    const scene = compileScene(
+      validateScene({
+        format: 'pathwise-scene/1',
+        camera: { position: [0, 1, -4], target: [0, 1, 0], up: [0, 1, 0], fovY: 40 },
+        materials: { lamp: { type: 'diffuse', albedo: [0, 0, 0], emission: [1, 1, 1] } },
+        shapes: [{ type: 'quad', corner: [0, 2, 0], u: [1, 0, 0], v: [0, 0, 1], material: 'lamp' }],
+      }),
+    );
+    expect(scene.lightBvh()).toBeNull();
+  });
+});
