@@ -42,6 +42,7 @@ export {
   PathTracer,
   RenderStats,
   type Estimator,
+  type LightSamplerKind,
   type TracerOptions,
 } from './integrator/path-tracer.ts';
 export { AUX_CHANNELS, Film, type AuxValues } from './film/film.ts';

@@ -14,8 +14,12 @@
  * sampling cannot reach) run 102 tests of their own pairs (punctual.ts): Sobol =
  * independent, and point lights = tiny spheres standing in for them.
  *
+ * The MANY_SCENE_COUNT scenes of the many-light family (seeds MANY_FIRST_SEED…) run a
+ * third pair besides: lights chosen by the light BVH = lights chosen by power (153 tests).
+ *
  * False alarms: each test rejects at p < ALPHA_SUITE / ((SCENE_COUNT +
- * MESH_SCENE_COUNT + GLTF_SCENE_COUNT + PUNCTUAL_SCENE_COUNT) · 102) (Bonferroni), so a correct renderer fails the whole suite, over a fresh
+ * MESH_SCENE_COUNT + GLTF_SCENE_COUNT + PUNCTUAL_SCENE_COUNT) · 102 + MANY_SCENE_COUNT · 153)
+ * (Bonferroni), so a correct renderer fails the whole suite, over a fresh
  * draw of seeds, with probability at most ALPHA_SUITE = 1e-3. The seeds
  * are fixed, so the suite itself cannot flake: it either passes on every
  * run or fails on every run.
@@ -23,6 +27,8 @@
 import { describe, expect, it } from 'vitest';
 import {
   ALPHA_PER_TEST,
+  MANY_OPTIONS,
+  MANY_TESTS_PER_SCENE,
   MESH_OPTIONS,
   OPTIONS,
   TESTS_PER_SCENE,
@@ -35,6 +41,8 @@ import { checkPunctual, sphereVariant, type PunctualPairTest } from './punctual.
 export {
   GLTF_FIRST_SEED,
   GLTF_SCENE_COUNT,
+  MANY_FIRST_SEED,
+  MANY_SCENE_COUNT,
   MESH_FIRST_SEED,
   MESH_SCENE_COUNT,
   PUNCTUAL_FIRST_SEED,
@@ -56,15 +64,18 @@ export function consistencySuite(first: number, last: number, family: Family = '
       ? 'generated mesh and map scenes'
       : family === 'gltf'
         ? 'generated glTF-material scenes'
-        : 'generated scenes';
+        : family === 'many'
+          ? 'generated many-light scenes'
+          : 'generated scenes';
   describe(`${what} ${first}–${last}: NEE+MIS = BSDF-only, Sobol = independent`, () => {
     for (let seed = first; seed <= last; seed++) {
       const generated = generateScene(seed, { family });
       it(`scene ${seed} (${generated.archetype}, ${generated.features.join(' ')})`, async () => {
-        const options = family === 'classic' ? OPTIONS : MESH_OPTIONS;
+        const options =
+          family === 'classic' ? OPTIONS : family === 'many' ? MANY_OPTIONS : MESH_OPTIONS;
         const scene = family === 'gltf' ? await loadGltfModels(generated) : generated.scene;
         const r = checkConsistency(scene, options, 100_003 * seed);
-        expect(r.tests.length).toBe(TESTS_PER_SCENE);
+        expect(r.tests.length).toBe(family === 'many' ? MANY_TESTS_PER_SCENE : TESTS_PER_SCENE);
         expect(r.rejected, 'non-finite samples').toBe(0);
         // The premise of the BSDF-only variance floor (consistency.ts).
         expect(r.maxBsdfSample).toBeLessThanOrEqual(r.bsdfBound);

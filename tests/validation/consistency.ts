@@ -25,18 +25,14 @@
  * when B reads low; B reading high through a lucky rare sample inflates
  * B's own spread, which the t statistic already sees.
  */
-import {
-  compileScene,
-  type Scene,
-  type Estimator,
-  type SamplerKind,
-} from '../../src/core/index.ts';
+import { compileScene, type Scene } from '../../src/core/index.ts';
 import { gltfSampleFactors } from './gltf-bounds.ts';
 import {
   imageRegions,
   pilotSegments,
   renderReplicas,
   replicaMean,
+  type RenderConfig,
   type Replicas,
 } from './replicas.ts';
 import { normalQuantileTwoSided, welch } from './stats.ts';
@@ -56,10 +52,16 @@ export interface ConsistencyOptions {
   budget: number;
   /** Largest spp per seed. */
   maxSpp: number;
+  /**
+   * Also render NEE+MIS with lights chosen by power (D) and test it against A, whose
+   * lights the light BVH chooses: both have low variance, so this pair sees a bias
+   * in the BVH's choice that the BSDF-only one, noisy among many small lights, cannot.
+   */
+  lightSamplerPair?: boolean;
 }
 
 export interface PairTest {
-  pair: 'nee-vs-bsdf' | 'sobol-vs-independent';
+  pair: 'nee-vs-bsdf' | 'sobol-vs-independent' | 'bvh-vs-power';
   region: string;
   channel: number;
   meanA: number;
@@ -71,7 +73,7 @@ export interface PairTest {
 
 export interface SceneConsistency {
   tests: PairTest[];
-  spp: Record<'A' | 'B' | 'C', number>;
+  spp: Partial<Record<'A' | 'B' | 'C' | 'D', number>>;
   /** Largest BSDF-only sample and its bound V. */
   maxBsdfSample: number;
   bsdfBound: number;
@@ -85,10 +87,12 @@ export interface SceneConsistency {
   detectable: Record<PairTest['pair'], number>;
 }
 
-const CONFIGS: Record<'A' | 'B' | 'C', { estimator: Estimator; sampler: SamplerKind }> = {
+type ConfigKey = 'A' | 'B' | 'C' | 'D';
+const CONFIGS: Record<ConfigKey, Omit<RenderConfig, 'spp'>> = {
   A: { estimator: 'nee-mis', sampler: 'sobol' },
   B: { estimator: 'bsdf', sampler: 'sobol' },
   C: { estimator: 'nee-mis', sampler: 'independent' },
+  D: { estimator: 'nee-mis', sampler: 'sobol', lightSampler: 'power' },
 };
 
 /**
@@ -176,15 +180,16 @@ export function checkConsistency(
   scene: Scene,
   options: ConsistencyOptions,
   seedBase: number,
-  variants: Partial<Record<'A' | 'B' | 'C', Scene>> = {},
+  variants: Partial<Record<ConfigKey, Scene>> = {},
 ): SceneConsistency {
   const compiled = compileScene(scene);
   const { width, height, seeds } = options;
   const regions = imageRegions(width, height);
-  const reps = {} as Record<'A' | 'B' | 'C', Replicas>;
-  const spp = {} as Record<'A' | 'B' | 'C', number>;
+  const reps = {} as Record<ConfigKey, Replicas>;
+  const spp = {} as Record<ConfigKey, number>;
   let segments = 0;
-  for (const key of ['A', 'B', 'C'] as const) {
+  const keys: ConfigKey[] = options.lightSamplerPair ? ['A', 'B', 'C', 'D'] : ['A', 'B', 'C'];
+  for (const key of keys) {
     const perPath = pilotSegments(scene, compiled, CONFIGS[key], width, height) + 2;
     spp[key] = sppFor(options.budget, perPath, width * height, seeds, options.maxSpp);
     const seedList = Array.from(
@@ -205,11 +210,17 @@ export function checkConsistency(
   }
   const bound = bsdfSampleBound(scene);
   const tests: PairTest[] = [];
-  const detectable = { 'nee-vs-bsdf': Infinity, 'sobol-vs-independent': Infinity };
-  for (const [pair, other] of [
+  const detectable = {
+    'nee-vs-bsdf': Infinity,
+    'sobol-vs-independent': Infinity,
+    'bvh-vs-power': Infinity,
+  };
+  const pairs: ['nee-vs-bsdf' | 'sobol-vs-independent' | 'bvh-vs-power', ConfigKey][] = [
     ['nee-vs-bsdf', 'B'],
     ['sobol-vs-independent', 'C'],
-  ] as const) {
+  ];
+  if (options.lightSamplerPair) pairs.push(['bvh-vs-power', 'D']);
+  for (const [pair, other] of pairs) {
     for (let r = 0; r < regions.length; r++) {
       for (let c = 0; c < 3; c++) {
         const a = replicaMean(reps.A, r, c);
@@ -270,6 +281,9 @@ export const GLTF_FIRST_SEED = 5001;
  */
 export const PUNCTUAL_SCENE_COUNT = 10;
 export const PUNCTUAL_FIRST_SEED = 7001;
+/** Many-light scenes (generateScene(seed, { family: 'many' }), archetypes-many.ts), seeds MANY_FIRST_SEED…. */
+export const MANY_SCENE_COUNT = 10;
+export const MANY_FIRST_SEED = 9001;
 export const ALPHA_SUITE = 1e-3;
 export const OPTIONS: ConsistencyOptions = {
   width: 32,
@@ -284,8 +298,12 @@ export const OPTIONS: ConsistencyOptions = {
  */
 export const MESH_OPTIONS: ConsistencyOptions = { ...OPTIONS, budget: 1_350_000 };
 export const TESTS_PER_SCENE = 2 * imageRegions(OPTIONS.width, OPTIONS.height).length * 3;
-/** Bonferroni over every test of the four families: the whole suite fails by chance with p ≤ ALPHA_SUITE. */
+/** The many-light family adds a third pair (bvh-vs-power) and renders four configurations. */
+export const MANY_OPTIONS: ConsistencyOptions = { ...OPTIONS, lightSamplerPair: true };
+export const MANY_TESTS_PER_SCENE = (TESTS_PER_SCENE * 3) / 2;
+/** Bonferroni over every test of the five families: the whole suite fails by chance with p ≤ ALPHA_SUITE. */
 export const ALPHA_PER_TEST =
   ALPHA_SUITE /
-  ((SCENE_COUNT + MESH_SCENE_COUNT + GLTF_SCENE_COUNT + PUNCTUAL_SCENE_COUNT) * TESTS_PER_SCENE);
+  ((SCENE_COUNT + MESH_SCENE_COUNT + GLTF_SCENE_COUNT + PUNCTUAL_SCENE_COUNT) * TESTS_PER_SCENE +
+    MANY_SCENE_COUNT * MANY_TESTS_PER_SCENE);
 const Z_PER_TEST = normalQuantileTwoSided(ALPHA_PER_TEST);

@@ -19,7 +19,8 @@
  * `files`; loading them is asynchronous, so its `scene` keeps them unread until
  * `loadGltfModels` reads them through the core's loader. The 'punctual' family
  * (archetypes-punctual.ts) is glTF models under KHR_lights_punctual-style lights
- * (the scene's `lights`), with no Dirac lobe anywhere.
+ * (the scene's `lights`), with no Dirac lobe anywhere. The 'many' family
+ * (archetypes-many.ts) is rooms lit by tens to hundreds of small emitters.
  *
  * Use: `generateScene(seed)`; `node scripts/run-ts.mjs
  * tests/validation/export-references.ts` writes the reference set as files.
@@ -34,6 +35,7 @@ import { ARCHETYPES } from './archetypes.ts';
 import { MESH_ARCHETYPES } from './archetypes-mesh.ts';
 import { GLTF_ARCHETYPES } from './archetypes-gltf.ts';
 import { PUNCTUAL_ARCHETYPES } from './archetypes-punctual.ts';
+import { MANY_ARCHETYPES } from './archetypes-many.ts';
 import { encodeGlb } from './gltf-files.ts';
 import {
   SceneBuilder,
@@ -48,7 +50,7 @@ import { encodeMeshFile } from './mesh-files.ts';
 import { Rng } from './rng.ts';
 import { Similarity, normalize, type Vec3 } from './vec.ts';
 
-export type Family = 'classic' | 'mesh' | 'gltf' | 'punctual';
+export type Family = 'classic' | 'mesh' | 'gltf' | 'punctual' | 'many';
 
 export interface GeneratedScene {
   seed: number;
@@ -87,7 +89,9 @@ export function generateScene(seed: number, options: GenerateOptions = {}): Gene
         ? GLTF_ARCHETYPES
         : family === 'punctual'
           ? PUNCTUAL_ARCHETYPES
-          : ARCHETYPES;
+          : family === 'many'
+            ? MANY_ARCHETYPES
+            : ARCHETYPES;
   const candidates = options.archetype ? all.filter((a) => a.name === options.archetype) : all;
   if (candidates.length === 0) throw new Error(`unknown archetype ${options.archetype}`);
   const archetype = rng.weighted(candidates.map((a) => [a, a.weight] as const));

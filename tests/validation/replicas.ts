@@ -12,6 +12,7 @@ import {
   RenderStats,
   type CompiledScene,
   type Estimator,
+  type LightSamplerKind,
   type SamplerKind,
   type Scene,
 } from '../../src/core/index.ts';
@@ -60,6 +61,8 @@ export function imageRegions(width: number, height: number, block = 8): Region[]
 export interface RenderConfig {
   estimator: Estimator;
   sampler: SamplerKind;
+  /** The light choice of NEE (default: the light BVH). */
+  lightSampler?: LightSamplerKind;
   /** Samples per pixel of each replica. */
   spp: number;
 }
@@ -101,6 +104,7 @@ export function renderReplicas(
       seed: seeds[k],
       estimator: config.estimator,
       sampler: config.sampler,
+      lightSampler: config.lightSampler,
       camera: scene.camera,
     });
     pixel.fill(0);
@@ -195,6 +199,7 @@ export function pilotSegments(
     seed: 0x5eed,
     estimator: config.estimator,
     sampler: config.sampler,
+    lightSampler: config.lightSampler,
     camera: scene.camera,
   });
   const stats = new RenderStats();
