@@ -1,11 +1,16 @@
 // Scenes the speed benchmarks need beyond scenes/: a field of N
 // non-overlapping spheres on a ground quad under one area light (the
-// 10,000-sphere case of issue 10). Deterministic for a given (count, seed),
+// 10,000-sphere case of issue 10), and a room lit by N small emitters (the
+// many-light case of issue 23). Deterministic for a given (count, seed),
 // written as a plain pathwise-scene/1 file so pathwise and the native
 // anchor read the very same bytes.
 //
 //   node bench/scenes.mjs spheres 10000 > /tmp/spheres-10k.json
+//   node bench/scenes.mjs many-lights 10000 > /tmp/many-lights-10k.json
 import { writeFileSync } from 'node:fs';
+import { manyLights } from '../tests/helpers/many-lights-scene.mjs';
+
+export { manyLights };
 
 /** PCG hash (the same permutation as src/core/rng/pcg.ts), for placement only. */
 function pcgHash(input) {
@@ -91,9 +96,10 @@ export function writeSpheresField(file, count, seed = 1) {
 
 if (import.meta.url === `file://${process.argv[1]}`) {
   const [kind, n] = process.argv.slice(2);
-  if (kind !== 'spheres') {
-    process.stderr.write('usage: node bench/scenes.mjs spheres N > FILE\n');
+  if (kind !== 'spheres' && kind !== 'many-lights') {
+    process.stderr.write('usage: node bench/scenes.mjs spheres|many-lights N > FILE\n');
     process.exit(2);
   }
-  process.stdout.write(JSON.stringify(spheresField(Number(n ?? 10000))) + '\n');
+  const make = kind === 'spheres' ? spheresField : manyLights;
+  process.stdout.write(JSON.stringify(make(Number(n ?? 10000))) + '\n');
 }

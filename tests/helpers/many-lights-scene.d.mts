@@ -1,0 +1,2 @@
+// Types of many-lights-scene.mjs.
+export function manyLights(count: number, seed?: number): unknown;
