@@ -11,7 +11,7 @@
  *
  *   npm run build:cli   (not needed: this runs the TypeScript core directly)
  *   node scripts/run-ts.mjs bench/many-lights.ts --reference REF.pfm
- *        [--count 10000] [--seconds 20] [--rounds 3] [--width 128] [--height 96]
+ *        [--count 10000] [--seconds 20] [--rounds 3] [--width 128] [--height 96] [--bounces B]
  *
  * REF.pfm: the scene rendered long (bench/results/many-lights/README.md says how the
  * committed one was made and checked against Mitsuba 3). Not a test.
@@ -39,6 +39,7 @@ const rounds = Number(flag('rounds', '3'));
 const width = Number(flag('width', '128'));
 const height = Number(flag('height', '96'));
 const refFile = flag('reference', '');
+const bouncesFlag = flag('bounces', '');
 if (refFile === '') throw new Error('--reference REF.pfm is required');
 const ref = decodePfm(readFileSync(refFile));
 if (ref.width !== width || ref.height !== height) {
@@ -46,9 +47,14 @@ if (ref.width !== width || ref.height !== height) {
 }
 
 const scene = parseScene(JSON.stringify(manyLights(count)));
+if (bouncesFlag !== '') scene.settings.maxBounces = Number(bouncesFlag);
 const t0 = performance.now();
 const compiled = compileScene(scene);
 const compileMs = performance.now() - t0;
+const t1 = performance.now();
+const lightBvh = compiled.lightBvh();
+const buildMs = performance.now() - t1;
+if (lightBvh === null) throw new Error('the scene has no light BVH');
 
 function relMse(x: Float32Array, r: Float32Array): number {
   let s = 0;
@@ -118,7 +124,8 @@ for (let round = 0; round < rounds; round++) {
 ratios.sort((a, b) => a - b);
 process.stdout.write(
   `${count} emitters, ${width}×${height}, ${seconds} s per render, 1 thread; ` +
-    `scene compile ${compileMs.toFixed(0)} ms\n\n` +
+    `scene compile ${compileMs.toFixed(0)} ms, light BVH build ${buildMs.toFixed(0)} ms ` +
+    `(${lightBvh.count} emitters, depth ${lightBvh.depth})\n\n` +
     `| round | power: spp | power: relMSE | BVH: spp | BVH: relMSE | relMSE power / BVH |\n` +
     `|---|---|---|---|---|---|\n` +
     rows.join('\n') +

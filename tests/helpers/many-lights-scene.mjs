@@ -11,20 +11,23 @@ function pcgHash(input) {
 }
 
 /**
- * A room lit by N small emitters (issue 23's many-light goal): a closed box of
- * diffuse walls (a red left, a green right), three diffuse spheres and a rough metal
- * one on the floor, and N emissive spheres of radius 0.003–0.008: three quarters in a
- * band under the ceiling, a quarter floating through the room, with a random tint
- * and power spread log-uniformly over two decades (their total fixed, so the
- * exposure does not depend on N). Nothing else emits.
+ * A hall lit by N small lamps (issue 23's many-light goal): a closed box 20 × 4 × 20 of
+ * diffuse walls (a red left, a green right), twenty diffuse and rough metal spheres on
+ * the floor, and N small square lamps (side 4–10 cm) on a jittered grid 0.5–2 above the
+ * floor, each emitting downward only (a one-sided quad), with a random tint and power
+ * spread log-uniformly over two decades (their total fixed, so the exposure does not
+ * depend on N). The camera, under the ceiling, looks down at the floor and sees the
+ * lamps' dark backs: the image's error is the light sampling's, not that of emitters
+ * smaller than a pixel. Each patch of floor is lit mostly by the few lamps above it,
+ * which a choice by power alone rarely picks.
  */
 export function manyLights(count, seed = 1) {
   let state = seed >>> 0;
   const rand = () => (state = pcgHash(state + 1)) / 4294967296;
   const round = (v) => +v.toFixed(6);
-  const W = 4;
-  const H = 3;
-  const D = 4;
+  const W = 20;
+  const H = 4;
+  const D = 20;
   const shapes = [
     { type: 'quad', corner: [0, 0, 0], u: [0, 0, D], v: [W, 0, 0], material: 'white' },
     { type: 'quad', corner: [0, H, 0], u: [W, 0, 0], v: [0, 0, D], material: 'white' },
@@ -32,11 +35,16 @@ export function manyLights(count, seed = 1) {
     { type: 'quad', corner: [0, 0, 0], u: [0, H, 0], v: [0, 0, D], material: 'red' },
     { type: 'quad', corner: [W, 0, 0], u: [0, 0, D], v: [0, H, 0], material: 'green' },
     { type: 'quad', corner: [0, 0, 0], u: [W, 0, 0], v: [0, H, 0], material: 'white' },
-    { type: 'sphere', center: [1.1, 0.5, 2.6], radius: 0.5, material: 'white' },
-    { type: 'sphere', center: [2.9, 0.4, 2.2], radius: 0.4, material: 'metal' },
-    { type: 'sphere', center: [2.0, 0.3, 1.4], radius: 0.3, material: 'blue' },
-    { type: 'sphere', center: [3.2, 0.25, 3.3], radius: 0.25, material: 'white' },
   ];
+  for (let i = 0; i < 20; i++) {
+    const r = 0.2 + 0.4 * rand();
+    shapes.push({
+      type: 'sphere',
+      center: [round(1 + (W - 2) * rand()), round(r), round(1 + (D - 2) * rand())],
+      radius: round(r),
+      material: ['white', 'metal', 'blue'][i % 3],
+    });
+  }
   const materials = {
     white: { type: 'diffuse', albedo: [0.75, 0.75, 0.75] },
     red: { type: 'diffuse', albedo: [0.7, 0.15, 0.12] },
@@ -44,26 +52,25 @@ export function manyLights(count, seed = 1) {
     blue: { type: 'diffuse', albedo: [0.15, 0.25, 0.7] },
     metal: { type: 'conductor', color: [0.9, 0.8, 0.6], roughness: 0.3 },
   };
-  // Eight tints; each light's radiance is its power over its area.
-  const tints = 8;
-  const powers = [];
-  const lights = [];
+  const side = Math.ceil(Math.sqrt(count));
+  const lamps = [];
+  let total = 0;
   for (let i = 0; i < count; i++) {
-    const r = 0.003 + 0.005 * rand();
-    const band = rand() < 0.75;
-    const x = 0.1 + (W - 0.2) * rand();
-    const y = band ? H - 0.1 - 0.5 * rand() : 0.8 + (H - 1.5) * rand();
-    const z = 0.2 + (D - 0.3) * rand();
+    const s = 0.04 + 0.06 * rand();
+    const gx = i % side;
+    const gz = Math.floor(i / side);
+    const x = 0.5 + ((gx + 0.15 + 0.7 * rand()) * (W - 1)) / side;
+    const z = 0.5 + ((gz + 0.15 + 0.7 * rand()) * (D - 1)) / side;
+    const y = 0.5 + 1.5 * rand();
     const power = Math.exp(Math.log(100) * rand());
-    const tint = Math.floor(rand() * tints);
-    powers.push(power);
-    lights.push({ center: [x, y, z], r, power, tint });
+    const tint = Math.floor(rand() * 8);
+    total += power;
+    lamps.push({ x, y, z, s, power, tint });
   }
-  const total = powers.reduce((a, b) => a + b, 0);
-  // Total power ~ 40 (in radiance × area units), whatever N.
-  const scale = 40 / total;
-  lights.forEach((l, i) => {
-    const L = (l.power * scale) / (4 * Math.PI * l.r * l.r);
+  // Total power ~ 400 (radiance × area units), whatever N.
+  const scale = 400 / total;
+  lamps.forEach((l, i) => {
+    const L = (l.power * scale) / (l.s * l.s);
     const name = `lamp${i}`;
     const t = l.tint;
     const c = [0.6 + 0.4 * (t & 1), 0.6 + 0.4 * ((t >> 1) & 1), 0.6 + 0.4 * ((t >> 2) & 1)];
@@ -72,17 +79,19 @@ export function manyLights(count, seed = 1) {
       albedo: [0, 0, 0],
       emission: c.map((v) => round(v * L)),
     };
+    // cross(u, v) points down (−y): the lamp emits toward the floor only.
     shapes.push({
-      type: 'sphere',
-      center: l.center.map(round),
-      radius: round(l.r),
+      type: 'quad',
+      corner: [round(l.x - l.s / 2), round(l.y), round(l.z - l.s / 2)],
+      u: [round(l.s), 0, 0],
+      v: [0, 0, round(l.s)],
       material: name,
     });
   });
   return {
     format: 'pathwise-scene/1',
-    name: `a room lit by ${count} small emitters`,
-    camera: { position: [2, 1.5, 0.05], target: [2, 1.2, 4], up: [0, 1, 0], fovY: 62 },
+    name: `a hall lit by ${count} small lamps`,
+    camera: { position: [W / 2, 3.6, 1], target: [W / 2, 0, 11], up: [0, 1, 0], fovY: 55 },
     settings: { width: 128, height: 96, maxBounces: 6, spp: 16 },
     materials,
     shapes,

@@ -132,12 +132,40 @@ export function copyBounds(b: Float64Array, a: number, out: Float64Array, o: num
   for (let k = 0; k < LB_STRIDE; k++) out[o + k] = b[a + k];
 }
 
+/** Numbers per record of `deriveBounds`' output: what `importance` reads besides the bounds. */
+export const LD_STRIDE = 5;
+
 /**
- * The importance of record `o` to the point (x, y, z) with surface normal (nx, ny, nz)
- * (all zero: no surface), pbrt-v4 `LightBounds::Importance`: phi × cos θ′ / d², where
- * θ′ is the smallest angle the emitters' normals can make with the direction to the
- * point, and, at a surface, × cos θ′ᵢ, the largest cosine the incident direction can
- * make with its normal. 0 when no emitter in the box can send light to the point.
+ * What `importance` needs of record `o` of `b` that does not depend on the point, computed
+ * once (the build's nodes are fixed) into record `od` of `d`: the box's centre, its squared
+ * half-diagonal, and sin θo. Centre and half-diagonal as 0.5·lo + 0.5·hi: (lo + hi) / 2
+ * would overflow for boxes near the double range.
+ */
+export function deriveBounds(b: Float64Array, o: number, d: Float64Array, od: number): void {
+  const x0 = b[o + LB_MIN],
+    y0 = b[o + LB_MIN + 1],
+    z0 = b[o + LB_MIN + 2];
+  const x1 = b[o + LB_MAX],
+    y1 = b[o + LB_MAX + 1],
+    z1 = b[o + LB_MAX + 2];
+  d[od] = 0.5 * x0 + 0.5 * x1;
+  d[od + 1] = 0.5 * y0 + 0.5 * y1;
+  d[od + 2] = 0.5 * z0 + 0.5 * z1;
+  const hx = 0.5 * x1 - 0.5 * x0,
+    hy = 0.5 * y1 - 0.5 * y0,
+    hz = 0.5 * z1 - 0.5 * z0;
+  d[od + 3] = hx * hx + hy * hy + hz * hz;
+  const cosO = b[o + LB_COS_O];
+  d[od + 4] = Math.sqrt(Math.max(0, 1 - cosO * cosO));
+}
+
+/**
+ * The importance of record `o` (its derived record `od` of `d`) to the point (x, y, z)
+ * with surface normal (nx, ny, nz) (all zero: no surface), pbrt-v4
+ * `LightBounds::Importance`: phi × cos θ′ / d², where θ′ is the smallest angle the
+ * emitters' normals can make with the direction to the point, and, at a surface,
+ * × cos θ′ᵢ, the largest cosine the incident direction can make with its normal. 0 when
+ * no emitter in the box can send light to the point.
  *
  * d² is the squared distance to the box's centre, clamped below by the squared
  * half-diagonal (pbrt clamps by the half-diagonal itself, which mixes units) so that
@@ -146,6 +174,8 @@ export function copyBounds(b: Float64Array, a: number, out: Float64Array, o: num
 export function importance(
   b: Float64Array,
   o: number,
+  d: Float64Array,
+  od: number,
   x: number,
   y: number,
   z: number,
@@ -155,23 +185,10 @@ export function importance(
 ): number {
   const phi = b[o + LB_PHI];
   if (!(phi > 0)) return 0;
-  const x0 = b[o + LB_MIN],
-    y0 = b[o + LB_MIN + 1],
-    z0 = b[o + LB_MIN + 2];
-  const x1 = b[o + LB_MAX],
-    y1 = b[o + LB_MAX + 1],
-    z1 = b[o + LB_MAX + 2];
-  // Centre and half-diagonal as (lo + hi) / 2 would overflow for boxes near the double range.
-  const cx = 0.5 * x0 + 0.5 * x1,
-    cy = 0.5 * y0 + 0.5 * y1,
-    cz = 0.5 * z0 + 0.5 * z1;
-  const hx = 0.5 * x1 - 0.5 * x0,
-    hy = 0.5 * y1 - 0.5 * y0,
-    hz = 0.5 * z1 - 0.5 * z0;
-  const r2 = hx * hx + hy * hy + hz * hz;
-  let wx = x - cx,
-    wy = y - cy,
-    wz = z - cz;
+  const r2 = d[od + 3];
+  let wx = x - d[od],
+    wy = y - d[od + 1],
+    wz = z - d[od + 2];
   const dist2 = wx * wx + wy * wy + wz * wz;
   const d2 = Math.max(dist2, r2);
   // The unit direction from the centre to the point (arbitrary at the centre itself).
@@ -190,14 +207,20 @@ export function importance(
   const sinW = Math.sqrt(Math.max(0, 1 - cosW * cosW));
   // θb: half the angle the box subtends from the point, bounded by its bounding
   // sphere (pbrt-v4 BoundSubtendedDirections); the whole sphere from inside.
-  const inside = x >= x0 && x <= x1 && y >= y0 && y <= y1 && z >= z0 && z <= z1;
+  const inside =
+    x >= b[o + LB_MIN] &&
+    x <= b[o + LB_MAX] &&
+    y >= b[o + LB_MIN + 1] &&
+    y <= b[o + LB_MAX + 1] &&
+    z >= b[o + LB_MIN + 2] &&
+    z <= b[o + LB_MAX + 2];
   let cosB = -1;
   if (!inside && dist2 > r2) cosB = Math.sqrt(Math.max(0, 1 - r2 / dist2));
   const sinB = Math.sqrt(Math.max(0, 1 - cosB * cosB));
   // θx = max(0, θw − θo), then θ′ = max(0, θx − θb), in cosines and sines (pbrt's
   // cosSubClamped and sinSubClamped).
   const cosO = b[o + LB_COS_O];
-  const sinO = Math.sqrt(Math.max(0, 1 - cosO * cosO));
+  const sinO = d[od + 4];
   let cosX: number, sinX: number;
   if (cosW > cosO) {
     cosX = 1;

@@ -25,7 +25,9 @@ import {
   LB_MIN,
   LB_PHI,
   LB_STRIDE,
+  LD_STRIDE,
   copyBounds,
+  deriveBounds,
   importance,
   orientationMeasure,
   unionBounds,
@@ -79,6 +81,8 @@ export class LightBvh {
   readonly bvhPick: number;
   /** Node bounds, LB_STRIDE numbers per node; node 0 is the root. */
   readonly nodes: Float64Array;
+  /** What importance reads besides the bounds, LD_STRIDE numbers per node (deriveBounds). */
+  readonly derived: Float64Array;
   /** Per node: the right child (the left is the next node), or −1 − the emitter at a leaf. */
   readonly child: Int32Array;
   readonly parent: Int32Array;
@@ -109,6 +113,10 @@ export class LightBvh {
     for (let i = 0; i < n; i++) order[i] = i;
     const b = new Builder(input.bounds, order, this);
     const depth = n > 0 ? b.build(0, n, 0) : 0;
+    this.derived = new Float64Array(nodeCount * LD_STRIDE);
+    for (let k = 0; k < nodeCount; k++) {
+      deriveBounds(this.nodes, k * LB_STRIDE, this.derived, k * LD_STRIDE);
+    }
     this.depth = depth;
     this.path = new Int32Array(depth + 1);
   }
@@ -144,21 +152,35 @@ export class LightBvh {
     if (this.count === 0) return false;
     u = Math.min((u - pInf) / (1 - pInf), ONE_MINUS_EPSILON);
     const nodes = this.nodes;
+    const derived = this.derived;
     const child = this.child;
     let node = 0;
     let pick = this.bvhPick;
     for (;;) {
       const c = child[node];
       if (c < 0) {
-        if (node === 0 && !(importance(nodes, 0, x, y, z, nx, ny, nz) > 0)) return false;
+        if (node === 0 && !(importance(nodes, 0, derived, 0, x, y, z, nx, ny, nz) > 0)) {
+          return false;
+        }
         const p = -1 - c;
         out.light = this.primLight[p];
         out.triangle = this.primTriangle[p];
         out.pick = pick;
         return true;
       }
-      let c0 = importance(nodes, (node + 1) * LB_STRIDE, x, y, z, nx, ny, nz);
-      let c1 = importance(nodes, c * LB_STRIDE, x, y, z, nx, ny, nz);
+      let c0 = importance(
+        nodes,
+        (node + 1) * LB_STRIDE,
+        derived,
+        (node + 1) * LD_STRIDE,
+        x,
+        y,
+        z,
+        nx,
+        ny,
+        nz,
+      );
+      let c1 = importance(nodes, c * LB_STRIDE, derived, c * LD_STRIDE, x, y, z, nx, ny, nz);
       if (c0 === Infinity || c1 === Infinity) {
         // Overflow (a point on a point light, say): the infinite ones share equally.
         c0 = c0 === Infinity ? 1 : 0;
@@ -185,16 +207,30 @@ export class LightBvh {
    */
   pmf(prim: number, x: number, y: number, z: number, nx: number, ny: number, nz: number): number {
     const nodes = this.nodes;
+    const derived = this.derived;
     const path = this.path;
     let k = 0;
     for (let node = this.leafOf[prim]; node >= 0; node = this.parent[node]) path[k++] = node;
-    if (k === 1) return importance(nodes, 0, x, y, z, nx, ny, nz) > 0 ? this.bvhPick : 0;
+    if (k === 1) {
+      return importance(nodes, 0, derived, 0, x, y, z, nx, ny, nz) > 0 ? this.bvhPick : 0;
+    }
     let pick = this.bvhPick;
     for (let i = k - 1; i > 0; i--) {
       const node = path[i];
       const c = this.child[node];
-      let c0 = importance(nodes, (node + 1) * LB_STRIDE, x, y, z, nx, ny, nz);
-      let c1 = importance(nodes, c * LB_STRIDE, x, y, z, nx, ny, nz);
+      let c0 = importance(
+        nodes,
+        (node + 1) * LB_STRIDE,
+        derived,
+        (node + 1) * LD_STRIDE,
+        x,
+        y,
+        z,
+        nx,
+        ny,
+        nz,
+      );
+      let c1 = importance(nodes, c * LB_STRIDE, derived, c * LD_STRIDE, x, y, z, nx, ny, nz);
       if (c0 === Infinity || c1 === Infinity) {
         c0 = c0 === Infinity ? 1 : 0;
         c1 = c1 === Infinity ? 1 : 0;

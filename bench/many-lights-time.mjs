@@ -1,0 +1,121 @@
+// Time to relMSE 1e-2 and 1e-3 on the room lit by N small emitters (issue 23, hard-scene
+// suite: many lights): whole processes of pathwise (`pathwise render`, its light BVH)
+// and of the native anchor (../shared/anchors/native: independent sampler, lights chosen
+// by power), samples per pixel doubling from 1, each render's relMSE (lib.mjs) against
+// the reference; the time to an error is the first render at or below it, and, for
+// comparison, the log-log interpolation of error against time. Mitsuba 3 (its own
+// emitter sampling) is timed at --mitsuba-spp (one process) and its time to each error
+// extrapolated as 1/spp, as the issue allows. Prints a Markdown table.
+//
+//   npm run build:cli
+//   node bench/many-lights-time.mjs --reference REF.pfm [--count 10000] [--threads 2]
+//        [--max-spp 1024] [--python PY --mitsuba-spp 64]
+import { execFileSync } from 'node:child_process';
+import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { ROOT, logLogCrossing, readPfm, relMse, renderOnce } from './lib.mjs';
+import { findNative, nativeOnce } from './native.mjs';
+import { manyLights } from './scenes.mjs';
+
+const argv = process.argv.slice(2);
+const flag = (name, dflt) => {
+  const i = argv.indexOf(`--${name}`);
+  return i >= 0 ? argv[i + 1] : dflt;
+};
+const count = Number(flag('count', '10000'));
+const threads = Number(flag('threads', '2'));
+const maxSpp = Number(flag('max-spp', '1024'));
+const refFile = flag('reference', null);
+const python = flag('python', null);
+const mitsubaSpp = Number(flag('mitsuba-spp', '64'));
+if (refFile === null) throw new Error('--reference REF.pfm is required');
+const ref = readPfm(refFile);
+const tmp = mkdtempSync(path.join(tmpdir(), 'pathwise-many-lights-'));
+const sceneFile = path.join(tmp, 'many-lights.json');
+const scene = manyLights(count);
+writeFileSync(sceneFile, JSON.stringify(scene));
+const common = {
+  scene: sceneFile,
+  width: ref.width,
+  height: ref.height,
+  threads,
+  bounces: scene.settings.maxBounces,
+};
+
+function sweep(render) {
+  const points = [];
+  for (let spp = 1; spp <= maxSpp; spp *= 2) {
+    const out = path.join(tmp, 'x.pfm');
+    const seconds = render(spp, out);
+    const error = relMse(readPfm(out).rgb, ref.rgb);
+    points.push({ spp, seconds, error });
+    process.stderr.write(
+      `  spp ${spp}: ${seconds.toFixed(2)} s, relMSE ${error.toExponential(2)}\n`,
+    );
+    if (error < 1e-3) break;
+  }
+  return points;
+}
+
+function timeTo(points, target) {
+  const first = points.find((p) => p.error <= target);
+  const interp = logLogCrossing(
+    points.map((p) => [p.seconds, p.error]),
+    target,
+  );
+  return first
+    ? `${first.seconds.toFixed(1)} s (${first.spp} spp)` +
+        (interp !== null ? `, ${interp.toFixed(1)} s interpolated` : '')
+    : `not in ${points.at(-1).spp} spp (${points.at(-1).error.toExponential(1)})`;
+}
+
+const rows = [];
+process.stderr.write('pathwise\n');
+const pw = sweep((spp, out) => renderOnce({ ...common, spp, out }).process_seconds);
+rows.push(['pathwise (light BVH, Sobol)', pw]);
+const native = findNative(flag('native', undefined));
+if (native !== null) {
+  process.stderr.write('native anchor\n');
+  const nv = sweep((spp, out) => nativeOnce(native, { ...common, spp, out }).process_seconds);
+  rows.push(['native anchor (power, independent)', nv]);
+}
+let mitsubaRow = null;
+if (python !== null) {
+  process.stderr.write(`Mitsuba 3 at ${mitsubaSpp} spp\n`);
+  const out = path.join(tmp, 'm.pfm');
+  const t0 = performance.now();
+  execFileSync(
+    python,
+    [
+      path.resolve(ROOT, '../shared/tools/mitsuba_ref.py'),
+      sceneFile,
+      ...[
+        '--spp',
+        String(mitsubaSpp),
+        '--width',
+        String(ref.width),
+        '--height',
+        String(ref.height),
+      ],
+      ...['--variant', 'llvm_ad_rgb', '--threads', String(threads), '--out', out],
+    ],
+    { stdio: ['ignore', 'ignore', 'inherit'] },
+  );
+  const seconds = (performance.now() - t0) / 1000;
+  const error = relMse(readPfm(out).rgb, ref.rgb);
+  // Error ∝ 1/spp: the time to e is seconds · error / e (render part only scales; the
+  // process start-up is counted once, a small overestimate).
+  const to = (e) => ((seconds * error) / e).toFixed(0);
+  mitsubaRow =
+    `| Mitsuba 3 (${mitsubaSpp} spp in ${seconds.toFixed(1)} s, relMSE ${error.toExponential(2)}) | ` +
+    `≈ ${to(1e-2)} s (extrapolated) | ≈ ${to(1e-3)} s (extrapolated) |`;
+}
+rmSync(tmp, { recursive: true, force: true });
+process.stdout.write(
+  `${count} small emitters, ${ref.width}×${ref.height}, ${threads} threads, whole processes\n\n` +
+    `| renderer | time to relMSE 1e-2 | time to relMSE 1e-3 |\n|---|---|---|\n` +
+    rows.map(([name, p]) => `| ${name} | ${timeTo(p, 1e-2)} | ${timeTo(p, 1e-3)} |`).join('\n') +
+    (mitsubaRow ? `\n${mitsubaRow}` : '') +
+    '\n',
+);
