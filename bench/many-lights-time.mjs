@@ -5,7 +5,8 @@
 // the reference; the time to an error is the first render at or below it, and, for
 // comparison, the log-log interpolation of error against time. Mitsuba 3 (its own
 // emitter sampling) is timed at --mitsuba-spp (one process) and its time to each error
-// extrapolated as 1/spp, as the issue allows. Prints a Markdown table.
+// extrapolated as 1/spp, as the issue allows (so is a renderer's that does not reach an
+// error within --max-spp). Prints a Markdown table.
 //
 //   npm run build:cli
 //   node bench/many-lights-time.mjs --reference REF.pfm [--count 10000] [--threads 2]
@@ -67,7 +68,8 @@ function timeTo(points, target) {
   return first
     ? `${first.seconds.toFixed(1)} s (${first.spp} spp)` +
         (interp !== null ? `, ${interp.toFixed(1)} s interpolated` : '')
-    : `not in ${points.at(-1).spp} spp (${points.at(-1).error.toExponential(1)})`;
+    : `not in ${points.at(-1).spp} spp (${points.at(-1).error.toExponential(1)}; ` +
+        `≈ ${((points.at(-1).seconds * points.at(-1).error) / target).toFixed(0)} s extrapolated as 1/spp)`;
 }
 
 const rows = [];

@@ -13,8 +13,8 @@
  *   node scripts/run-ts.mjs bench/many-lights.ts --reference REF.pfm
  *        [--count 10000] [--seconds 20] [--rounds 3] [--width 128] [--height 96] [--bounces B]
  *
- * REF.pfm: the scene rendered long (bench/results/many-lights/README.md says how the
- * committed one was made and checked against Mitsuba 3). Not a test.
+ * REF.pfm: the scene rendered long; bench/results/many-lights/reference.pfm (its README
+ * says how it was made and checked against Mitsuba 3). Not a test.
  */
 import { readFileSync } from 'node:fs';
 import {
