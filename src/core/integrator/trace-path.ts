@@ -57,7 +57,8 @@ import {
 } from '../geometry/shapes.ts';
 import { intersectScene, occluded } from '../accel/trace.ts';
 import { SPHERE_HUGE, SPHERE_TINY } from '../geometry/intersect.ts';
-import { environmentLightPdf, lightPdf, sampleLight } from '../lights/lights.ts';
+import { sampleLight } from '../lights/lights.ts';
+import { environmentLightPdf, lightPdf } from '../lights/light-pdf.ts';
 import { completeTriangleHit } from './triangle-surface.ts';
 import { anisotropyToLocal } from '../gltf-material/anisotropy-frame.ts';
 import {

@@ -18,12 +18,8 @@ import {
   SHAPE_TRIANGLE,
 } from '../../../src/core/geometry/ray.ts';
 import { QUAD_STRIDE, Q_NORMAL } from '../../../src/core/geometry/shapes.ts';
-import {
-  LightSample,
-  environmentLightPdf,
-  lightPdf,
-  sampleLight,
-} from '../../../src/core/lights/lights.ts';
+import { LightSample, sampleLight } from '../../../src/core/lights/lights.ts';
+import { environmentLightPdf, lightPdf } from '../../../src/core/lights/light-pdf.ts';
 import { hashToUnit, sampleKey } from '../../../src/core/rng/pcg.ts';
 import { chi2Test } from '../../helpers/chi2.ts';
 import { icosphere } from '../../helpers/mesh-gen.ts';

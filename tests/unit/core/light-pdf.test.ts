@@ -7,12 +7,8 @@
 import { describe, expect, it } from 'vitest';
 import { compileScene, validateScene } from '../../../src/core/index.ts';
 import { LIGHT_ENVIRONMENT, SHAPE_TRIANGLE } from '../../../src/core/geometry/ray.ts';
-import {
-  LightSample,
-  environmentLightPdf,
-  lightPdf,
-  sampleLight,
-} from '../../../src/core/lights/lights.ts';
+import { LightSample, sampleLight } from '../../../src/core/lights/lights.ts';
+import { environmentLightPdf, lightPdf } from '../../../src/core/lights/light-pdf.ts';
 import { MeshLightSample } from '../../../src/core/lights/mesh-light.ts';
 import { hashToUnit, sampleKey } from '../../../src/core/rng/pcg.ts';
 import { icosphere } from '../../helpers/mesh-gen.ts';
