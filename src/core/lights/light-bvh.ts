@@ -91,6 +91,9 @@ export class LightBvh {
   readonly depth: number;
   /** Scratch path of pmf (one BVH per thread's light list). */
   private readonly path: Int32Array;
+  /** What childShares writes: the left and right child's share of the last node asked. */
+  private share0 = 0;
+  private share1 = 0;
 
   constructor(input: LightBvhInput) {
     const n = input.light.length;
@@ -168,34 +171,15 @@ export class LightBvh {
         out.pick = pick;
         return true;
       }
-      let c0 = importance(
-        nodes,
-        (node + 1) * LB_STRIDE,
-        derived,
-        (node + 1) * LD_STRIDE,
-        x,
-        y,
-        z,
-        nx,
-        ny,
-        nz,
-      );
-      let c1 = importance(nodes, c * LB_STRIDE, derived, c * LD_STRIDE, x, y, z, nx, ny, nz);
-      if (c0 === Infinity || c1 === Infinity) {
-        // Overflow (a point on a point light, say): the infinite ones share equally.
-        c0 = c0 === Infinity ? 1 : 0;
-        c1 = c1 === Infinity ? 1 : 0;
-      }
-      const sum = c0 + c1;
-      if (!(sum > 0)) return false;
-      const p0 = c0 / sum;
+      if (!this.childShares(node, x, y, z, nx, ny, nz)) return false;
+      const p0 = this.share0;
       if (u < p0) {
         u = Math.min(u / p0, ONE_MINUS_EPSILON);
         pick *= p0;
         node = node + 1;
       } else {
         u = Math.min((u - p0) / (1 - p0), ONE_MINUS_EPSILON);
-        pick *= c1 / sum;
+        pick *= this.share1;
         node = c;
       }
     }
@@ -217,29 +201,53 @@ export class LightBvh {
     let pick = this.bvhPick;
     for (let i = k - 1; i > 0; i--) {
       const node = path[i];
-      const c = this.child[node];
-      let c0 = importance(
-        nodes,
-        (node + 1) * LB_STRIDE,
-        derived,
-        (node + 1) * LD_STRIDE,
-        x,
-        y,
-        z,
-        nx,
-        ny,
-        nz,
-      );
-      let c1 = importance(nodes, c * LB_STRIDE, derived, c * LD_STRIDE, x, y, z, nx, ny, nz);
-      if (c0 === Infinity || c1 === Infinity) {
-        c0 = c0 === Infinity ? 1 : 0;
-        c1 = c1 === Infinity ? 1 : 0;
-      }
-      const sum = c0 + c1;
-      if (!(sum > 0)) return 0;
-      pick *= (path[i - 1] === node + 1 ? c0 : c1) / sum;
+      if (!this.childShares(node, x, y, z, nx, ny, nz)) return 0;
+      pick *= path[i - 1] === node + 1 ? this.share0 : this.share1;
     }
     return pick;
+  }
+
+  /**
+   * The shares of interior node `node`'s children at the point, into share0 (the left,
+   * node + 1) and share1 (the right): each child's importance over their sum. `choose`
+   * and `pmf` both read them from here, so the probability MIS reads is the choice's to
+   * the bit. False when neither child can contribute.
+   */
+  private childShares(
+    node: number,
+    x: number,
+    y: number,
+    z: number,
+    nx: number,
+    ny: number,
+    nz: number,
+  ): boolean {
+    const nodes = this.nodes;
+    const derived = this.derived;
+    const c = this.child[node];
+    let c0 = importance(
+      nodes,
+      (node + 1) * LB_STRIDE,
+      derived,
+      (node + 1) * LD_STRIDE,
+      x,
+      y,
+      z,
+      nx,
+      ny,
+      nz,
+    );
+    let c1 = importance(nodes, c * LB_STRIDE, derived, c * LD_STRIDE, x, y, z, nx, ny, nz);
+    if (c0 === Infinity || c1 === Infinity) {
+      // Overflow (a point on a point light, say): the infinite ones share equally.
+      c0 = c0 === Infinity ? 1 : 0;
+      c1 = c1 === Infinity ? 1 : 0;
+    }
+    const sum = c0 + c1;
+    if (!(sum > 0)) return false;
+    this.share0 = c0 / sum;
+    this.share1 = c1 / sum;
+    return true;
   }
 }
 
