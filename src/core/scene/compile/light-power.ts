@@ -19,14 +19,17 @@ import {
 } from '../../gltf-material/hit-attributes.ts';
 import { gltfEmission, HitAttributes } from '../../gltf-material/shading-fill.ts';
 
-export function gltfMeshPower(
+/**
+ * The luminance a light sample sees at barycentrics (b1, b2) of triangle t of a glTF
+ * mesh: emissive factor × texture × strength × coverage (shading-fill.ts). One probe per
+ * mesh, at compile time.
+ */
+function emissionProbe(
   mesh: MeshArrays,
-  first: number,
-  count: number,
   table: Float64Array,
   material: number,
   textures: TextureStore,
-): number {
+): (t: number, b1: number, b2: number) => number {
   const attributes: VertexAttributes = {
     uv0: mesh.triUV0.length > 0 ? mesh.triUV0 : null,
     uv1: mesh.triUV1.length > 0 ? mesh.triUV1 : null,
@@ -36,12 +39,25 @@ export function gltfMeshPower(
   const hit = new HitAttributes();
   const e = { r: 0, g: 0, b: 0 };
   const ix = mesh.triIndices;
+  return (t, b1, b2) => {
+    interpolateAttributes(attributes, ix[3 * t], ix[3 * t + 1], ix[3 * t + 2], b1, b2, hit);
+    gltfEmission(table, textures, material, hit, e);
+    return 0.2126 * e.r + 0.7152 * e.g + 0.0722 * e.b;
+  };
+}
+
+export function gltfMeshPower(
+  mesh: MeshArrays,
+  first: number,
+  count: number,
+  table: Float64Array,
+  material: number,
+  textures: TextureStore,
+): number {
+  const luminance = emissionProbe(mesh, table, material, textures);
   let power = 0;
   for (let t = first; t < first + count; t++) {
-    interpolateAttributes(attributes, ix[3 * t], ix[3 * t + 1], ix[3 * t + 2], 1 / 3, 1 / 3, hit);
-    gltfEmission(table, textures, material, hit, e);
-    const lum = 0.2126 * e.r + 0.7152 * e.g + 0.0722 * e.b;
-    power += lum * triangleArea(mesh.triPositions, ix, t);
+    power += luminance(t, 1 / 3, 1 / 3) * triangleArea(mesh.triPositions, mesh.triIndices, t);
   }
   return power;
 }
@@ -65,31 +81,11 @@ export function gltfTrianglePowers(
   floorLuminance: number,
   out: number[],
 ): void {
-  const attributes: VertexAttributes = {
-    uv0: mesh.triUV0.length > 0 ? mesh.triUV0 : null,
-    uv1: mesh.triUV1.length > 0 ? mesh.triUV1 : null,
-    colors: mesh.triColors.length > 0 ? mesh.triColors : null,
-    tangents: null,
-  };
-  const hit = new HitAttributes();
-  const e = { r: 0, g: 0, b: 0 };
-  const ix = mesh.triIndices;
+  const luminance = emissionProbe(mesh, table, material, textures);
   for (let t = first; t < first + count; t++) {
     let lum = 0;
-    for (let k = 0; k < SPREAD.length; k += 2) {
-      interpolateAttributes(
-        attributes,
-        ix[3 * t],
-        ix[3 * t + 1],
-        ix[3 * t + 2],
-        SPREAD[k],
-        SPREAD[k + 1],
-        hit,
-      );
-      gltfEmission(table, textures, material, hit, e);
-      lum += 0.2126 * e.r + 0.7152 * e.g + 0.0722 * e.b;
-    }
-    const area = triangleArea(mesh.triPositions, ix, t);
+    for (let k = 0; k < SPREAD.length; k += 2) lum += luminance(t, SPREAD[k], SPREAD[k + 1]);
+    const area = triangleArea(mesh.triPositions, mesh.triIndices, t);
     out.push(Math.max((lum / (SPREAD.length / 2)) * area, 1e-6 * floorLuminance * area));
   }
 }
