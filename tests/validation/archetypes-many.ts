@@ -19,9 +19,9 @@
 import {
   bounces,
   environment,
-  lens,
   objects,
   pointIn,
+  roomCamera,
   type Archetype,
   type Region,
   type Staged,
@@ -145,16 +145,7 @@ function buildManyRoom(b: SceneBuilder): Staged {
   if (mix === 'grid' || mix === 'all') gridLight(b, region, size0);
   b.tag('multiple-lights');
   objects(b, { lo: [0.15 * W, 0, 0.25 * D], hi: [0.85 * W, 0.5 * H, 0.85 * D] }, g.int(1, 4), eye);
-  b.tag('camera-in-room');
-  return {
-    camera: lens(b, {
-      position: eye,
-      target: pointIn(b, { lo: [0.2 * W, 0, 0.5 * D], hi: [0.8 * W, 0.7 * H, D] }),
-      up: [0, 1, 0],
-      fovY: g.uniform(30, 80),
-    }),
-    maxBounces: bounces(b, 1, 6),
-  };
+  return { camera: roomCamera(b, eye, W, H, D), maxBounces: bounces(b, 1, 6) };
 }
 
 export const MANY_ARCHETYPES: Archetype[] = [

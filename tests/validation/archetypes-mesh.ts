@@ -38,6 +38,7 @@ import {
   objects,
   OBJECT_MAKERS,
   pointIn,
+  roomCamera,
   type Archetype,
   type EnvironmentMaker,
   type ObjectMaker,
@@ -390,16 +391,7 @@ function buildMeshRoom(b: SceneBuilder): Staged {
     MESH_OBJECT_MAKERS,
   );
   atLeastOneMesh(b, { lo: [0.15 * W, 0, 0.25 * D], hi: [0.85 * W, 0.5 * H, 0.85 * D] }, eye);
-  b.tag('camera-in-room');
-  return {
-    camera: lens(b, {
-      position: eye,
-      target: pointIn(b, { lo: [0.2 * W, 0, 0.5 * D], hi: [0.8 * W, 0.7 * H, D] }),
-      up: [0, 1, 0],
-      fovY: g.uniform(30, 80),
-    }),
-    maxBounces: bounces(b, 0, 12),
-  };
+  return { camera: roomCamera(b, eye, W, H, D), maxBounces: bounces(b, 0, 12) };
 }
 
 /** A ground (quad, sphere, mesh sheet or height field), mesh objects, maps, few lights. */

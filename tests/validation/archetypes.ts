@@ -234,6 +234,27 @@ export function lens(b: SceneBuilder, camera: CameraJson): CameraJson {
   };
 }
 
+/**
+ * The camera of a room W × H × D with its eye at `eye` (tagged camera-in-room): aimed at
+ * a random point of the back half, a random field of view, now and then a lens. The
+ * random numbers are drawn in the same order wherever it is called.
+ */
+export function roomCamera(
+  b: SceneBuilder,
+  eye: Vec3,
+  W: number,
+  H: number,
+  D: number,
+): CameraJson {
+  b.tag('camera-in-room');
+  return lens(b, {
+    position: eye,
+    target: pointIn(b, { lo: [0.2 * W, 0, 0.5 * D], hi: [0.8 * W, 0.7 * H, D] }),
+    up: [0, 1, 0],
+    fovY: b.rng.uniform(30, 80),
+  });
+}
+
 export function bounces(b: SceneBuilder, lo: number, hi: number): number {
   const n = b.rng.int(lo, hi);
   if (n === 0) b.tag('bounces-0');
@@ -261,16 +282,7 @@ function buildRoom(b: SceneBuilder): Staged {
   const region: Region = { lo: [0.1 * W, 0, 0.2 * D], hi: [0.9 * W, 0.85 * H, 0.9 * D] };
   lights(b, region, 0, g.int(1, 3), eye);
   objects(b, { lo: [0.15 * W, 0, 0.25 * D], hi: [0.85 * W, 0.5 * H, 0.85 * D] }, g.int(1, 4), eye);
-  b.tag('camera-in-room');
-  return {
-    camera: lens(b, {
-      position: eye,
-      target: pointIn(b, { lo: [0.2 * W, 0, 0.5 * D], hi: [0.8 * W, 0.7 * H, D] }),
-      up: [0, 1, 0],
-      fovY: g.uniform(30, 80),
-    }),
-    maxBounces: bounces(b, 0, 12),
-  };
+  return { camera: roomCamera(b, eye, W, H, D), maxBounces: bounces(b, 0, 12) };
 }
 
 const ground: Archetype = {
