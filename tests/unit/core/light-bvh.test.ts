@@ -22,24 +22,12 @@ import { LightSample, sampleLight } from '../../../src/core/lights/lights.ts';
 import { environmentLightPdf, lightPdf } from '../../../src/core/lights/light-pdf.ts';
 import { hashToUnit, sampleKey } from '../../../src/core/rng/pcg.ts';
 import { chi2Test } from '../../helpers/chi2.ts';
-import { icosphere } from '../../helpers/mesh-gen.ts';
+import { lampMeshes, stripedMap } from '../../helpers/light-scenes.ts';
 
 /** A room of many emitters of every kind: meshes, spheres, quads, point and spot lights, a map, a sun. */
 function manyLightScene(withInfinite: boolean) {
-  const lamp = icosphere(1, 0.3, [0.5, 1.5, 0.2]);
   const shapes: unknown[] = [
-    {
-      type: 'mesh',
-      material: 'lamp',
-      positions: Array.from(lamp.positions),
-      indices: Array.from(lamp.indices),
-    },
-    {
-      type: 'mesh',
-      material: 'dim',
-      positions: [-1, 2, -1, 1, 2, -1, 1, 2, 1, 5, 2, 1],
-      indices: [0, 1, 2, 0, 2, 3],
-    },
+    ...lampMeshes(),
     { type: 'quad', corner: [-2, 0, -2], u: [0, 0, 4], v: [4, 0, 0], material: 'floor' },
   ];
   for (let i = 0; i < 60; i++) {
@@ -89,19 +77,7 @@ function manyLightScene(withInfinite: boolean) {
       ...(withInfinite ? [{ type: 'directional', direction: [-1, -2, -1], intensity: 0.3 }] : []),
     ],
   });
-  if (withInfinite) {
-    const w = 16;
-    const h = 8;
-    const rgb = new Float32Array(w * h * 3);
-    for (let i = 0; i < rgb.length; i++) rgb[i] = ((i * 7) % 11) / 5;
-    scene.environmentMap = {
-      type: 'map',
-      file: 'test.pfm',
-      scale: [1, 1, 1],
-      rotationY: 40,
-      image: { width: w, height: h, rgb },
-    };
-  }
+  if (withInfinite) scene.environmentMap = stripedMap();
   return compileScene(scene);
 }
 

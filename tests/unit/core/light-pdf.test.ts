@@ -11,10 +11,9 @@ import { LightSample, sampleLight } from '../../../src/core/lights/lights.ts';
 import { environmentLightPdf, lightPdf } from '../../../src/core/lights/light-pdf.ts';
 import { MeshLightSample } from '../../../src/core/lights/mesh-light.ts';
 import { hashToUnit, sampleKey } from '../../../src/core/rng/pcg.ts';
-import { icosphere } from '../../helpers/mesh-gen.ts';
+import { lampMeshes, stripedMap } from '../../helpers/light-scenes.ts';
 
 function lightsScene() {
-  const lamp = icosphere(1, 0.3, [0.5, 1.5, 0.2]);
   const scene = validateScene({
     format: 'pathwise-scene/1',
     camera: { position: [0, 1, -4], target: [0, 1, 0], up: [0, 1, 0], fovY: 40 },
@@ -24,34 +23,13 @@ function lightsScene() {
       floor: { type: 'diffuse', albedo: [0.5, 0.5, 0.5] },
     },
     shapes: [
-      {
-        type: 'mesh',
-        material: 'lamp',
-        positions: Array.from(lamp.positions),
-        indices: Array.from(lamp.indices),
-      },
-      {
-        type: 'mesh',
-        material: 'dim',
-        positions: [-1, 2, -1, 1, 2, -1, 1, 2, 1, 5, 2, 1],
-        indices: [0, 1, 2, 0, 2, 3],
-      },
+      ...lampMeshes(),
       { type: 'sphere', center: [-1, 1.5, 0], radius: 0.2, material: 'lamp' },
       { type: 'quad', corner: [-2, 0, -2], u: [0, 0, 4], v: [4, 0, 0], material: 'floor' },
       { type: 'quad', corner: [1, 2.5, -1], u: [0.5, 0, 0], v: [0, 0, 0.5], material: 'dim' },
     ],
   });
-  const w = 16;
-  const h = 8;
-  const rgb = new Float32Array(w * h * 3);
-  for (let i = 0; i < rgb.length; i++) rgb[i] = ((i * 7) % 11) / 5;
-  scene.environmentMap = {
-    type: 'map',
-    file: 'test.pfm',
-    scale: [1, 1, 1],
-    rotationY: 40,
-    image: { width: w, height: h, rgb },
-  };
+  scene.environmentMap = stripedMap();
   return compileScene(scene);
 }
 
