@@ -15,6 +15,7 @@ import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { decodePfm } from '../src/core/io/pfm.ts';
+import { relMse } from './lib.mjs';
 
 const args = process.argv.slice(2);
 const flag = (name: string, dflt: string): string => {
@@ -27,15 +28,6 @@ const maxRaw = Number(flag('max-raw', '1024'));
 const maxDenoised = Number(flag('max-denoised', '64'));
 const tmp = mkdtempSync(join(tmpdir(), 'pathwise-denoise-time-'));
 const LIMIT = 1 << 24;
-
-function relMse(x: Float32Array, ref: Float32Array): number {
-  let s = 0;
-  for (let i = 0; i < ref.length; i++) {
-    const d = x[i]! - ref[i]!;
-    s += (d * d) / (ref[i]! * ref[i]! + 0.01);
-  }
-  return s / ref.length;
-}
 
 interface Run {
   spp: number;

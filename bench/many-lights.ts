@@ -27,6 +27,7 @@ import {
 } from '../src/core/index.ts';
 import type { LightSamplerKind } from '../src/core/index.ts';
 import { manyLights } from './scenes.mjs';
+import { relMse } from './lib.mjs';
 
 const args = process.argv.slice(2);
 const flag = (name: string, dflt: string): string => {
@@ -55,15 +56,6 @@ const t1 = performance.now();
 const lightBvh = compiled.lightBvh();
 const buildMs = performance.now() - t1;
 if (lightBvh === null) throw new Error('the scene has no light BVH');
-
-function relMse(x: Float32Array, r: Float32Array): number {
-  let s = 0;
-  for (let i = 0; i < r.length; i++) {
-    const d = x[i]! - r[i]!;
-    s += (d * d) / (r[i]! * r[i]! + 0.01);
-  }
-  return s / r.length;
-}
 
 interface Run {
   sampler: LightSamplerKind;
