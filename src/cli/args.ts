@@ -35,6 +35,8 @@ export interface RenderArgs {
   exposure: number;
   estimator: Estimator;
   sampler: SamplerKind;
+  /** `--adaptive on|off`: adaptive sampling (core/film/adaptive.ts); on by default with --noise. */
+  adaptive: boolean;
   json: boolean;
   stripeRows?: number;
   batch: BatchOptions;
@@ -61,6 +63,9 @@ export const USAGE = `usage: pathwise render SCENE.json --out FILE.pfm|FILE.png|
   --exposure E        PNG exposure multiplier (default 1)
   --estimator nee-mis|bsdf  next-event estimation with MIS (default) or BSDF sampling only
   --sampler sobol|independent  random numbers: Owen-scrambled Sobol for the leading dimensions (default), or the independent PCG hash
+  --adaptive on|off   adaptive sampling: after 16 uniform passes each pixel takes later passes
+                      at a rate set by its neighbours' noise (unbiased; default: on with
+                      --noise, off otherwise)
   --stripe-rows R     rows per work stripe (default: automatic; the image does not depend on it)
   --json              print one JSON line of statistics on stdout (a switch: no value)
   --environment studio|none  a glTF model's environment: the studio (default), or none
@@ -138,6 +143,7 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     'exposure',
     'estimator',
     'sampler',
+    'adaptive',
     'environment',
     'variant',
     'json',
@@ -185,6 +191,13 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
       `--sampler must be one of ${SAMPLER_KINDS.join(', ')}, got ${quote(String(sampler))}`,
     );
   }
+  const adaptiveText = options.get('adaptive');
+  if (adaptiveText !== undefined && adaptiveText !== 'on' && adaptiveText !== 'off') {
+    throw new UsageError(`--adaptive must be on or off, got ${quote(String(adaptiveText))}`);
+  }
+  const batch = parseBatchOptions(options);
+  const adaptive =
+    adaptiveText === undefined ? batch.noise !== undefined : adaptiveText === 'on';
   const environment = options.get('environment');
   if (environment !== undefined && !BARE_ENVIRONMENTS.includes(environment as BareEnvironment)) {
     throw new UsageError(
@@ -209,9 +222,10 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     exposure,
     estimator,
     sampler: sampler as SamplerKind,
+    adaptive,
     json: options.has('json'),
     stripeRows: int('stripe-rows', 1, 1 << 24),
-    batch: parseBatchOptions(options),
+    batch,
     allowRead,
     bare: {
       environment: environment as BareEnvironment | undefined,

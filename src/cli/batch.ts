@@ -19,7 +19,9 @@
  *   time left to write the output; rounds take half the remaining passes,
  *   so the pass rate is re-measured as the deadline nears. The first pass
  *   always runs;
- * - --checkpoint ends rounds near each checkpoint time, then writes.
+ * - --checkpoint ends rounds near each checkpoint time, then writes;
+ * - an adaptive render whose film starts at sample 0 ends a round at the
+ *   pilot's end, where the sample map is built from the film (adaptive.ts).
  */
 import { estimateNoise } from '../core/film/noise.ts';
 import type { RenderPool } from './render.ts';
@@ -40,11 +42,18 @@ export interface BatchPlan {
   checkpointEvery?: number;
   /** Seconds set aside at the end of a --time budget to write the output. */
   reserve: number;
+  /**
+   * An adaptive render whose film holds the pilot (core/film/adaptive.ts): rounds end at
+   * this sample count, where the `pilot` hook builds the sample map from the film.
+   */
+  pilotAt?: number;
 }
 
 export interface BatchHooks {
   /** Writes the film as holding samples [start, n). */
   checkpoint?: (n: number) => Promise<void>;
+  /** The film holds exactly the pilot passes [0, plan.pilotAt): build the sample map. */
+  pilot?: () => void;
   /** Called every 200 ms while rendering. */
   progress?: (state: BatchProgress) => void;
 }
@@ -126,6 +135,7 @@ export async function runBatch(
   };
 
   try {
+    if (plan.pilotAt !== undefined && n === plan.pilotAt) hooks.pilot!();
     // A resumed render may sit on a check point already.
     if (plan.noise !== undefined && n > plan.start && isNoiseCheck(plan.start, n) && checkNoise()) {
       return { end: n, stop: 'noise', passSeconds, checkpoints };
@@ -133,6 +143,7 @@ export async function runBatch(
     for (;;) {
       if (n >= plan.end) return { end: n, stop: 'spp', passSeconds, checkpoints };
       let s1 = plan.end;
+      if (plan.pilotAt !== undefined && n < plan.pilotAt) s1 = Math.min(s1, plan.pilotAt);
       if (plan.noise !== undefined) s1 = Math.min(s1, nextNoiseCheck(plan.start, n));
       if (plan.time !== undefined && Number.isFinite(passSeconds)) {
         const left = plan.time - processSeconds() - plan.reserve;
@@ -157,6 +168,7 @@ export async function runBatch(
       planSeconds = Number.isFinite(last) ? Math.max(last, passSeconds) : passSeconds;
       n = s1;
       round = undefined;
+      if (n === plan.pilotAt) hooks.pilot!();
       if (plan.noise !== undefined && isNoiseCheck(plan.start, n) && checkNoise()) {
         return { end: n, stop: 'noise', passSeconds, checkpoints };
       }

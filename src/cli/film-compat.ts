@@ -41,6 +41,10 @@ export function explainMismatch(
       return `${both} differ in ${SETTING_FLAGS[key]} (${sa[key]} and ${sb[key]})`;
     }
   }
+  if ((sa.adaptive === true) !== (sb.adaptive === true)) {
+    const onOff = (s: FilmSettings) => (s.adaptive === true ? 'on' : 'off');
+    return `${both} differ in ${SETTING_FLAGS.adaptive} (${onOff(sa)} and ${onOff(sb)})`;
+  }
   if (a.key !== b.key) return `${both} have different keys though their settings agree`;
   return null;
 }

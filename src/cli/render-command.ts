@@ -8,6 +8,7 @@ import { LIMITS, type Scene, type SettingsDesc } from '../core/scene/format/type
 import { estimateNoise } from '../core/film/noise.ts';
 import { emptyImageMessage } from '../core/integrator/empty-image.ts';
 import { formatRanges } from '../core/film/sample-ranges.ts';
+import { ADAPTIVE_PILOT } from '../core/film/adaptive.ts';
 import type { Film } from '../core/film/film.ts';
 import { hasAux, type FilmHeader } from '../core/film/film-file.ts';
 import { AuxOutputs } from './aux-output.ts';
@@ -66,6 +67,7 @@ export async function renderCommand(
     seed: args.seed,
     estimator: args.estimator,
     sampler: args.sampler,
+    ...(args.adaptive ? { adaptive: true } : {}),
   };
   const [start, end] = b.samples ?? [0, openEnded ? LIMITS.spp : total];
   if (b.samples && end > total) {
@@ -158,6 +160,12 @@ export async function renderCommand(
       noiseSpp: Number.isFinite(p.noiseAt) ? p.noiseAt - start : undefined,
     });
     const pixels = settings.width * settings.height;
+    // Adaptive sampling (core/film/adaptive.ts): a film that starts at sample 0 holds the
+    // pilot when it reaches it; any other part renders the pilot on its own first.
+    const pilotInFilm = render.adaptive === true && start === 0 && from <= ADAPTIVE_PILOT;
+    if (render.adaptive === true && !pilotInFilm && end > ADAPTIVE_PILOT) {
+      await renderPilot(pool);
+    }
     testStage('render');
     const result = await runBatch(
       pool,
@@ -168,6 +176,7 @@ export async function renderCommand(
         time: b.time,
         noise: b.noise,
         checkpointEvery: b.checkpointEvery,
+        pilotAt: pilotInFilm && end > ADAPTIVE_PILOT ? ADAPTIVE_PILOT : undefined,
         // Encoding, writing (with fsync) and exiting, measured on a loaded
         // 2-core machine: 0.15–0.35 s for a 512×512 .film; about 1 µs a
         // pixel covers a .film (68 bytes a pixel), PFM and PNG.
@@ -181,6 +190,7 @@ export async function renderCommand(
               await file.commit(encodeOutput(b.checkpoint!, pool.film, () => header(n, end), 1));
             }
           : undefined,
+        pilot: () => pool.setSampleMap(pool.film),
         progress: bar ? (p: BatchProgress) => bar.update(progressState(p)) : undefined,
       },
     );
@@ -295,6 +305,24 @@ async function startPool(
     await output.discard();
     throw e;
   }
+}
+
+/**
+ * The sample map of an adaptive part that does not start at sample 0, or of a resumed
+ * render past the pilot: the pilot passes [0, ADAPTIVE_PILOT) are rendered into the
+ * cleared film, the map built from them, and the film and its counters put back as
+ * they were. Every part so builds the same map (the pilot's samples are the same bits
+ * wherever they are traced), and none of the pilot's samples stays in this part.
+ */
+async function renderPilot(pool: RenderPool): Promise<void> {
+  const bytes = new Uint8Array(pool.film.buffer);
+  const saved = bytes.slice();
+  const stats = { ...pool.stats };
+  pool.film.clear();
+  await pool.round(0, ADAPTIVE_PILOT);
+  pool.setSampleMap(pool.film);
+  bytes.set(saved);
+  Object.assign(pool.stats, stats);
 }
 
 function median(values: number[]): number {

@@ -15,6 +15,7 @@
 import { availableParallelism } from 'node:os';
 import { Worker } from 'node:worker_threads';
 import { Film } from '../core/film/film.ts';
+import { buildSampleMap } from '../core/film/adaptive.ts';
 import { RenderStats } from '../core/integrator/render-stats.ts';
 import { compileScene } from '../core/scene/compile/compile.ts';
 import { packScene } from '../core/scene/compile/pack.ts';
@@ -148,6 +149,8 @@ export class RenderPool {
   private readonly slots: Slot[];
   private readonly memory: RoundMemory;
   private readonly filmBuffer: SharedArrayBuffer;
+  /** An adaptive render's per-pixel rates (core/film/adaptive.ts), shared with the workers. */
+  private readonly mapBuffer: SharedArrayBuffer | null;
   private readonly faultWords: Int32Array;
   private readonly stopWord: SharedArrayBuffer;
   private readonly stripeRows: number;
@@ -181,6 +184,7 @@ export class RenderPool {
     // Measured on 2 cores: 5–12 ms per stripe commit of a 1-spp render without this.
     new Uint8Array(this.filmBuffer).fill(0);
     this.film = new Film(req.width, req.height, this.filmBuffer, 0, 0, aux);
+    this.mapBuffer = req.adaptive === true ? new SharedArrayBuffer(req.width * req.height) : null;
     this.threads = threads;
     this.stripeRows = stripeRows;
     this.stripes = Math.ceil(req.height / stripeRows);
@@ -236,7 +240,18 @@ export class RenderPool {
       film: this.filmBuffer,
       round: this.roundBuffers,
       journal: this.slots[k].journal,
+      map: this.mapBuffer,
     };
+  }
+
+  /**
+   * An adaptive render: sets every pixel's rate from `pilot`, a film of the uniform
+   * pilot passes (core/film/adaptive.ts). Between rounds only: the workers read the
+   * map while they render.
+   */
+  setSampleMap(pilot: Film): void {
+    if (this.mapBuffer === null) throw new Error('setSampleMap: the render is not adaptive');
+    buildSampleMap(pilot, new Uint8Array(this.mapBuffer));
   }
 
   /** Starts a worker for slot `k`. */

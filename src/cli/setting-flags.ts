@@ -11,6 +11,7 @@ export const SETTING_FLAGS = {
   seed: '--seed',
   sampler: '--sampler',
   estimator: '--estimator',
+  adaptive: '--adaptive',
   spp: '--spp',
 } as const satisfies Record<keyof RenderSettings | 'spp', string>;
 

@@ -59,6 +59,8 @@ export interface InitMessage {
   round: SharedArrayBuffer[];
   /** This worker's journal (one stripe of film). */
   journal: SharedArrayBuffer;
+  /** An adaptive render's per-pixel rates, filled by the main thread after the pilot; else null. */
+  map: SharedArrayBuffer | null;
 }
 
 /** A round: add samples [s0, s1) of every stripe. */
@@ -97,6 +99,9 @@ parentPort!.on('message', (m: WarmMessage | InitMessage | RoundMessage) => {
   if (m.type === 'init') {
     job = m.job;
     tracer = createTracer(job, unpackScene(m.scene));
+    // Read in place each round: the main thread fills it once the pilot is done (rounds of
+    // pilot passes never read it, core/film/adaptive.ts).
+    if (m.map !== null) tracer.sampleMap = new Uint8Array(m.map);
     film = new Film(job.width, job.height, m.film, 0, 0, job.aux ?? false);
     memory = roundMemoryFrom(m.round);
     journal = m.journal;

@@ -32,6 +32,7 @@ import { crc32 } from '../io/crc32.ts';
 import { JsonError, parseJson } from '../io/json.ts';
 import { isValidExact } from './exact-sum.ts';
 import { Film } from './film.ts';
+import { ADAPTIVE_PILOT, RATE_MIN, adaptiveCount } from './adaptive.ts';
 import { rangeSamples } from './sample-ranges.ts';
 import {
   FILM_FORMAT,
@@ -171,12 +172,14 @@ export function decodeFilmHeader(
     );
   }
   // What the header alone can tell once its size is known right: a pixel traces one path
-  // per sample of the ranges, so the paths are pixels × samples, and no more were
-  // rejected than traced. (Whether the pixels' counts agree needs the body.)
+  // per sample of the ranges, so the paths are pixels × samples (within the bounds of
+  // adaptive sampling), and no more were rejected than traced. (Whether the pixels'
+  // counts agree needs the body.)
   const { paths, rejected } = header.stats;
   const n = header.settings.width * header.settings.height;
   const samples = rangeSamples(header.ranges);
-  if (paths !== n * samples || rejected > paths) {
+  const [least, most] = pathBounds(header);
+  if (paths < least || paths > most || rejected > paths) {
     // Empty ranges with paths traced: samples no range accounts for (issue 27, item 5).
     throw new FilmHeaderError(
       samples === 0
@@ -364,6 +367,22 @@ export function tooManySamples(
 }
 
 /**
+ * The fewest and most paths a film's ranges account for: pixels × samples, or for an
+ * adaptive render (film/adaptive.ts) from every pixel at the lowest rate to every
+ * pixel at the full rate.
+ */
+export function pathBounds(header: FilmHeader): [number, number] {
+  const n = header.settings.width * header.settings.height;
+  const samples = rangeSamples(header.ranges);
+  if (header.settings.adaptive !== true) return [n * samples, n * samples];
+  let least = 0;
+  for (const [a, b] of header.ranges) {
+    least += adaptiveCount(b, ADAPTIVE_PILOT, RATE_MIN) - adaptiveCount(a, ADAPTIVE_PILOT, RATE_MIN);
+  }
+  return [n * least, n * samples];
+}
+
+/**
  * Whether the samples the pixels hold (`accepted`, their sum) and the header's stats
  * agree: every path of every pixel of every sample of the ranges was traced, and was
  * either accepted or rejected. null when they do.
@@ -372,7 +391,8 @@ export function countsProblem(header: FilmHeader, accepted: number): FilmFileErr
   const n = header.settings.width * header.settings.height;
   const samples = rangeSamples(header.ranges);
   const { paths, rejected } = header.stats;
-  if (paths !== n * samples || accepted + rejected !== paths) {
+  const [least, most] = pathBounds(header);
+  if (paths < least || paths > most || accepted + rejected !== paths) {
     return new FilmFileError(
       `stats do not add up: ${paths} paths and ${rejected} rejected for ${n} pixels × ${samples} samples with ${accepted} accepted (inconsistent)`,
     );

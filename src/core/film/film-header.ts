@@ -133,7 +133,12 @@ export function validateHeader(v: unknown, v2: boolean): FilmHeader {
   }
   const s = v.settings;
   if (!isObject(s)) throw new FilmFileError('header: settings must be an object');
-  exactKeys(s, SETTINGS_KEYS, 'settings.');
+  exactKeys(s, 'adaptive' in s ? [...SETTINGS_KEYS, 'adaptive'] : SETTINGS_KEYS, 'settings.');
+  if ('adaptive' in s && s.adaptive !== true) {
+    throw new FilmFileError(
+      `header: settings.adaptive must be true where present (a uniform render leaves it out), got ${short(s.adaptive)}`,
+    );
+  }
   const width = integer(s.width, 'settings.width', 1, LIMITS.pixels);
   const height = integer(s.height, 'settings.height', 1, LIMITS.pixels);
   if (width * height > LIMITS.pixels) {
@@ -148,6 +153,7 @@ export function validateHeader(v: unknown, v2: boolean): FilmHeader {
     seed: integer(s.seed, 'settings.seed', 0, 2 ** 32 - 1),
     sampler: s.sampler as SamplerKind,
     estimator: s.estimator as FilmSettings['estimator'],
+    ...(s.adaptive === true ? { adaptive: true } : {}),
   };
   if (!SAMPLER_KINDS.includes(settings.sampler)) {
     throw new FilmFileError(

@@ -20,6 +20,7 @@ import type { Estimator, RenderSettings } from '../scene/format/render-settings.
 import { RenderStats } from './render-stats.ts';
 import { trace } from './trace-path.ts';
 import { AuxSample, traceAux } from './aux.ts';
+import { ADAPTIVE_PILOT, adaptiveCount } from '../film/adaptive.ts';
 
 export { RenderStats };
 
@@ -76,6 +77,11 @@ export class PathTracer {
   readonly au = new Float64Array(1);
   /** The albedo and normal of the last sample, for films with aux planes (aux.ts). */
   readonly auxSample = new AuxSample();
+  /**
+   * An adaptive render's per-pixel rates (film/adaptive.ts), row-major over the
+   * image, or null: every pixel takes every pass.
+   */
+  sampleMap: Uint8Array | null = null;
 
   constructor(scene: CompiledScene, options: TracerOptions) {
     this.scene = scene;
@@ -101,6 +107,11 @@ export class PathTracer {
     sampleEnd: number,
     stats: RenderStats,
   ): void {
+    if (this.sampleMap !== null) {
+      for (let y = y0; y < y1; y++)
+        this.renderRowAdaptive(film, y, sampleStart, sampleEnd, this.sampleMap, stats);
+      return;
+    }
     // A film with aux planes takes its own row loop: renderRow, the loop of every other
     // render, stays the code V8 was measured with.
     if (film.auxHi !== null) {
@@ -130,6 +141,35 @@ export class PathTracer {
         // The sampler is still at this sample: traceAux skips its set-up.
         this.traceAux(x, y, s, a, true);
         if (!film.addSampleAux(x, y, this, a)) stats.rejected++;
+      }
+    }
+  }
+
+  /**
+   * renderRow of an adaptive render: passes [passStart, passEnd) add each pixel's
+   * sample indices [count(passStart), count(passEnd)) at its rate in `map`
+   * (film/adaptive.ts), with albedo and normal where the film has them.
+   */
+  renderRowAdaptive(
+    film: Film,
+    y: number,
+    passStart: number,
+    passEnd: number,
+    map: Uint8Array,
+    stats: RenderStats,
+  ): void {
+    const width = this.width;
+    const a = this.auxSample;
+    const aux = film.auxHi !== null;
+    for (let x = 0; x < width; x++) {
+      const k = map[y * width + x];
+      const s1 = adaptiveCount(passEnd, ADAPTIVE_PILOT, k);
+      for (let s = adaptiveCount(passStart, ADAPTIVE_PILOT, k); s < s1; s++) {
+        this.trace(x, y, s, stats);
+        if (aux) {
+          this.traceAux(x, y, s, a, true);
+          if (!film.addSampleAux(x, y, this, a)) stats.rejected++;
+        } else if (!film.addRadiance(x, y, this)) stats.rejected++;
       }
     }
   }

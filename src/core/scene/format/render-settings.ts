@@ -18,11 +18,19 @@ export interface RenderSettings {
   seed: number;
   estimator: Estimator;
   sampler: SamplerKind;
+  /**
+   * Adaptive sampling (film/adaptive.ts): after a uniform pilot, each pixel takes the
+   * later passes at a rate set by its neighbours' pilot error. Absent or false: every
+   * pixel takes every pass. It changes which samples a film holds, so it is part of a
+   * film's settings and key, written only when true (a uniform render's header and key
+   * are what they were before adaptive sampling existed).
+   */
+  adaptive?: boolean;
 }
 
 /**
  * The settings' keys in the `.film` header's order: a film's key hashes them in this
- * order, so it is part of the format.
+ * order, so it is part of the format. `adaptive` is written only when true.
  */
 export const RENDER_SETTING_KEYS = [
   'width',
@@ -31,6 +39,7 @@ export const RENDER_SETTING_KEYS = [
   'seed',
   'sampler',
   'estimator',
+  'adaptive',
 ] as const satisfies readonly (keyof RenderSettings)[];
 
 /** Exactly the render settings of `source` (an object that extends them), in header order. */
@@ -42,5 +51,6 @@ export function renderSettingsOf(source: RenderSettings): RenderSettings {
     seed: source.seed,
     sampler: source.sampler,
     estimator: source.estimator,
+    ...(source.adaptive === true ? { adaptive: true } : {}),
   };
 }
