@@ -1,7 +1,10 @@
 import { configDefaults, defineConfig } from 'vitest/config';
 
 /** The generated-scene consistency suite: minutes of CPU, run by `npm run test:validation` (CI runs it too). */
-export const VALIDATION_SUITE = ['tests/validation/consistency-*.test.ts'];
+export const VALIDATION_SUITE = [
+  'tests/validation/consistency-*.test.ts',
+  'tests/validation/references-adaptive.test.ts',
+];
 
 export default defineConfig({
   test: {

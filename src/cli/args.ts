@@ -196,8 +196,7 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
     throw new UsageError(`--adaptive must be on or off, got ${quote(String(adaptiveText))}`);
   }
   const batch = parseBatchOptions(options);
-  const adaptive =
-    adaptiveText === undefined ? batch.noise !== undefined : adaptiveText === 'on';
+  const adaptive = adaptiveText === undefined ? batch.noise !== undefined : adaptiveText === 'on';
   const environment = options.get('environment');
   if (environment !== undefined && !BARE_ENVIRONMENTS.includes(environment as BareEnvironment)) {
     throw new UsageError(

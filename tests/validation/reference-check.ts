@@ -149,13 +149,25 @@ export const meshedNames = names.filter((n) => {
   return json.shapes.some((s) => s.type === 'quad') || hasConstantEnvironment(json);
 });
 
+/**
+ * The scenes rendered again with adaptive sampling (src/core/film/adaptive.ts,
+ * references-adaptive.test.ts): every fourth classic scene, the scenes of issue 8
+ * among them, at ADAPTIVE_PASSES passes — the pilot and 48 passes at the map's rates.
+ */
+export const adaptiveNames = names.filter(
+  (n, i) => coverage[n]?.family !== 'mesh' && (n.startsWith('issue-') || i % 4 === 0),
+);
+const ADAPTIVE_PASSES = 64;
+
 const regions = imageRegions(WIDTH, HEIGHT);
 // Per scene, region and channel: pathwise vs Mitsuba, pathwise vs native, Mitsuba vs native;
 // pathwise vs Mitsuba alone where the native anchor cannot render the scene; and for each
-// scene of the meshed variant, pathwise (meshed) vs Mitsuba and vs native.
+// scene of the meshed variant, pathwise (meshed) vs Mitsuba and vs native; and for each
+// adaptive scene, pathwise (adaptive) vs each reference.
 const comparisons =
   names.reduce((n, name) => n + (manifest[name].native ? 3 : 1) * regions.length * 3, 0) +
-  meshedNames.length * 2 * regions.length * 3;
+  meshedNames.length * 2 * regions.length * 3 +
+  adaptiveNames.reduce((n, name) => n + (manifest[name].native ? 2 : 1) * regions.length * 3, 0);
 const ALPHA_PER_TEST = ALPHA / comparisons;
 
 /**
@@ -267,17 +279,18 @@ function describeFailure(
  * Registers the reference tests of the scenes `list` (names of the manifest), as they
  * are or, with `meshed`, their meshed variant (meshedJson) against the same references.
  */
-export function referenceSuite(list: string[], meshed = false): void {
-  describe.each(list)(meshed ? '%s, meshed' : '%s', (name) => referenceTests(name, meshed));
+export function referenceSuite(list: string[], meshed = false, adaptive = false): void {
+  const label = meshed ? '%s, meshed' : adaptive ? '%s, adaptive' : '%s';
+  describe.each(list)(label, (name) => referenceTests(name, meshed, adaptive));
 }
 
-function referenceTests(name: string, meshed: boolean): void {
+function referenceTests(name: string, meshed: boolean, adaptive: boolean): void {
   const entry = manifest[name];
   const known = KNOWN_REFERENCE_ERRORS[name];
 
   // Only where there are two references (a mesh-family scene has Mitsuba's alone), and
   // once per scene (not again for its meshed variant).
-  if (entry.native && !meshed) {
+  if (entry.native && !meshed && !adaptive) {
     it('has two references that agree with each other (or a known, explained error)', async () => {
       const V = bound(await loadReferenceScene(name));
       const m = referenceRegions(name, 'mitsuba');
@@ -307,7 +320,11 @@ function referenceTests(name: string, meshed: boolean): void {
   const what = entry.native
     ? `Mitsuba 3 (${entry.mitsuba.parts} × ${entry.mitsuba.sppPerPart} spp) and the native anchor (${entry.native.parts} × ${entry.native.sppPerPart} spp)`
     : `Mitsuba 3 (${entry.mitsuba.parts} × ${entry.mitsuba.sppPerPart} spp; the native anchor renders no meshes or maps)`;
-  const how = meshed ? ', its quads as triangles and its environment a map,' : '';
+  const how = meshed
+    ? ', its quads as triangles and its environment a map,'
+    : adaptive
+      ? ` with adaptive sampling (${ADAPTIVE_PASSES} passes)`
+      : '';
   it(`pathwise${how} matches ${what}`, async () => {
     const loaded = await loadReferenceScene(name, meshed);
     const V = bound(loaded);
@@ -316,11 +333,13 @@ function referenceTests(name: string, meshed: boolean): void {
     const perPath = pilotSegments(loaded, compiled, config, WIDTH, HEIGHT) + 2;
     let spp = 1;
     while (spp * 2 * perPath * WIDTH * HEIGHT * SEEDS <= BUDGET) spp *= 2;
-    const seeds = Array.from({ length: SEEDS }, (_, k) => (meshed ? 515_151 : 424_242) + 7919 * k);
+    if (adaptive) spp = ADAPTIVE_PASSES;
+    const base = meshed ? 515_151 : adaptive ? 616_161 : 424_242;
+    const seeds = Array.from({ length: SEEDS }, (_, k) => base + 7919 * k);
     const ours = renderReplicas(
       loaded,
       compiled,
-      { ...config, spp },
+      { ...config, spp, adaptive },
       seeds,
       WIDTH,
       HEIGHT,

@@ -7,7 +7,9 @@
  * honest estimate of the variance of their average — for Sobol too, where
  * a per-sample variance s²/n would not be.
  */
+import { ADAPTIVE_PILOT, buildSampleMap } from '../../src/core/film/adaptive.ts';
 import {
+  Film,
   PathTracer,
   RenderStats,
   type CompiledScene,
@@ -63,8 +65,15 @@ export interface RenderConfig {
   sampler: SamplerKind;
   /** The light choice of NEE (default: the light BVH). */
   lightSampler?: LightSamplerKind;
-  /** Samples per pixel of each replica. */
+  /** Samples per pixel of each replica; with `adaptive`, the passes. */
   spp: number;
+  /**
+   * Adaptive sampling (src/core/film/adaptive.ts): each replica renders the uniform
+   * pilot into a film, builds the sample map from it and renders the passes up to
+   * `spp` at the map's rates, as the command line does; a pixel's value is its film
+   * mean over the samples it took.
+   */
+  adaptive?: boolean;
 }
 
 export interface Replicas {
@@ -96,6 +105,8 @@ export function renderReplicas(
   const pixel = new Float64Array(width * height * 3);
   const stats = new RenderStats();
   let maxSample = 0;
+  /** Per region: the samples behind its means, over every seed. */
+  const samples = regions.map(() => 0);
   for (let k = 0; k < K; k++) {
     const tracer = new PathTracer(compiled, {
       width,
@@ -108,7 +119,15 @@ export function renderReplicas(
       camera: scene.camera,
     });
     pixel.fill(0);
-    for (let y = 0; y < height; y++) {
+    if (config.adaptive) {
+      renderAdaptive(tracer, width, height, config.spp, stats, pixel, regions, samples);
+    } else {
+      for (let ri = 0; ri < R; ri++) {
+        const reg = regions[ri];
+        samples[ri] += (reg.x1 - reg.x0) * (reg.y1 - reg.y0) * config.spp;
+      }
+    }
+    for (let y = 0; y < height && !config.adaptive; y++) {
       for (let x = 0; x < width; x++) {
         let r = 0,
           g = 0,
@@ -159,10 +178,41 @@ export function renderReplicas(
     regions,
     seeds: K,
     means,
-    samples: regions.map((reg) => (reg.x1 - reg.x0) * (reg.y1 - reg.y0) * config.spp * K),
+    samples,
     maxSample,
     stats,
   };
+}
+
+/**
+ * One adaptive replica (RenderConfig.adaptive): the pilot, the map, the remaining
+ * passes, through a film as the command line renders them. The film rejects a
+ * non-finite sample (and counts it); each pixel's mean goes to `pixel`, each region's
+ * sample count is added to `samples`.
+ */
+function renderAdaptive(
+  tracer: PathTracer,
+  width: number,
+  height: number,
+  passes: number,
+  stats: RenderStats,
+  pixel: Float64Array,
+  regions: Region[],
+  samples: number[],
+): void {
+  const film = new Film(width, height);
+  tracer.renderRows(film, 0, height, 0, Math.min(passes, ADAPTIVE_PILOT), stats);
+  if (passes > ADAPTIVE_PILOT) {
+    tracer.sampleMap = buildSampleMap(film, new Uint8Array(width * height));
+    tracer.renderRows(film, 0, height, ADAPTIVE_PILOT, passes, stats);
+  }
+  pixel.set(film.mean());
+  for (let ri = 0; ri < regions.length; ri++) {
+    const reg = regions[ri];
+    for (let y = reg.y0; y < reg.y1; y++) {
+      for (let x = reg.x0; x < reg.x1; x++) samples[ri] += film.sums[(y * width + x) * 4 + 3];
+    }
+  }
 }
 
 /** Mean over seeds and the variance of that mean (sample variance / K) for region r, channel c. */

@@ -377,7 +377,8 @@ export function pathBounds(header: FilmHeader): [number, number] {
   if (header.settings.adaptive !== true) return [n * samples, n * samples];
   let least = 0;
   for (const [a, b] of header.ranges) {
-    least += adaptiveCount(b, ADAPTIVE_PILOT, RATE_MIN) - adaptiveCount(a, ADAPTIVE_PILOT, RATE_MIN);
+    least +=
+      adaptiveCount(b, ADAPTIVE_PILOT, RATE_MIN) - adaptiveCount(a, ADAPTIVE_PILOT, RATE_MIN);
   }
   return [n * least, n * samples];
 }

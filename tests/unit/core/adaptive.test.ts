@@ -123,14 +123,20 @@ describe('buildSampleMap', () => {
 
   it('gives every pass to pixels with nothing to go by, and is the same bits each time', () => {
     // One pixel: no neighbour at all.
-    expect([...buildSampleMap(pilotFilm(1, 1, () => 0.3), new Uint8Array(1))]).toEqual([
-      RATE_ONE,
-    ]);
+    expect([
+      ...buildSampleMap(
+        pilotFilm(1, 1, () => 0.3),
+        new Uint8Array(1),
+      ),
+    ]).toEqual([RATE_ONE]);
     // Neighbours with every sample rejected (fewer than two accepted): unknown, full rate.
     const empty = buildSampleMap(new Film(3, 3), new Uint8Array(9));
     expect(empty.every((k) => k === RATE_ONE)).toBe(true);
     // A film of no variance anywhere: the floor, never zero.
-    const flat = buildSampleMap(pilotFilm(8, 8, () => 0), new Uint8Array(64));
+    const flat = buildSampleMap(
+      pilotFilm(8, 8, () => 0),
+      new Uint8Array(64),
+    );
     expect(flat.every((k) => k === RATE_MIN)).toBe(true);
     const film = pilotFilm(24, 12, (x, y) => ((x ^ y) & 3) * 0.1, 7);
     const a = buildSampleMap(film, new Uint8Array(24 * 12));
