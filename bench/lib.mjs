@@ -71,6 +71,7 @@ export function cliArgs(opts) {
   if (opts.bounces !== undefined) args.push('--bounces', String(opts.bounces));
   if (opts.estimator !== undefined) args.push('--estimator', opts.estimator);
   if (opts.sampler !== undefined) args.push('--sampler', opts.sampler);
+  if (opts.adaptive !== undefined) args.push('--adaptive', opts.adaptive ? 'on' : 'off');
   return args;
 }
 

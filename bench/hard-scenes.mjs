@@ -1,0 +1,97 @@
+// Scenes of the hard-scene suite (issue 23, deliverable 4) that the native anchor can also
+// render (spheres, quads, the three materials, a constant environment), as plain
+// pathwise-scene/1 objects:
+//
+// - caustic: a closed white room lit by one small sphere lamp; a glass ball on the floor
+//   focuses it into a caustic. Next-event estimation cannot see the lamp through the glass
+//   (a shadow ray stops at it), so the caustic, and the light it throws about the room,
+//   come only from BSDF-sampled paths that happen to hit the small lamp: fireflies.
+// - window: a closed room lit only through a window by a constant sky. The lit patch of
+//   floor and everything it bounces to are reached through the window alone; most
+//   directions from inside see walls.
+//
+//   node bench/hard-scenes.mjs caustic > /tmp/caustic.json
+import { writeFileSync } from 'node:fs';
+
+const white = { type: 'diffuse', albedo: [0.73, 0.73, 0.73] };
+
+/** The six inward-facing walls of the box [0, X] × [0, Y] × [0, Z] (quads face +u × v). */
+function box(X, Y, Z, material, skip = '') {
+  const walls = {
+    floor: { corner: [0, 0, 0], u: [0, 0, Z], v: [X, 0, 0] },
+    ceiling: { corner: [0, Y, 0], u: [X, 0, 0], v: [0, 0, Z] },
+    left: { corner: [0, 0, 0], u: [0, Y, 0], v: [0, 0, Z] },
+    right: { corner: [X, 0, 0], u: [0, 0, Z], v: [0, Y, 0] },
+    front: { corner: [0, 0, 0], u: [X, 0, 0], v: [0, Y, 0] },
+    back: { corner: [0, 0, Z], u: [0, Y, 0], v: [X, 0, 0] },
+  };
+  return Object.entries(walls)
+    .filter(([name]) => !skip.split(',').includes(name))
+    .map(([, q]) => ({ type: 'quad', ...q, material }));
+}
+
+export function caustic() {
+  return {
+    format: 'pathwise-scene/1',
+    name: 'Caustic through a glass ball (hard-scene suite)',
+    camera: { position: [2, 1.6, 0.3], target: [2, 0.5, 2.6], up: [0, 1, 0], fovY: 55 },
+    settings: { width: 128, height: 96, maxBounces: 8, spp: 1024 },
+    materials: {
+      white,
+      red: { type: 'diffuse', albedo: [0.63, 0.065, 0.05] },
+      glass: { type: 'dielectric', ior: 1.5, color: [1, 1, 1], roughness: 0 },
+      lamp: { type: 'diffuse', albedo: [0, 0, 0], emission: [120, 114, 102] },
+    },
+    shapes: [
+      ...box(4, 3, 4, 'white', 'left'),
+      { type: 'quad', corner: [0, 0, 0], u: [0, 3, 0], v: [0, 0, 4], material: 'red' },
+      { type: 'sphere', center: [2, 0.55, 2.6], radius: 0.55, material: 'glass' },
+      { type: 'sphere', center: [2.9, 2.5, 3.3], radius: 0.06, material: 'lamp' },
+    ],
+  };
+}
+
+export function windowRoom() {
+  // The window: an opening 1.6 wide and 1.2 high in the right wall (x = 5), 0.9 above
+  // the floor; the wall is the four quads around it.
+  const [Z0, Z1, Y0, Y1] = [1.7, 3.3, 0.9, 2.1];
+  const wall = (z0, z1, y0, y1) => ({
+    type: 'quad',
+    corner: [5, y0, z0],
+    u: [0, 0, z1 - z0],
+    v: [0, y1 - y0, 0],
+    material: 'white',
+  });
+  return {
+    format: 'pathwise-scene/1',
+    name: 'Interior lit through a window by the sky (hard-scene suite)',
+    camera: { position: [0.4, 1.5, 0.4], target: [4, 0.8, 3.2], up: [0, 1, 0], fovY: 60 },
+    settings: { width: 128, height: 96, maxBounces: 8, spp: 1024 },
+    environment: [5, 5.5, 6.5],
+    materials: {
+      white,
+      wood: { type: 'diffuse', albedo: [0.45, 0.3, 0.18] },
+      blue: { type: 'diffuse', albedo: [0.15, 0.25, 0.6] },
+    },
+    shapes: [
+      ...box(5, 2.8, 5, 'white', 'right,floor'),
+      { type: 'quad', corner: [0, 0, 0], u: [0, 0, 5], v: [5, 0, 0], material: 'wood' },
+      wall(0, 5, 0, Y0),
+      wall(0, 5, Y1, 2.8),
+      wall(0, Z0, Y0, Y1),
+      wall(Z1, 5, Y0, Y1),
+      { type: 'sphere', center: [2.2, 0.45, 3.4], radius: 0.45, material: 'blue' },
+    ],
+  };
+}
+
+export const HARD_SCENES = { caustic, window: windowRoom };
+
+if (process.argv[1] && import.meta.url.endsWith(process.argv[1].split('/').pop())) {
+  const make = HARD_SCENES[process.argv[2]];
+  if (!make) throw new Error(`usage: node bench/hard-scenes.mjs ${Object.keys(HARD_SCENES)}`);
+  const out = process.argv[3];
+  const text = JSON.stringify(make(), null, 2) + '\n';
+  if (out) writeFileSync(out, text);
+  else process.stdout.write(text);
+}
