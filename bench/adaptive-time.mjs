@@ -3,7 +3,7 @@
 // render` at 128×128 (the size of the Mitsuba 3 references in tests/references), passes
 // doubling from 32, each render's relMSE (lib.mjs) against the reference. The time to an
 // error is the log-log interpolation of error against process seconds between the two
-// renders around it (the first render at or below it is shown too); the ratio is uniform
+// renders around it (extrapolated as 1/time past the last render); the ratio is uniform
 // over adaptive, measured in this one run, per seed and as the median over seeds.
 // Prints a Markdown table.
 //
@@ -54,11 +54,19 @@ function sweep(scene, ref, adaptive, seed) {
   return points;
 }
 
-const timeTo = (points, target) =>
-  logLogCrossing(
+/**
+ * Seconds to `target`: the log-log crossing, or, where the sweep ended above it, the last
+ * render's time scaled as error ∝ 1/time ({ extrapolated: true }).
+ */
+function timeTo(points, target) {
+  const crossing = logLogCrossing(
     points.map((p) => [p.seconds, p.error]),
     target,
   );
+  if (crossing !== null) return { seconds: crossing, extrapolated: false };
+  const last = points.at(-1);
+  return { seconds: (last.seconds * last.error) / target, extrapolated: true };
+}
 
 const rows = [];
 for (const scene of scenes) {
@@ -73,24 +81,24 @@ for (const scene of scenes) {
       const ta = timeTo(a, t);
       cells.uniform[i].push(tu);
       cells.adaptive[i].push(ta);
-      if (tu !== null && ta !== null) ratios[i].push(tu / ta);
+      ratios[i].push(tu.seconds / ta.seconds);
     });
   }
-  const show = (xs) => xs.map((x) => (x === null ? 'not reached' : `${x.toFixed(2)} s`)).join(', ');
+  const show = (xs) =>
+    xs.map((x) => `${x.extrapolated ? '≈ ' : ''}${x.seconds.toFixed(2)} s`).join(', ');
   rows.push(
     `| ${scene} | ${TARGETS.map(
       (_, i) =>
         `${show(cells.uniform[i])} | ${show(cells.adaptive[i])} | ` +
-        (ratios[i].length > 0
-          ? `${ratios[i].map((r) => r.toFixed(2)).join(', ')} (median ${median(ratios[i]).toFixed(2)})`
-          : '—'),
+        `${ratios[i].map((r) => r.toFixed(2)).join(', ')} (median ${median(ratios[i]).toFixed(2)})`,
     ).join(' | ')} |`,
   );
 }
 rmSync(tmp, { recursive: true, force: true });
 process.stdout.write(
   `128×128, ${threads} threads, whole processes, seeds ${seeds.join(', ')}; time = log-log ` +
-    `interpolation of relMSE against process seconds\n\n` +
+    `interpolation of relMSE against process seconds (≈: extrapolated from the last ` +
+    `render as error ∝ 1/time)\n\n` +
     `| scene | uniform to 1e-2 | adaptive to 1e-2 | ratio | uniform to 1e-3 | adaptive to 1e-3 | ratio |\n` +
     `|---|---|---|---|---|---|---|\n` +
     rows.join('\n') +
