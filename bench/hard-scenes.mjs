@@ -67,7 +67,7 @@ export function windowRoom() {
     name: 'Interior lit through a window by the sky (hard-scene suite)',
     camera: { position: [0.4, 1.5, 0.4], target: [4, 0.8, 3.2], up: [0, 1, 0], fovY: 60 },
     settings: { width: 128, height: 96, maxBounces: 8, spp: 1024 },
-    environment: [5, 5.5, 6.5],
+    environment: [3, 3.3, 4],
     materials: {
       white,
       wood: { type: 'diffuse', albedo: [0.45, 0.3, 0.18] },

@@ -68,6 +68,12 @@ describe('adaptive sampling on the command line', () => {
     render('--adaptive', 'on', '--samples', '30:80', '--out', at('c.film'));
     pathwiseOk(['merge', at('c.film'), at('a.film'), at('b.film'), '--out', at('merged.film')]);
     expect(readFileSync(at('merged.film')).equals(one)).toBe(true);
+    // With albedo and normal planes (the denoiser's guides), split across the pilot's end.
+    render('--adaptive', 'on', '--aux', '--out', at('aux.film'));
+    render('--adaptive', 'on', '--aux', '--samples', '0:20', '--out', at('aux-a.film'));
+    render('--adaptive', 'on', '--aux', '--samples', '20:80', '--out', at('aux-b.film'));
+    pathwiseOk(['merge', at('aux-b.film'), at('aux-a.film'), '--out', at('aux-m.film')]);
+    expect(readFileSync(at('aux-m.film')).equals(readFileSync(at('aux.film')))).toBe(true);
     // Resumed from a checkpoint inside the pilot, and from one past it.
     for (const cut of [9, 41]) {
       const ckpt = at(`ckpt-${cut}.film`);

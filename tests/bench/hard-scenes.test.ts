@@ -1,0 +1,74 @@
+// The hard-scene suite's scenes (bench/hard-scenes.mjs) stay valid pathwise-scene/1 files
+// that the native anchor can read too (spheres, quads, the three materials, a constant
+// environment), and the committed references are renders of these very scenes: their size,
+// finite values, and an image mean that a short render of the scene as generated now
+// matches (a scene edited after its reference was made fails here).
+import { readFileSync } from 'node:fs';
+import { describe, expect, it } from 'vitest';
+import {
+  Film,
+  PathTracer,
+  RenderStats,
+  compileScene,
+  decodePfm,
+  parseScene,
+} from '../../src/core/index.ts';
+import { HARD_SCENES } from '../../bench/hard-scenes.mjs';
+
+describe.each(Object.keys(HARD_SCENES))('hard scene %s', (name) => {
+  const json = HARD_SCENES[name]();
+
+  it('parses, and uses only what the native anchor renders', () => {
+    const scene = parseScene(JSON.stringify(json));
+    expect(scene.shapes.every((s) => s.type === 'sphere' || s.type === 'quad')).toBe(true);
+    const env = json.environment;
+    expect(env === undefined || Array.isArray(env)).toBe(true);
+  });
+
+  it('has a committed reference of its size, finite and not black', () => {
+    const ref = decodePfm(readFileSync(`bench/results/hard/${name}.pfm`));
+    const { width, height } = json.settings as { width: number; height: number };
+    expect([ref.width, ref.height]).toEqual([width, height]);
+    let sum = 0;
+    for (const v of ref.rgb) {
+      expect(Number.isFinite(v)).toBe(true);
+      sum += v;
+    }
+    expect(sum).toBeGreaterThan(0);
+  });
+
+  it("matches its reference's image mean in a short render of the scene as generated", () => {
+    const ref = decodePfm(readFileSync(`bench/results/hard/${name}.pfm`));
+    const lum = (x: Float32Array, i: number) =>
+      0.2126 * x[i] + 0.7152 * x[i + 1] + 0.0722 * x[i + 2];
+    let refMean = 0;
+    for (let i = 0; i < ref.rgb.length; i += 3) refMean += lum(ref.rgb, i) / (ref.rgb.length / 3);
+    // 8 seeds × 16 spp at 32×24 (the same camera: its image mean is the reference's).
+    const scene = parseScene(JSON.stringify(json));
+    const compiled = compileScene(scene);
+    const [w, h] = [32, 24];
+    const means = [1, 2, 3, 4, 5, 6, 7, 8].map((seed) => {
+      const tracer = new PathTracer(compiled, {
+        width: w,
+        height: h,
+        maxBounces: scene.settings.maxBounces,
+        seed,
+        camera: scene.camera,
+      });
+      const film = new Film(w, h);
+      tracer.renderRows(film, 0, h, 0, 16, new RenderStats());
+      const m = film.mean();
+      let s = 0;
+      for (let i = 0; i < m.length; i += 3) s += lum(m, i) / (w * h);
+      return s;
+    });
+    const mean = means.reduce((a, b) => a + b) / means.length;
+    const se = Math.sqrt(
+      means.reduce((a, x) => a + (x - mean) ** 2, 0) / (means.length - 1) / means.length,
+    );
+    // Student t with 7 dof at two-sided 1e-4 is 8.0; 0.5 % covers the reference's own
+    // noise. A scene edited by 10 % or more fails.
+    const detail = `mean ${mean.toFixed(5)} ± ${se.toFixed(5)} against the reference's ${refMean.toFixed(5)}`;
+    expect(Math.abs(mean - refMean), detail).toBeLessThan(8 * se + 0.005 * refMean);
+  });
+});
