@@ -9,9 +9,13 @@
 // - window: a closed room lit only through a window by a constant sky. The lit patch of
 //   floor and everything it bounces to are reached through the window alone; most
 //   directions from inside see walls.
+// - dense: a bumpy torus of 1,000,000 triangles (a binary PLY written beside the scene) in a
+//   room under a ceiling lamp. The native anchor renders no meshes: Mitsuba alone compares.
 //
-//   node bench/hard-scenes.mjs caustic > /tmp/caustic.json
+//   node bench/hard-scenes.mjs caustic /tmp/caustic.json
+//   node bench/hard-scenes.mjs dense /tmp/dense/scene.json    (writes /tmp/dense/dense.ply)
 import { writeFileSync } from 'node:fs';
+import path from 'node:path';
 
 const white = { type: 'diffuse', albedo: [0.73, 0.73, 0.73] };
 
@@ -85,13 +89,89 @@ export function windowRoom() {
   };
 }
 
-export const HARD_SCENES = { caustic, window: windowRoom };
+/**
+ * A torus of major radius R and minor radius r around the y axis, its tube bumped by a few
+ * sines, as a binary little-endian PLY of nu × nv quads split in two: 2·nu·nv triangles,
+ * none degenerate (a torus has no poles), facing outward.
+ */
+function bumpyTorusPly(nu, nv, R, r) {
+  const vertices = nu * nv;
+  const header =
+    `ply\nformat binary_little_endian 1.0\nelement vertex ${vertices}\n` +
+    `property float x\nproperty float y\nproperty float z\n` +
+    `element face ${2 * vertices}\nproperty list uchar uint vertex_indices\nend_header\n`;
+  const head = Buffer.from(header, 'ascii');
+  const body = Buffer.alloc(12 * vertices + 13 * 2 * vertices);
+  let at = 0;
+  for (let i = 0; i < nu; i++) {
+    const u = (2 * Math.PI * i) / nu;
+    for (let j = 0; j < nv; j++) {
+      const v = (2 * Math.PI * j) / nv;
+      const rr =
+        r * (1 + 0.08 * Math.sin(13 * u) * Math.sin(7 * v) + 0.03 * Math.sin(57 * u + 3 * v));
+      const ring = R + rr * Math.cos(v);
+      body.writeFloatLE(ring * Math.cos(u), at);
+      body.writeFloatLE(rr * Math.sin(v), at + 4);
+      body.writeFloatLE(ring * Math.sin(u), at + 8);
+      at += 12;
+    }
+  }
+  const id = (i, j) => (i % nu) * nv + (j % nv);
+  const face = (a, b, c) => {
+    body.writeUInt8(3, at);
+    body.writeUInt32LE(a, at + 1);
+    body.writeUInt32LE(b, at + 5);
+    body.writeUInt32LE(c, at + 9);
+    at += 13;
+  };
+  for (let i = 0; i < nu; i++) {
+    for (let j = 0; j < nv; j++) {
+      face(id(i, j), id(i, j + 1), id(i + 1, j + 1));
+      face(id(i, j), id(i + 1, j + 1), id(i + 1, j));
+    }
+  }
+  return Buffer.concat([head, body]);
+}
+
+const C20 = Math.cos((20 * Math.PI) / 180);
+const S20 = Math.sin((20 * Math.PI) / 180);
+
+/** The dense scene; its mesh is written to dir/dense.ply. */
+export function dense(dir) {
+  writeFileSync(path.join(dir, 'dense.ply'), bumpyTorusPly(1000, 500, 1, 0.35));
+  return {
+    format: 'pathwise-scene/1',
+    name: 'A torus of 1,000,000 triangles (hard-scene suite)',
+    camera: { position: [2, 2.2, -1.2], target: [2, 0.5, 2], up: [0, 1, 0], fovY: 50 },
+    settings: { width: 128, height: 96, maxBounces: 8, spp: 1024 },
+    materials: {
+      white,
+      clay: { type: 'diffuse', albedo: [0.8, 0.45, 0.3] },
+      lamp: { type: 'diffuse', albedo: [0, 0, 0], emission: [12, 11.5, 10.5] },
+    },
+    shapes: [
+      ...box(4, 3, 4, 'white', 'front'),
+      { type: 'quad', corner: [1.5, 2.99, 1.5], u: [1, 0, 0], v: [0, 0, 1], material: 'lamp' },
+      {
+        type: 'mesh',
+        file: 'dense.ply',
+        material: 'clay',
+        // Tilted 20° about x, centred at (2, 0.95, 2).
+        transform: [1, 0, 0, 2, 0, C20, -S20, 0.95, 0, S20, C20, 2, 0, 0, 0, 1],
+      },
+    ],
+  };
+}
+
+export const HARD_SCENES = { caustic, window: windowRoom, dense };
 
 if (process.argv[1] && import.meta.url.endsWith(process.argv[1].split('/').pop())) {
   const make = HARD_SCENES[process.argv[2]];
-  if (!make) throw new Error(`usage: node bench/hard-scenes.mjs ${Object.keys(HARD_SCENES)}`);
   const out = process.argv[3];
-  const text = JSON.stringify(make(), null, 2) + '\n';
+  if (!make || (process.argv[2] === 'dense' && !out)) {
+    throw new Error(`usage: node bench/hard-scenes.mjs ${Object.keys(HARD_SCENES)} [OUT.json]`);
+  }
+  const text = JSON.stringify(make(out ? path.dirname(out) : '.'), null, 2) + '\n';
   if (out) writeFileSync(out, text);
   else process.stdout.write(text);
 }

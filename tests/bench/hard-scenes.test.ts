@@ -3,24 +3,40 @@
 // environment), and the committed references are renders of these very scenes: their size,
 // finite values, and an image mean that a short render of the scene as generated now
 // matches (a scene edited after its reference was made fails here).
-import { readFileSync } from 'node:fs';
-import { describe, expect, it } from 'vitest';
+import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { afterAll, describe, expect, it } from 'vitest';
 import {
   Film,
   PathTracer,
   RenderStats,
   compileScene,
   decodePfm,
-  parseScene,
+  loadScene,
+  type Scene,
 } from '../../src/core/index.ts';
 import { HARD_SCENES } from '../../bench/hard-scenes.mjs';
 
-describe.each(Object.keys(HARD_SCENES))('hard scene %s', (name) => {
-  const json = HARD_SCENES[name]();
+const dir = mkdtempSync(path.join(tmpdir(), 'pathwise-hard-scenes-'));
+afterAll(() => rmSync(dir, { recursive: true, force: true }));
 
-  it('parses, and uses only what the native anchor renders', () => {
-    const scene = parseScene(JSON.stringify(json));
-    expect(scene.shapes.every((s) => s.type === 'sphere' || s.type === 'quad')).toBe(true);
+/** The scene as the command line loads it: its mesh file (dense.ply) read from `dir`. */
+function load(json: Record<string, unknown>): Promise<Scene> {
+  return loadScene(JSON.stringify(json), {
+    read: async (file: string) => new Uint8Array(readFileSync(path.join(dir, file))),
+  });
+}
+
+describe.each(Object.keys(HARD_SCENES))('hard scene %s', (name) => {
+  const json = HARD_SCENES[name](dir);
+
+  it('loads, and uses only what the native anchor renders (but for the dense mesh)', async () => {
+    const scene = await load(json);
+    const kinds = new Set(scene.shapes.map((s) => s.type));
+    const allowed = name === 'dense' ? ['quad', 'mesh'] : ['sphere', 'quad'];
+    expect([...kinds].every((k) => allowed.includes(k))).toBe(true);
+    if (name === 'dense') expect(kinds.has('mesh')).toBe(true);
     const env = json.environment;
     expect(env === undefined || Array.isArray(env)).toBe(true);
   });
@@ -37,14 +53,14 @@ describe.each(Object.keys(HARD_SCENES))('hard scene %s', (name) => {
     expect(sum).toBeGreaterThan(0);
   });
 
-  it("matches its reference's image mean in a short render of the scene as generated", () => {
+  it("matches its reference's image mean in a short render of the scene as generated", async () => {
     const ref = decodePfm(readFileSync(`bench/results/hard/${name}.pfm`));
     const lum = (x: Float32Array, i: number) =>
       0.2126 * x[i] + 0.7152 * x[i + 1] + 0.0722 * x[i + 2];
     let refMean = 0;
     for (let i = 0; i < ref.rgb.length; i += 3) refMean += lum(ref.rgb, i) / (ref.rgb.length / 3);
     // 8 seeds × 16 spp at 32×24 (the same camera: its image mean is the reference's).
-    const scene = parseScene(JSON.stringify(json));
+    const scene = await load(json);
     const compiled = compileScene(scene);
     const [w, h] = [32, 24];
     const means = [1, 2, 3, 4, 5, 6, 7, 8].map((seed) => {
