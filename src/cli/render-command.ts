@@ -163,7 +163,7 @@ export async function renderCommand(
     // Adaptive sampling (core/film/adaptive.ts): a film that starts at sample 0 holds the
     // pilot when it reaches it; any other part renders the pilot on its own first.
     const pilotInFilm = render.adaptive === true && start === 0 && from <= ADAPTIVE_PILOT;
-    if (render.adaptive === true && !pilotInFilm && end > ADAPTIVE_PILOT) {
+    if (render.adaptive === true && !pilotInFilm && end > ADAPTIVE_PILOT && from < end) {
       await renderPilot(pool);
     }
     testStage('render');
