@@ -197,6 +197,9 @@ export function parseRenderArgs(argv: string[]): RenderArgs {
   }
   const batch = parseBatchOptions(options);
   const adaptive = adaptiveText === undefined ? batch.noise !== undefined : adaptiveText === 'on';
+  if (batch.pilot !== undefined && !adaptive) {
+    throw new UsageError('--pilot is for adaptive sampling: add --adaptive on (or --noise)');
+  }
   const environment = options.get('environment');
   if (environment !== undefined && !BARE_ENVIRONMENTS.includes(environment as BareEnvironment)) {
     throw new UsageError(

@@ -27,6 +27,8 @@ export interface BatchOptions {
   checkpointEvery: number;
   /** --resume FILE.film: continue from this checkpoint (a missing file starts afresh). */
   resume?: string;
+  /** --pilot FILE.film: an adaptive part's pilot, read instead of rendered (adaptive.ts). */
+  pilot?: string;
 }
 
 export const BATCH_OPTION_NAMES = [
@@ -36,6 +38,7 @@ export const BATCH_OPTION_NAMES = [
   'checkpoint',
   'checkpoint-every',
   'resume',
+  'pilot',
 ] as const;
 
 export const BATCH_USAGE = `  --samples A:B       render only samples [A, B) of every pixel (a part of an --spp N render; 0 <= A < B <= N)
@@ -44,7 +47,9 @@ export const BATCH_USAGE = `  --samples A:B       render only samples [A, B) of 
                       (with --time or --noise and no --spp, the render may go up to 1048576 spp)
   --checkpoint FILE.film  write the film there every --checkpoint-every seconds (atomically)
   --checkpoint-every S    seconds between checkpoints (default 60)
-  --resume FILE.film  continue from a checkpoint of the same render (a missing FILE starts from the beginning)`;
+  --resume FILE.film  continue from a checkpoint of the same render (a missing FILE starts from the beginning)
+  --pilot FILE.film   an adaptive part that does not start at sample 0 reads the sample map's pilot from
+                      FILE (the same render's --samples 0:16) instead of rendering those 16 passes again`;
 
 export const MERGE_USAGE = `usage: pathwise merge PART.film... --out FILE.pfm|FILE.png|FILE.film [options]
   merges parts of one render (given in any order) into the image of all their samples
@@ -102,6 +107,8 @@ export function parseBatchOptions(options: Map<string, string | true>): BatchOpt
   if (checkpoint !== undefined) out.checkpoint = filmPath('checkpoint', checkpoint);
   const resume = text('resume');
   if (resume !== undefined) out.resume = filmPath('resume', resume);
+  const pilot = text('pilot');
+  if (pilot !== undefined) out.pilot = filmPath('pilot', pilot);
   if (every !== undefined && checkpoint === undefined) {
     throw new UsageError('--checkpoint-every needs --checkpoint FILE.film');
   }

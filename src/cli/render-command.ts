@@ -78,7 +78,10 @@ export async function renderCommand(
   // The render's identity hashes the whole scene (tens of milliseconds for a
   // large one): made, before the render, only when a `.film` is read or written.
   const identity_ =
-    isFilmPath(args.out) || b.checkpoint !== undefined || b.resume !== undefined
+    isFilmPath(args.out) ||
+    b.checkpoint !== undefined ||
+    b.resume !== undefined ||
+    b.pilot !== undefined
       ? filmIdentity(scene, render)
       : undefined;
   const identity = (): FilmIdentity => {
@@ -89,6 +92,8 @@ export async function renderCommand(
   const resumed = b.resume
     ? await loadCheckpoint(b.resume, identity(), start, end, aux)
     : undefined;
+  // Read before the render starts, so that a wrong pilot is refused at once.
+  const pilot = b.pilot !== undefined ? loadPilot(b.pilot, identity(), aux) : undefined;
   // Ctrl-C or SIGTERM from here on removes the temporary files (temp-registry.ts).
   // The outputs are checked (the output's temporary file created) before the render starts.
   const output = await OutputFile.prepare(args.out);
@@ -164,7 +169,8 @@ export async function renderCommand(
     // pilot when it reaches it; any other part renders the pilot on its own first.
     const pilotInFilm = render.adaptive === true && start === 0 && from <= ADAPTIVE_PILOT;
     if (render.adaptive === true && !pilotInFilm && end > ADAPTIVE_PILOT && from < end) {
-      await renderPilot(pool);
+      if (pilot) pool.setSampleMap(pilot);
+      else await renderPilot(pool);
     }
     testStage('render');
     const result = await runBatch(
@@ -323,6 +329,28 @@ async function renderPilot(pool: RenderPool): Promise<void> {
   pool.setSampleMap(pool.film);
   bytes.set(saved);
   Object.assign(pool.stats, stats);
+}
+
+/**
+ * `--pilot FILE.film`: the pilot of the same render (settings and key equal, albedo and
+ * normal alike, samples exactly [0, ADAPTIVE_PILOT)), whose map is the one every part builds.
+ */
+function loadPilot(path: string, identity: FilmIdentity, aux: boolean): Film {
+  const { header, film } = readFilmFile(path);
+  const why = explainMismatch(showPath(path), header, 'this render', identity);
+  if (why) throw new CliError(`cannot use the pilot: ${why}`);
+  if (hasAux(header) !== aux) {
+    throw new CliError(
+      `cannot use the pilot: ${showPath(path)} ${aux ? 'holds no albedo and normal, and this render records them' : 'holds albedo and normal, and this render does not record them'} (a rejected sample could differ)`,
+    );
+  }
+  const r = header.ranges;
+  if (r.length !== 1 || r[0][0] !== 0 || r[0][1] !== ADAPTIVE_PILOT) {
+    throw new CliError(
+      `cannot use the pilot: ${showPath(path)} holds samples ${formatRanges(r)}, not the pilot [0, ${ADAPTIVE_PILOT}) (render it with --samples 0:${ADAPTIVE_PILOT})`,
+    );
+  }
+  return film;
 }
 
 function median(values: number[]): number {

@@ -68,6 +68,22 @@ describe('adaptive sampling on the command line', () => {
     render('--adaptive', 'on', '--samples', '30:80', '--out', at('c.film'));
     pathwiseOk(['merge', at('c.film'), at('a.film'), at('b.film'), '--out', at('merged.film')]);
     expect(readFileSync(at('merged.film')).equals(one)).toBe(true);
+    // A part past the pilot given the pilot (--samples 0:16 of the same render) to read
+    // instead of rendering it: the same bytes and counters (a pilot rendered apart is not
+    // counted either).
+    render('--adaptive', 'on', '--samples', '0:16', '--out', at('pilot16.film'));
+    const own = JSON.parse(
+      render('--adaptive', 'on', '--samples', '30:80', '--out', at('c2.film'), '--json').stdout,
+    );
+    const given = JSON.parse(
+      render(
+        ...['--adaptive', 'on', '--samples', '30:80', '--pilot', at('pilot16.film')],
+        ...['--out', at('c3.film'), '--json'],
+      ).stdout,
+    );
+    expect(readFileSync(at('c3.film')).equals(readFileSync(at('c.film')))).toBe(true);
+    expect(given.paths).toBe(own.paths);
+    expect(given.segments).toBe(own.segments);
     // With albedo and normal planes (the denoiser's guides), split across the pilot's end.
     render('--adaptive', 'on', '--aux', '--out', at('aux.film'));
     render('--adaptive', 'on', '--aux', '--samples', '0:20', '--out', at('aux-a.film'));
@@ -92,7 +108,7 @@ describe('adaptive sampling on the command line', () => {
     expect(readFilm(at('plain.film')).header.settings).not.toHaveProperty('adaptive');
   });
 
-  it('refuses to merge adaptive and uniform parts, a bad --adaptive and a lying header', () => {
+  it('refuses to merge adaptive and uniform parts, a bad --adaptive or --pilot, a lying header', () => {
     render('--samples', '30:80', '--out', at('uniform-c.film'));
     expectRefusal(
       pathwise(['merge', at('a.film'), at('b.film'), at('uniform-c.film'), '--out', at('x.film')]),
@@ -101,6 +117,21 @@ describe('adaptive sampling on the command line', () => {
     expectRefusal(
       pathwise(['render', scene, '--adaptive', 'maybe', '--out', at('x.pfm')]),
       /--adaptive must be on or off, got "maybe"/,
+    );
+    // --pilot: a film of another render, one that is not exactly the pilot, no adaptive.
+    const part = ['render', scene, '--adaptive', 'on', '--samples', '30:80', '--out', at('z.film')];
+    render('--adaptive', 'on', '--samples', '0:16', '--seed', '3', '--out', at('p-seed3.film'));
+    expectRefusal(
+      pathwise([...part, '--pilot', at('p-seed3.film')]),
+      /cannot use the pilot: .*p-seed3\.film and this render differ in --seed \(3 and 0\)/,
+    );
+    expectRefusal(
+      pathwise([...part, '--pilot', at('a.film')]),
+      /cannot use the pilot: .*a\.film holds samples \[0, 7\), not the pilot \[0, 16\)/,
+    );
+    expectRefusal(
+      pathwise(['render', scene, '--pilot', at('pilot16.film'), '--out', at('z.pfm')]),
+      /--pilot is for adaptive sampling: add --adaptive on \(or --noise\)/,
     );
     // A header whose settings.adaptive is not `true` (re-encoded: the checksum is right).
     const { header, film } = readFilm(at('plain.film'));
