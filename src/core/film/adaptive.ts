@@ -41,8 +41,7 @@
  * pixel whose neighbours showed no variance in 128 pilot samples (a rare
  * caustic) from starving.
  */
-import { exactValue } from './exact-sum.ts';
-import type { NoiseInput } from './noise.ts';
+import { luminanceVariance, meanLuminance, type NoiseInput } from './noise.ts';
 
 /** Uniform passes before the map is built (every pixel takes all of them). */
 export const ADAPTIVE_PILOT = 16;
@@ -106,13 +105,11 @@ export function buildSampleMap(film: PilotFilm, out: Uint8Array): Uint8Array {
 }
 
 /**
- * Per pixel, the sample variance of luminance over (mean² + 0.01); −1 where
- * fewer than two samples were accepted.
+ * Per pixel, the sample variance of luminance over (mean² + 0.01) (noise.ts's
+ * statistics); −1 where fewer than two samples were accepted.
  */
 function relativeVariance(film: NoiseInput): Float64Array {
   const sums = film.sums;
-  const hi = film.hi;
-  const lo = film.lo;
   const v = new Float64Array(sums.length / 4);
   for (let p = 0, i = 0; p < v.length; p++, i += 4) {
     const count = sums[i + 3];
@@ -120,13 +117,8 @@ function relativeVariance(film: NoiseInput): Float64Array {
       v[p] = -1;
       continue;
     }
-    const mean =
-      (0.2126 * exactValue(hi, lo, i) +
-        0.7152 * exactValue(hi, lo, i + 1) +
-        0.0722 * exactValue(hi, lo, i + 2)) /
-      count;
-    const ss = exactValue(hi, lo, i + 3) - count * mean * mean;
-    v[p] = (ss > 0 ? ss / (count - 1) : 0) / (mean * mean + 0.01);
+    const mean = meanLuminance(film, i, count);
+    v[p] = luminanceVariance(film, i, count, mean) / (mean * mean + 0.01);
   }
   return v;
 }

@@ -36,8 +36,6 @@ export interface NoiseInput {
  */
 export function estimateNoise(film: NoiseInput, stride = 1): number {
   const sums = film.sums;
-  const hi = film.hi;
-  const lo = film.lo;
   const step = Math.max(1, Math.floor(stride)) * 4;
   let sumSe2 = 0;
   let sumMean = 0;
@@ -45,17 +43,37 @@ export function estimateNoise(film: NoiseInput, stride = 1): number {
   for (let i = 0, n = sums.length; i < n; i += step) {
     const count = sums[i + 3];
     if (count < 2) continue;
-    const lumSum =
-      0.2126 * exactValue(hi, lo, i) +
-      0.7152 * exactValue(hi, lo, i + 1) +
-      0.0722 * exactValue(hi, lo, i + 2);
-    const mean = lumSum / count;
-    const ss = exactValue(hi, lo, i + 3) - count * mean * mean;
-    const variance = ss > 0 ? ss / (count - 1) : 0;
-    sumSe2 += variance / count;
+    const mean = meanLuminance(film, i, count);
+    sumSe2 += luminanceVariance(film, i, count, mean) / count;
     sumMean += mean;
     pixels++;
   }
   if (pixels === 0 || !(sumMean > 0)) return NaN;
   return Math.sqrt(sumSe2 / pixels) / (sumMean / pixels);
+}
+
+/** Mean luminance of the pixel whose record starts at plane index i (count ≥ 1 samples). */
+export function meanLuminance(film: NoiseInput, i: number, count: number): number {
+  const hi = film.hi;
+  const lo = film.lo;
+  return (
+    (0.2126 * exactValue(hi, lo, i) +
+      0.7152 * exactValue(hi, lo, i + 1) +
+      0.0722 * exactValue(hi, lo, i + 2)) /
+    count
+  );
+}
+
+/**
+ * Sample variance of the luminance of the pixel at plane index i (count ≥ 2 samples,
+ * mean from meanLuminance), clamped at zero (see the header).
+ */
+export function luminanceVariance(
+  film: NoiseInput,
+  i: number,
+  count: number,
+  mean: number,
+): number {
+  const ss = exactValue(film.hi, film.lo, i + 3) - count * mean * mean;
+  return ss > 0 ? ss / (count - 1) : 0;
 }
