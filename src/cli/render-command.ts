@@ -337,13 +337,8 @@ async function renderPilot(pool: RenderPool): Promise<void> {
  */
 function loadPilot(path: string, identity: FilmIdentity, aux: boolean): Film {
   const { header, film } = readFilmFile(path);
-  const why = explainMismatch(showPath(path), header, 'this render', identity);
+  const why = otherRender(path, header, identity, aux);
   if (why) throw new CliError(`cannot use the pilot: ${why}`);
-  if (hasAux(header) !== aux) {
-    throw new CliError(
-      `cannot use the pilot: ${showPath(path)} ${aux ? 'holds no albedo and normal, and this render records them' : 'holds albedo and normal, and this render does not record them'} (a rejected sample could differ)`,
-    );
-  }
   const r = header.ranges;
   if (r.length !== 1 || r[0][0] !== 0 || r[0][1] !== ADAPTIVE_PILOT) {
     throw new CliError(
@@ -366,6 +361,22 @@ function countNonFinite(values: Float32Array): number {
 }
 
 /**
+ * Why the film at `path` is not of this render (its identity, or albedo and normal where
+ * this render records them or not), or null: what a checkpoint and a pilot must both be.
+ */
+function otherRender(
+  path: string,
+  header: FilmHeader,
+  identity: FilmIdentity,
+  aux: boolean,
+): string | null {
+  const why = explainMismatch(showPath(path), header, 'this render', identity);
+  if (why) return why;
+  if (hasAux(header) === aux) return null;
+  return `${showPath(path)} ${aux ? 'holds no albedo and normal (it was rendered without --aux), and this render records them' : 'holds albedo and normal (rendered with --aux), and this render does not record them: add --aux'}`;
+}
+
+/**
  * The checkpoint to continue from: a film of the same render holding
  * samples [start, n) with n ≤ end. A missing file means no checkpoint was
  * written yet, so the same command line serves for the first run and for
@@ -385,13 +396,8 @@ async function loadCheckpoint(
     return undefined;
   }
   const { header, film } = readFilmFile(path);
-  const why = explainMismatch(showPath(path), header, 'this render', identity);
+  const why = otherRender(path, header, identity, aux);
   if (why) throw new CliError(`cannot resume: ${why}`);
-  if (hasAux(header) !== aux) {
-    throw new CliError(
-      `cannot resume: ${showPath(path)} ${aux ? 'holds no albedo and normal (it was rendered without --aux), and this render records them' : 'holds albedo and normal (rendered with --aux), and this render does not record them: add --aux'}`,
-    );
-  }
   const r = header.ranges;
   if (r.length === 0) return { film, end: start, stats: header.stats };
   if (r.length !== 1 || r[0][0] !== start) {
