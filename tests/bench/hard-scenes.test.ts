@@ -7,26 +7,22 @@ import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { afterAll, describe, expect, it } from 'vitest';
-import {
-  Film,
-  PathTracer,
-  RenderStats,
-  compileScene,
-  decodePfm,
-  loadScene,
-  type Scene,
-} from '../../src/core/index.ts';
+import { compileScene, decodePfm, loadScene, type Scene } from '../../src/core/index.ts';
+import { nodeSceneFiles } from '../../src/cli/scene-files.ts';
 import { HARD_SCENES } from '../../bench/hard-scenes.mjs';
+import { referenceMean } from '../helpers/render.ts';
+import { renderReplicas } from '../validation/replicas.ts';
 
 const dir = mkdtempSync(path.join(tmpdir(), 'pathwise-hard-scenes-'));
 afterAll(() => rmSync(dir, { recursive: true, force: true }));
 
 /** The scene as the command line loads it: its mesh file (dense.ply) read from `dir`. */
 function load(json: Record<string, unknown>): Promise<Scene> {
-  return loadScene(JSON.stringify(json), {
-    read: async (file: string) => new Uint8Array(readFileSync(path.join(dir, file))),
-  });
+  return loadScene(JSON.stringify(json), nodeSceneFiles(dir));
 }
+
+const lum = (rgb: ArrayLike<number>, i = 0) =>
+  0.2126 * rgb[i] + 0.7152 * rgb[i + 1] + 0.0722 * rgb[i + 2];
 
 describe.each(Object.keys(HARD_SCENES))('hard scene %s', (name) => {
   const json = HARD_SCENES[name](dir);
@@ -54,30 +50,21 @@ describe.each(Object.keys(HARD_SCENES))('hard scene %s', (name) => {
   });
 
   it("matches its reference's image mean in a short render of the scene as generated", async () => {
-    const ref = decodePfm(readFileSync(`bench/results/hard/${name}.pfm`));
-    const lum = (x: Float32Array, i: number) =>
-      0.2126 * x[i] + 0.7152 * x[i + 1] + 0.0722 * x[i + 2];
-    let refMean = 0;
-    for (let i = 0; i < ref.rgb.length; i += 3) refMean += lum(ref.rgb, i) / (ref.rgb.length / 3);
+    const refMean = lum(referenceMean(decodePfm(readFileSync(`bench/results/hard/${name}.pfm`))));
     // 8 seeds × 16 spp at 32×24 (the same camera: its image mean is the reference's).
     const scene = await load(json);
-    const compiled = compileScene(scene);
     const [w, h] = [32, 24];
-    const means = [1, 2, 3, 4, 5, 6, 7, 8].map((seed) => {
-      const tracer = new PathTracer(compiled, {
-        width: w,
-        height: h,
-        maxBounces: scene.settings.maxBounces,
-        seed,
-        camera: scene.camera,
-      });
-      const film = new Film(w, h);
-      tracer.renderRows(film, 0, h, 0, 16, new RenderStats());
-      const m = film.mean();
-      let s = 0;
-      for (let i = 0; i < m.length; i += 3) s += lum(m, i) / (w * h);
-      return s;
-    });
+    const reps = renderReplicas(
+      scene,
+      compileScene(scene),
+      { estimator: 'nee-mis', sampler: 'sobol', spp: 16 },
+      [1, 2, 3, 4, 5, 6, 7, 8],
+      w,
+      h,
+      [{ name: 'image', x0: 0, y0: 0, x1: w, y1: h }],
+    );
+    expect(reps.stats.rejected).toBe(0);
+    const means = Array.from({ length: reps.seeds }, (_, k) => lum(reps.means, 3 * k));
     const mean = means.reduce((a, b) => a + b) / means.length;
     const se = Math.sqrt(
       means.reduce((a, x) => a + (x - mean) ** 2, 0) / (means.length - 1) / means.length,

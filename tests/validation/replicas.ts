@@ -122,35 +122,13 @@ export function renderReplicas(
     if (config.adaptive) {
       renderAdaptive(tracer, width, height, config.spp, stats, pixel, regions, samples);
     } else {
+      maxSample = Math.max(
+        maxSample,
+        renderUniform(tracer, width, height, config.spp, stats, pixel),
+      );
       for (let ri = 0; ri < R; ri++) {
         const reg = regions[ri];
         samples[ri] += (reg.x1 - reg.x0) * (reg.y1 - reg.y0) * config.spp;
-      }
-    }
-    for (let y = 0; y < height && !config.adaptive; y++) {
-      for (let x = 0; x < width; x++) {
-        let r = 0,
-          g = 0,
-          b = 0;
-        for (let s = 0; s < config.spp; s++) {
-          tracer.trace(x, y, s, stats);
-          const lr = tracer.lr,
-            lg = tracer.lg,
-            lb = tracer.lb;
-          if (!(Number.isFinite(lr) && Number.isFinite(lg) && Number.isFinite(lb))) {
-            // The film would reject it; count it and let the test fail on the count.
-            stats.rejected++;
-            continue;
-          }
-          r += lr;
-          g += lg;
-          b += lb;
-          maxSample = Math.max(maxSample, lr, lg, lb);
-        }
-        const p = (y * width + x) * 3;
-        pixel[p] = r / config.spp;
-        pixel[p + 1] = g / config.spp;
-        pixel[p + 2] = b / config.spp;
       }
     }
     for (let ri = 0; ri < R; ri++) {
@@ -182,6 +160,48 @@ export function renderReplicas(
     maxSample,
     stats,
   };
+}
+
+/**
+ * One replica with every pixel's samples [0, spp): each pixel's mean goes to `pixel`. A
+ * non-finite sample is left out and counted as the film would (the test then fails on the
+ * count). Returns the largest sample value (any channel).
+ */
+function renderUniform(
+  tracer: PathTracer,
+  width: number,
+  height: number,
+  spp: number,
+  stats: RenderStats,
+  pixel: Float64Array,
+): number {
+  let maxSample = 0;
+  for (let y = 0; y < height; y++) {
+    for (let x = 0; x < width; x++) {
+      let r = 0,
+        g = 0,
+        b = 0;
+      for (let s = 0; s < spp; s++) {
+        tracer.trace(x, y, s, stats);
+        const lr = tracer.lr,
+          lg = tracer.lg,
+          lb = tracer.lb;
+        if (!(Number.isFinite(lr) && Number.isFinite(lg) && Number.isFinite(lb))) {
+          stats.rejected++;
+          continue;
+        }
+        r += lr;
+        g += lg;
+        b += lb;
+        maxSample = Math.max(maxSample, lr, lg, lb);
+      }
+      const p = (y * width + x) * 3;
+      pixel[p] = r / spp;
+      pixel[p + 1] = g / spp;
+      pixel[p + 2] = b / spp;
+    }
+  }
+  return maxSample;
 }
 
 /**

@@ -13,18 +13,7 @@ import {
   adaptiveCount,
   buildSampleMap,
 } from '../../../src/core/film/adaptive.ts';
-
-/** Deterministic PRNG for test data (mulberry32). */
-function rng(seed: number): () => number {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) >>> 0;
-    let t = a;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
+import { mulberry32 as rng } from '../../helpers/faults.ts';
 
 /** A pilot film whose pixel (x, y) has ADAPTIVE_PILOT grey samples of spread noise(x, y). */
 function pilotFilm(

@@ -7,18 +7,7 @@ import { describe, expect, it } from 'vitest';
 import { Film, estimateNoise } from '../../../src/core/index.ts';
 import { LIMB, MAX_COUNT, SAMPLE_LIMIT, SCALE } from '../../../src/core/film/exact-sum.ts';
 import { LUM2_LIMIT } from '../../../src/core/film/film.ts';
-
-/** Deterministic PRNG for test data (mulberry32). */
-function rng(seed: number): () => number {
-  let a = seed >>> 0;
-  return () => {
-    a = (a + 0x6d2b79f5) >>> 0;
-    let t = a;
-    t = Math.imul(t ^ (t >>> 15), t | 1);
-    t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-    return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-  };
-}
+import { mulberry32 as rng } from '../../helpers/faults.ts';
 
 /** Samples over many magnitudes, a few negative, a few fireflies, as the tracer can make. */
 function sampleValues(count: number, seed: number): number[] {
