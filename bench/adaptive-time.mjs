@@ -10,7 +10,7 @@
 //   npm run build:cli
 //   node bench/adaptive-time.mjs [--scenes cornell,mirror,spheres,metal-sky]
 //        [--threads 2] [--max-spp 4096] [--seeds 1,2]
-import { logLogCrossing, median, readPfm, relMse, renderOnce, ROOT } from './lib.mjs';
+import { median, readPfm, relMse, renderOnce, ROOT, timeToError } from './lib.mjs';
 import { mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
@@ -54,20 +54,6 @@ function sweep(scene, ref, adaptive, seed) {
   return points;
 }
 
-/**
- * Seconds to `target`: the log-log crossing, or, where the sweep ended above it, the last
- * render's time scaled as error ∝ 1/time ({ extrapolated: true }).
- */
-function timeTo(points, target) {
-  const crossing = logLogCrossing(
-    points.map((p) => [p.seconds, p.error]),
-    target,
-  );
-  if (crossing !== null) return { seconds: crossing, extrapolated: false };
-  const last = points.at(-1);
-  return { seconds: (last.seconds * last.error) / target, extrapolated: true };
-}
-
 const rows = [];
 for (const scene of scenes) {
   const ref = readPfm(path.join(ROOT, 'tests/references', `${scene}.pfm`));
@@ -77,8 +63,8 @@ for (const scene of scenes) {
     const u = sweep(scene, ref, false, seed);
     const a = sweep(scene, ref, true, seed);
     TARGETS.forEach((t, i) => {
-      const tu = timeTo(u, t);
-      const ta = timeTo(a, t);
+      const tu = timeToError(u, t);
+      const ta = timeToError(a, t);
       cells.uniform[i].push(tu);
       cells.adaptive[i].push(ta);
       ratios[i].push(tu.seconds / ta.seconds);

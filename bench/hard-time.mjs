@@ -18,7 +18,7 @@ import { execFileSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
-import { ROOT, logLogCrossing, readPfm, relMse, renderOnce } from './lib.mjs';
+import { ROOT, readPfm, relMse, renderOnce, timeToError } from './lib.mjs';
 import { findNative, nativeOnce } from './native.mjs';
 import { manyLights } from './scenes.mjs';
 import { HARD_SCENES } from './hard-scenes.mjs';
@@ -78,15 +78,12 @@ function sweep(render) {
 
 function timeTo(points, target) {
   const first = points.find((p) => p.error <= target);
-  const interp = logLogCrossing(
-    points.map((p) => [p.seconds, p.error]),
-    target,
-  );
+  const t = timeToError(points, target);
   return first
     ? `${first.seconds.toFixed(1)} s (${first.spp} spp)` +
-        (interp !== null ? `, ${interp.toFixed(1)} s interpolated` : '')
+        (t.extrapolated ? '' : `, ${t.seconds.toFixed(1)} s interpolated`)
     : `not in ${points.at(-1).spp} spp (${points.at(-1).error.toExponential(1)}; ` +
-        `≈ ${((points.at(-1).seconds * points.at(-1).error) / target).toFixed(0)} s extrapolated as 1/spp)`;
+        `≈ ${t.seconds.toFixed(0)} s extrapolated as 1/spp)`;
 }
 
 const rows = [];

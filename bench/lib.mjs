@@ -236,6 +236,21 @@ export function logLogCrossing(points, target) {
   return null;
 }
 
+/**
+ * Seconds to relMSE `target` of a sweep of renders ({ seconds, error }, by time): the
+ * log-log crossing, or, where the sweep ended above it, the last render's time scaled as
+ * error ∝ 1/time ({ extrapolated: true }).
+ */
+export function timeToError(points, target) {
+  const crossing = logLogCrossing(
+    points.map((p) => [p.seconds, p.error]),
+    target,
+  );
+  if (crossing !== null) return { seconds: crossing, extrapolated: false };
+  const last = points.at(-1);
+  return { seconds: (last.seconds * last.error) / target, extrapolated: true };
+}
+
 // ---------------------------------------------------------------- SVG plots
 
 const COLORS = ['#1f77b4', '#d62728', '#2ca02c', '#ff7f0e', '#9467bd', '#8c564b', '#e377c2'];
