@@ -24,7 +24,7 @@ import {
   type DenoiseReply,
   type DenoiseRequest,
 } from '../../workers/browser/denoise-protocol.ts';
-import { planTiles, TILE_OVERLAP, type TileOptions, type TilePlan } from '../core/denoise/tiles.ts';
+import { planTiles, type TileOptions, type TilePlan } from '../core/denoise/tiles.ts';
 import type { FilmJob } from './film-job.ts';
 import { startModuleWorker } from './worker-source.ts';
 
@@ -44,21 +44,15 @@ export function denoiseWorkerCount(cores: number): number {
 }
 
 /**
- * The tile options for a w × h image and `workers` workers: OIDN's tiles of at most
- * BROWSER_TILE_PIXELS for one worker; with more, tiles small enough that each worker
- * gets one, but never under 4 × the overlap a side (smaller tiles are mostly overlap).
+ * The tile options for every image: OIDN's tiles of at most BROWSER_TILE_PIXELS, the
+ * same whatever the number of workers. The Winograd convolution's bits depend on the tile
+ * a pixel is computed in (src/core/denoise/winograd.ts), so a plan that split the image
+ * for more workers would give other bits; workers share out the tiles of this one plan.
  */
-export function denoiseTileOptions(width: number, height: number, workers: number): TileOptions {
-  if (workers <= 1) {
-    return { maxTilePixels: BROWSER_TILE_PIXELS, minTileSide: BROWSER_MIN_TILE_SIDE };
-  }
-  const minSide = 4 * TILE_OVERLAP;
-  const share = Math.ceil((width * height) / workers);
-  return {
-    maxTilePixels: Math.min(BROWSER_TILE_PIXELS, Math.max(minSide * minSide, share)),
-    minTileSide: minSide,
-  };
-}
+export const DENOISE_TILE_OPTIONS: TileOptions = {
+  maxTilePixels: BROWSER_TILE_PIXELS,
+  minTileSide: BROWSER_MIN_TILE_SIDE,
+};
 
 /** A denoised picture, as the display takes film sums: RGBA with A = 1. */
 export interface DenoisedImage {
@@ -162,7 +156,7 @@ export class ViewDenoiser {
 
   private start(job: FilmJob, spp: number): void {
     const { width, height, film } = job;
-    const tileOptions = denoiseTileOptions(width, height, this.maxWorkers);
+    const tileOptions = DENOISE_TILE_OPTIONS;
     const plan = planTiles(width, height, tileOptions);
     const lanes = Math.min(this.maxWorkers, plan.tiles.length);
     const workers = this.ensureWorkers(lanes);

@@ -124,7 +124,7 @@ describe('<pathwise-view denoise> (Chromium)', () => {
     });
   }
 
-  it('the same bits from 1 and 2 denoise workers (a 512×384 film: one tile, or two overlapped ones)', async () => {
+  it('the same bits from 1 and 2 denoise workers (a 768×512 film: two overlapped tiles, on one worker or one each)', async () => {
     const { url } = isolatedServer!;
     const page = await browser.newPage();
     const errors: string[] = [];
@@ -138,7 +138,7 @@ describe('<pathwise-view denoise> (Chromium)', () => {
           const canvas = document.createElement('canvas');
           document.body.append(canvas);
           const c = createPathTracer(canvas, {
-            src: '/scenes/cornell.json', width: 512, height: 384, spp: 1, seed: 4,
+            src: '/scenes/cornell.json', width: 768, height: 512, spp: 1, seed: 4,
             denoise: true, denoiseWorkers: workers,
           });
           c.addEventListener('error', (e) => reject(new Error(e.detail.message)));
@@ -159,7 +159,7 @@ describe('<pathwise-view denoise> (Chromium)', () => {
         for (let i = 0; i < f.length; i++) if (!Number.isFinite(f[i])) finite = false;
         return { length: one.length, two: diff(one, two), finite };
       })()`)) as { length: number; two: number; finite: boolean };
-      expect(r.length).toBe(512 * 384 * 4);
+      expect(r.length).toBe(768 * 512 * 4);
       expect(r.finite).toBe(true);
       expect(r.two).toBe(0);
       expect(errors).toEqual([]);

@@ -14,6 +14,12 @@ import { conv3x3Relu } from './conv3x3.ts';
 import { allocPlanes, type Planes } from './planes.ts';
 import { maxPool2x2, upsample2x } from './pool-upsample.ts';
 import type { ConvLayer, UNetWeights } from './unet-weights.ts';
+import {
+  allocWinogradScratch,
+  winogradConv3x3Relu,
+  winogradFits,
+  type WinogradScratch,
+} from './winograd.ts';
 
 /** Spatial alignment of a tile: four 2× poolings. */
 export const TILE_ALIGNMENT = 16;
@@ -27,6 +33,7 @@ export interface UNetWorkspace {
   readonly output: Planes;
   readonly x: readonly (readonly [Planes, Planes])[];
   readonly pool: readonly Planes[];
+  readonly winograd: WinogradScratch;
 }
 
 export function allocUNetWorkspace(weights: UNetWeights, h: number, w: number): UNetWorkspace {
@@ -58,7 +65,11 @@ export function allocUNetWorkspace(weights: UNetWeights, h: number, w: number): 
     allocPlanes(out('enc_conv4'), h >> 4, w >> 4),
   ];
   const input = allocPlanes(weights.inputChannels, h, w);
-  return { h, w, input, output: x[0]![1], x, pool };
+  const winograd = allocWinogradScratch(
+    Math.max(...weights.layers.map((l) => l.inChannels)),
+    Math.max(...weights.layers.map((l) => l.outChannels)),
+  );
+  return { h, w, input, output: x[0]![1], x, pool, winograd };
 }
 
 function byName(weights: UNetWeights): (n: string) => ConvLayer {
@@ -102,49 +113,55 @@ export function runUNet(weights: UNetWeights, ws: UNetWorkspace, stop?: () => bo
     readonly [Planes, Planes],
   ];
   const [p1, p2, p3, p4] = ws.pool as [Planes, Planes, Planes, Planes];
+  // Winograd where the outputs come in fours (every layer but dec_conv0's 3); the direct
+  // convolution for the rest, where the transforms would cost more than they save.
+  const conv = (a: Planes, b: Planes | null, layer: ConvLayer, dst: Planes): void =>
+    winogradFits(layer)
+      ? winogradConv3x3Relu(a, b, layer, dst, ws.winograd)
+      : conv3x3Relu(a, b, layer, dst);
   const steps: (() => void)[] = [
     // Encoder.
-    () => conv3x3Relu(ws.input, null, e0, x0[0]),
-    () => conv3x3Relu(x0[0], null, e1, x0[1]),
+    () => conv(ws.input, null, e0, x0[0]),
+    () => conv(x0[0], null, e1, x0[1]),
     () => {
       maxPool2x2(x0[1], p1);
-      conv3x3Relu(p1, null, e2, x1[0]);
+      conv(p1, null, e2, x1[0]);
     },
     () => {
       maxPool2x2(x1[0], p2);
-      conv3x3Relu(p2, null, e3, x2[0]);
+      conv(p2, null, e3, x2[0]);
     },
     () => {
       maxPool2x2(x2[0], p3);
-      conv3x3Relu(p3, null, e4, x3[0]);
+      conv(p3, null, e4, x3[0]);
     },
     () => {
       maxPool2x2(x3[0], p4);
-      conv3x3Relu(p4, null, e5a, x4[0]);
-      conv3x3Relu(x4[0], null, e5b, x4[1]);
+      conv(p4, null, e5a, x4[0]);
+      conv(x4[0], null, e5b, x4[1]);
     },
     // Decoder: upsample, then convolve [upsampled, skip].
     () => {
       upsample2x(x4[1], x3[0]);
-      conv3x3Relu(x3[0], p3, d4a, x3[1]);
-      conv3x3Relu(x3[1], null, d4b, x3[0]);
+      conv(x3[0], p3, d4a, x3[1]);
+      conv(x3[1], null, d4b, x3[0]);
     },
     () => {
       upsample2x(x3[0], x2[0]);
-      conv3x3Relu(x2[0], p2, d3a, x2[1]);
+      conv(x2[0], p2, d3a, x2[1]);
     },
-    () => conv3x3Relu(x2[1], null, d3b, x2[0]),
+    () => conv(x2[1], null, d3b, x2[0]),
     () => {
       upsample2x(x2[0], x1[0]);
-      conv3x3Relu(x1[0], p1, d2a, x1[1]);
+      conv(x1[0], p1, d2a, x1[1]);
     },
-    () => conv3x3Relu(x1[1], null, d2b, x1[0]),
+    () => conv(x1[1], null, d2b, x1[0]),
     () => {
       upsample2x(x1[0], x0[0]);
-      conv3x3Relu(x0[0], ws.input, d1a, x0[1]);
+      conv(x0[0], ws.input, d1a, x0[1]);
     },
-    () => conv3x3Relu(x0[1], null, d1b, x0[0]),
-    () => conv3x3Relu(x0[0], null, d0, x0[1]),
+    () => conv(x0[1], null, d1b, x0[0]),
+    () => conv(x0[0], null, d0, x0[1]),
   ];
   for (const step of steps) {
     if (stop?.()) return false;

@@ -1,9 +1,12 @@
 /**
- * Tiling and threads change no bit. A tiny U-Net (the RT wiring, 4 channels a layer, random
- * weights: tests/helpers/tza.ts) keeps this cheap; the property does not depend on the
- * widths. (1) An image cut into OIDN's overlapped tiles gives the bits of the same image
- * in one tile: the overlap covers the receptive field and tile origins keep the pooling
- * grid. (2) denoiseInWorkers with 1, 2 and 4 worker threads gives the same bits.
+ * Tiling changes only rounding; threads change no bit. A tiny U-Net (the RT wiring, 4
+ * channels a layer, random weights: tests/helpers/tza.ts) keeps this cheap; the
+ * properties do not depend on the widths. (1) An image cut into OIDN's overlapped tiles
+ * agrees with the same image in one tile to float rounding: the overlap covers the
+ * receptive field and tile origins keep the pooling grid, but a Winograd block's rounding
+ * depends on its whole 6×6 window and on where the block grid falls (winograd.ts), so the
+ * bits may differ. (2) denoiseInWorkers with 1, 2 and 4 worker threads gives the same
+ * bits: the tile plan does not depend on the thread count.
  */
 import { pathToFileURL } from 'node:url';
 import { describe, expect, it } from 'vitest';
@@ -34,15 +37,22 @@ const tza = tinyUNetTza(9, 4, 11);
 const tiles = { maxTilePixels: 400 * 400, minTileSide: 0 }; // 2 × 2 tiles of 384²
 
 describe('denoiser tiles and threads', () => {
-  it('overlapped tiles give the bits of one tile', () => {
+  it('overlapped tiles agree with one tile to float rounding', () => {
     expect(planTiles(W, H, tiles).tiles.length).toBe(4);
     const weights = unetWeights(parseTza(tza));
     const whole = denoise(images, weights);
     const tiled = denoise(images, weights, tiles);
-    let differ = 0;
-    for (let i = 0; i < whole.length; i++) if (whole[i] !== tiled[i]) differ++;
-    expect(differ).toBe(0);
-    expect(whole.some((v) => v > 0)).toBe(true);
+    let worst = 0;
+    let peak = 0;
+    for (let i = 0; i < whole.length; i++) {
+      worst = Math.max(worst, Math.abs(whole[i]! - tiled[i]!)); // NaN fails below
+      peak = Math.max(peak, Math.abs(whole[i]!));
+    }
+    // Rounding of float32 sums through 16 layers: a few ulps of the peak. A tile cut in
+    // the wrong place (overlap short of the receptive field, a pooling grid shifted)
+    // changes values by the size of the image's detail, orders of magnitude more.
+    expect(worst).toBeLessThan(1e-5 * peak);
+    expect(peak).toBeGreaterThan(0);
   });
 
   it('1, 2 and 4 worker threads give the same bits', async () => {

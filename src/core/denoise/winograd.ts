@@ -1,0 +1,411 @@
+/**
+ * The U-Net's 3×3 convolutions by Winograd's minimal filtering F(4×4, 3×3) (Lavin and
+ * Gray 2016, "Fast Algorithms for Convolutional Neural Networks", §4–5): each 4×4 block
+ * of outputs is Aᵀ[(G g Gᵀ) ⊙ (Bᵀ d B)]A over the 6×6 input window d. Per block and
+ * pair of channels that is 36 multiply-adds instead of the direct convolution's 144, so
+ * the layer becomes 36 small matrix products (tiles × in-channels by in-channels ×
+ * out-channels, one per point of the 6×6 transform domain) between two cheap linear
+ * transforms. Scalar JavaScript has no SIMD (docs/denoise.md, Speed): fewer
+ * multiplications is the lever left.
+ *
+ * Precision: the transforms and the products run in double, the input transform and the
+ * products are kept in Float64Array scratch, and only the transformed weights are stored
+ * as float32 (a relative rounding of 2⁻²⁴ each). The result differs from the direct
+ * convolution's by rounding only (tests/unit/core/denoise-winograd.test.ts).
+ *
+ * Determinism: a pixel's value depends only on its 4×4 block's 6×6 input window, the
+ * weights and a fixed order of additions, never on the block of tiles it is computed in
+ * or the thread; tile positions are fixed by the feature map, as the direct
+ * convolution's rows were.
+ */
+import type { Planes } from './planes.ts';
+import type { ConvLayer } from './unet-weights.ts';
+
+/** Tiles transformed and multiplied together (64 ran 8 % faster than 32 in the products). */
+export const WINOGRAD_TILES = 64;
+
+/** Scratch for `winogradConv3x3Relu`, sized for the widest layer it will see. */
+export interface WinogradScratch {
+  /** Transformed inputs: [36][inChannels][WINOGRAD_TILES]. */
+  readonly v: Float64Array;
+  /** Products: [36][outChannels][WINOGRAD_TILES]. */
+  readonly m: Float64Array;
+  /** One 6×6 window between the transform's two passes. */
+  readonly t: Float64Array;
+}
+
+/**
+ * Floats between one transform point's matrix and the next: the matrix plus one cache
+ * line. Unpadded, the 36 values of one tile lay a multiple of 4 KB apart and fell into
+ * the same L1 set.
+ */
+function pointStride(channels: number): number {
+  return channels * WINOGRAD_TILES + 8;
+}
+
+export function allocWinogradScratch(maxIn: number, maxOut: number): WinogradScratch {
+  return {
+    v: new Float64Array(36 * pointStride(maxIn)),
+    m: new Float64Array(36 * pointStride(maxOut)),
+    t: new Float64Array(36),
+  };
+}
+
+/** Whether a layer goes through Winograd: out-channels in fours (dec_conv0's 3 does not). */
+export function winogradFits(layer: ConvLayer): boolean {
+  return layer.outChannels % 4 === 0;
+}
+
+const transformed = new WeakMap<ConvLayer, Float32Array>();
+
+/**
+ * U = G g Gᵀ for every (out, in) pair, laid out [36][inChannels][outChannels] so that the
+ * product's inner loop (over in-channels) reads four adjacent out-channels. Computed once
+ * per layer and thread.
+ */
+export function winogradWeights(layer: ConvLayer): Float32Array {
+  let u = transformed.get(layer);
+  if (u) return u;
+  const cin = layer.inChannels;
+  const cout = layer.outChannels;
+  const w = layer.weight;
+  u = new Float32Array(36 * cin * cout);
+  const gg = new Float64Array(18);
+  for (let o = 0; o < cout; o++)
+    for (let c = 0; c < cin; c++) {
+      const q = (o * cin + c) * 9;
+      // G g: 6×3, one column of g at a time.
+      for (let j = 0; j < 3; j++) {
+        const g0 = w[q + j]!,
+          g1 = w[q + 3 + j]!,
+          g2 = w[q + 6 + j]!;
+        gg[j] = g0 / 4;
+        gg[3 + j] = -(g0 + g1 + g2) / 6;
+        gg[6 + j] = -(g0 - g1 + g2) / 6;
+        gg[9 + j] = g0 / 24 + g1 / 12 + g2 / 6;
+        gg[12 + j] = g0 / 24 - g1 / 12 + g2 / 6;
+        gg[15 + j] = g2;
+      }
+      // (G g) Gᵀ: 6×6.
+      for (let i = 0; i < 6; i++) {
+        const g0 = gg[i * 3]!,
+          g1 = gg[i * 3 + 1]!,
+          g2 = gg[i * 3 + 2]!;
+        const row = [
+          g0 / 4,
+          -(g0 + g1 + g2) / 6,
+          -(g0 - g1 + g2) / 6,
+          g0 / 24 + g1 / 12 + g2 / 6,
+          g0 / 24 - g1 / 12 + g2 / 6,
+          g2,
+        ];
+        for (let j = 0; j < 6; j++) u[((i * 6 + j) * cin + c) * cout + o] = row[j]!;
+      }
+    }
+  transformed.set(layer, u);
+  return u;
+}
+
+/** dst ← ReLU(conv3x3([a, b], layer)), as `conv3x3Relu`; the layer must `winogradFits`. */
+export function winogradConv3x3Relu(
+  a: Planes,
+  b: Planes | null,
+  layer: ConvLayer,
+  dst: Planes,
+  scratch: WinogradScratch,
+): void {
+  const cin = a.c + (b ? b.c : 0);
+  const cout = layer.outChannels;
+  if (cin !== layer.inChannels)
+    throw new RangeError(`${layer.name}: ${cin} input channels, expected ${layer.inChannels}`);
+  if (cout > dst.capacity)
+    throw new RangeError(`${layer.name}: output has room for ${dst.capacity} channels`);
+  if (a.h !== dst.h || a.w !== dst.w || (b && (b.h !== dst.h || b.w !== dst.w)))
+    throw new RangeError(`${layer.name}: inputs and output differ in size`);
+  if (!winogradFits(layer)) throw new RangeError(`${layer.name}: ${cout} outputs, not in fours`);
+  if (scratch.v.length < 36 * pointStride(cin) || scratch.m.length < 36 * pointStride(cout))
+    throw new RangeError(`${layer.name}: Winograd scratch too small`);
+  dst.c = cout;
+  const u = winogradWeights(layer);
+  const tilesX = (dst.w + 3) >> 2;
+  const tiles = tilesX * ((dst.h + 3) >> 2);
+  for (let t0 = 0; t0 < tiles; t0 += WINOGRAD_TILES) {
+    const n = Math.min(WINOGRAD_TILES, tiles - t0);
+    for (let c = 0; c < cin; c++) {
+      const fromA = c < a.c;
+      const src = fromA ? a : b!;
+      inputTransform(src, fromA ? c : c - a.c, c, cin, t0, n, tilesX, scratch);
+    }
+    products(scratch.v, u, scratch.m, cin, cout, n);
+    for (let o = 0; o < cout; o++)
+      outputTransform(scratch, o, cout, layer.bias[o]!, dst, t0, n, tilesX);
+  }
+}
+
+/**
+ * V[ξ][c][t] ← (Bᵀ d B)[ξ] for tiles t0 … t0 + n − 1 of channel `ch` of `src`.
+ */
+function inputTransform(
+  src: Planes,
+  ch: number,
+  c: number,
+  cin: number,
+  t0: number,
+  n: number,
+  tilesX: number,
+  s: WinogradScratch,
+): void {
+  const { h, w, stride } = src;
+  const data = src.data;
+  const base = ch * src.plane;
+  const v = s.v;
+  const tmp = s.t;
+  const xiStride = pointStride(cin);
+  const vc = c * WINOGRAD_TILES;
+  for (let k = 0; k < n; k++) {
+    const t = t0 + k;
+    const ty = (t / tilesX) | 0;
+    const tx = t - ty * tilesX;
+    // The window's top-left, in the padded plane: rows 4ty … 4ty + 5, columns 4tx … 4tx + 5.
+    const r0 = ty << 2;
+    const c0 = tx << 2;
+    const inside = r0 + 5 <= h + 1 && c0 + 5 <= w + 1;
+    // Pass 1 (Bᵀ d), column by column.
+    for (let j = 0; j < 6; j++) {
+      let d0: number, d1: number, d2: number, d3: number, d4: number, d5: number;
+      const p = base + r0 * stride + c0 + j;
+      if (inside) {
+        d0 = data[p]!;
+        d1 = data[p + stride]!;
+        d2 = data[p + 2 * stride]!;
+        d3 = data[p + 3 * stride]!;
+        d4 = data[p + 4 * stride]!;
+        d5 = data[p + 5 * stride]!;
+      } else {
+        const okX = c0 + j <= w + 1;
+        d0 = okX && r0 <= h + 1 ? data[p]! : 0;
+        d1 = okX && r0 + 1 <= h + 1 ? data[p + stride]! : 0;
+        d2 = okX && r0 + 2 <= h + 1 ? data[p + 2 * stride]! : 0;
+        d3 = okX && r0 + 3 <= h + 1 ? data[p + 3 * stride]! : 0;
+        d4 = okX && r0 + 4 <= h + 1 ? data[p + 4 * stride]! : 0;
+        d5 = okX && r0 + 5 <= h + 1 ? data[p + 5 * stride]! : 0;
+      }
+      tmp[j] = 4 * d0 - 5 * d2 + d4;
+      tmp[6 + j] = d3 + d4 - 4 * (d1 + d2);
+      tmp[12 + j] = d4 - d3 + 4 * (d1 - d2);
+      tmp[18 + j] = d4 - d2 + 2 * (d3 - d1);
+      tmp[24 + j] = d4 - d2 - 2 * (d3 - d1);
+      tmp[30 + j] = 4 * d1 - 5 * d3 + d5;
+    }
+    // Pass 2 (… B), row by row, into V.
+    const o = vc + k;
+    for (let i = 0; i < 6; i++) {
+      const e0 = tmp[i * 6]!,
+        e1 = tmp[i * 6 + 1]!,
+        e2 = tmp[i * 6 + 2]!,
+        e3 = tmp[i * 6 + 3]!,
+        e4 = tmp[i * 6 + 4]!,
+        e5 = tmp[i * 6 + 5]!;
+      const q = o + i * 6 * xiStride;
+      v[q] = 4 * e0 - 5 * e2 + e4;
+      v[q + xiStride] = e3 + e4 - 4 * (e1 + e2);
+      v[q + 2 * xiStride] = e4 - e3 + 4 * (e1 - e2);
+      v[q + 3 * xiStride] = e4 - e2 + 2 * (e3 - e1);
+      v[q + 4 * xiStride] = e4 - e2 - 2 * (e3 - e1);
+      v[q + 5 * xiStride] = 4 * e1 - 5 * e3 + e5;
+    }
+  }
+}
+
+/**
+ * M[ξ][o][t] = Σ_c V[ξ][c][t] U[ξ][c][o] for the 36 points ξ. The inner loop runs over the
+ * tiles with a block of 4 in-channels × 8 out-channels of U held in locals (V8 keeps the
+ * ones that do not fit in registers on the stack, read without bounds checks): 4 loads and
+ * 8 read-modify-writes per 32 multiply-adds. That ran at 4.9 GMAC/s on the 2-core
+ * machine, as fast as the direct convolution, where 4 tiles × 4 out-channels summed in
+ * registers (8 loads per 16) ran at 3.1. Leftover out-channels go 4 at a time, leftover
+ * in-channels one at a time. The sum for each M is taken in a fixed order: in-channel
+ * blocks in turn, four products inside a block.
+ */
+function products(
+  v: Float64Array,
+  u: Float32Array,
+  m: Float64Array,
+  cin: number,
+  cout: number,
+  n: number,
+): void {
+  const T = WINOGRAD_TILES;
+  m.fill(0, 0, 36 * pointStride(cout));
+  for (let xi = 0; xi < 36; xi++) {
+    const vb = xi * pointStride(cin);
+    const ub = xi * cin * cout;
+    const mb = xi * pointStride(cout);
+    let o = 0;
+    for (; o + 8 <= cout; o += 8) {
+      let c = 0;
+      for (; c + 4 <= cin; c += 4)
+        block4x8(v, u, m, vb + c * T, ub + c * cout + o, mb + o * T, cout, n);
+      for (; c < cin; c++) block1xK(v, u, m, vb + c * T, ub + c * cout + o, mb + o * T, 8, n);
+    }
+    for (; o < cout; o += 4)
+      for (let c = 0; c < cin; c++)
+        block1xK(v, u, m, vb + c * T, ub + c * cout + o, mb + o * T, 4, n);
+  }
+}
+
+/** M[o … o + 7][t] += Σ over 4 in-channels c of V[c][t] U[c][o]. */
+function block4x8(
+  v: Float64Array,
+  u: Float32Array,
+  m: Float64Array,
+  p0: number,
+  q: number,
+  k0: number,
+  cout: number,
+  n: number,
+): void {
+  const T = WINOGRAD_TILES;
+  const a0 = u[q]!,
+    a1 = u[q + 1]!,
+    a2 = u[q + 2]!,
+    a3 = u[q + 3]!,
+    a4 = u[q + 4]!,
+    a5 = u[q + 5]!,
+    a6 = u[q + 6]!,
+    a7 = u[q + 7]!;
+  const r = q + cout;
+  const b0 = u[r]!,
+    b1 = u[r + 1]!,
+    b2 = u[r + 2]!,
+    b3 = u[r + 3]!,
+    b4 = u[r + 4]!,
+    b5 = u[r + 5]!,
+    b6 = u[r + 6]!,
+    b7 = u[r + 7]!;
+  const s = r + cout;
+  const c0 = u[s]!,
+    c1 = u[s + 1]!,
+    c2 = u[s + 2]!,
+    c3 = u[s + 3]!,
+    c4 = u[s + 4]!,
+    c5 = u[s + 5]!,
+    c6 = u[s + 6]!,
+    c7 = u[s + 7]!;
+  const w = s + cout;
+  const d0 = u[w]!,
+    d1 = u[w + 1]!,
+    d2 = u[w + 2]!,
+    d3 = u[w + 3]!,
+    d4 = u[w + 4]!,
+    d5 = u[w + 5]!,
+    d6 = u[w + 6]!,
+    d7 = u[w + 7]!;
+  for (let t = 0; t < n; t++) {
+    const p = p0 + t;
+    const x0 = v[p]!,
+      x1 = v[p + T]!,
+      x2 = v[p + 2 * T]!,
+      x3 = v[p + 3 * T]!;
+    const k = k0 + t;
+    m[k] = m[k]! + (x0 * a0 + x1 * b0 + (x2 * c0 + x3 * d0));
+    m[k + T] = m[k + T]! + (x0 * a1 + x1 * b1 + (x2 * c1 + x3 * d1));
+    m[k + 2 * T] = m[k + 2 * T]! + (x0 * a2 + x1 * b2 + (x2 * c2 + x3 * d2));
+    m[k + 3 * T] = m[k + 3 * T]! + (x0 * a3 + x1 * b3 + (x2 * c3 + x3 * d3));
+    m[k + 4 * T] = m[k + 4 * T]! + (x0 * a4 + x1 * b4 + (x2 * c4 + x3 * d4));
+    m[k + 5 * T] = m[k + 5 * T]! + (x0 * a5 + x1 * b5 + (x2 * c5 + x3 * d5));
+    m[k + 6 * T] = m[k + 6 * T]! + (x0 * a6 + x1 * b6 + (x2 * c6 + x3 * d6));
+    m[k + 7 * T] = m[k + 7 * T]! + (x0 * a7 + x1 * b7 + (x2 * c7 + x3 * d7));
+  }
+}
+
+/** M[o … o + K − 1][t] += V[c][t] U[c][o …]: one in-channel, K out-channels. */
+function block1xK(
+  v: Float64Array,
+  u: Float32Array,
+  m: Float64Array,
+  p0: number,
+  q: number,
+  k0: number,
+  K: number,
+  n: number,
+): void {
+  const T = WINOGRAD_TILES;
+  for (let j = 0; j < K; j++) {
+    const a = u[q + j]!;
+    const k = k0 + j * T;
+    for (let t = 0; t < n; t++) m[k + t] = m[k + t]! + v[p0 + t]! * a;
+  }
+}
+
+/** Out-channel o of tiles t0 … t0 + n − 1: bias + Aᵀ M A, ReLU, into dst's interior. */
+function outputTransform(
+  s: WinogradScratch,
+  o: number,
+  cout: number,
+  bias: number,
+  dst: Planes,
+  t0: number,
+  n: number,
+  tilesX: number,
+): void {
+  const { h, w, stride } = dst;
+  const out = dst.data;
+  const m = s.m;
+  const tmp = s.t;
+  const xiStride = pointStride(cout);
+  const base = o * dst.plane + stride + 1;
+  for (let k = 0; k < n; k++) {
+    const t = t0 + k;
+    const ty = (t / tilesX) | 0;
+    const tx = t - ty * tilesX;
+    const q = o * WINOGRAD_TILES + k;
+    // Pass 1 (Aᵀ M), column by column: 4 rows of 6.
+    for (let j = 0; j < 6; j++) {
+      const p = q + j * xiStride;
+      const m0 = m[p]!,
+        m1 = m[p + 6 * xiStride]!,
+        m2 = m[p + 12 * xiStride]!,
+        m3 = m[p + 18 * xiStride]!,
+        m4 = m[p + 24 * xiStride]!,
+        m5 = m[p + 30 * xiStride]!;
+      tmp[j] = m0 + m1 + m2 + m3 + m4;
+      tmp[6 + j] = m1 - m2 + 2 * (m3 - m4);
+      tmp[12 + j] = m1 + m2 + 4 * (m3 + m4);
+      tmp[18 + j] = m1 - m2 + 8 * (m3 - m4) + m5;
+    }
+    // Pass 2 (… A), row by row, with bias and ReLU.
+    const y0 = ty << 2;
+    const x0 = tx << 2;
+    const rows = Math.min(4, h - y0);
+    const cols = Math.min(4, w - x0);
+    for (let r = 0; r < rows; r++) {
+      const e0 = tmp[r * 6]!,
+        e1 = tmp[r * 6 + 1]!,
+        e2 = tmp[r * 6 + 2]!,
+        e3 = tmp[r * 6 + 3]!,
+        e4 = tmp[r * 6 + 4]!,
+        e5 = tmp[r * 6 + 5]!;
+      const d = base + (y0 + r) * stride + x0;
+      const z0 = bias + (e0 + e1 + e2 + e3 + e4);
+      const z1 = bias + (e1 - e2 + 2 * (e3 - e4));
+      const z2 = bias + (e1 + e2 + 4 * (e3 + e4));
+      const z3 = bias + (e1 - e2 + 8 * (e3 - e4) + e5);
+      if (cols === 4) {
+        out[d] = relu(z0);
+        out[d + 1] = relu(z1);
+        out[d + 2] = relu(z2);
+        out[d + 3] = relu(z3);
+      } else {
+        out[d] = relu(z0);
+        if (cols > 1) out[d + 1] = relu(z1);
+        if (cols > 2) out[d + 2] = relu(z2);
+      }
+    }
+  }
+}
+
+/** max(z, 0) without a branch: ReLU's sign is a coin toss, and a mispredicted branch per output cost more than the transform. */
+function relu(z: number): number {
+  return (z + Math.abs(z)) * 0.5;
+}

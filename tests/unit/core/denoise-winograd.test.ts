@@ -1,0 +1,110 @@
+import { describe, expect, it } from 'vitest';
+import { conv3x3Relu } from '../../../src/core/denoise/conv3x3.ts';
+import { allocPlanes, at, type Planes } from '../../../src/core/denoise/planes.ts';
+import type { ConvLayer } from '../../../src/core/denoise/unet-weights.ts';
+import {
+  allocWinogradScratch,
+  WINOGRAD_TILES,
+  winogradConv3x3Relu,
+  winogradFits,
+} from '../../../src/core/denoise/winograd.ts';
+import { randomStream } from '../../helpers/tza.ts';
+
+function randomPlanes(c: number, h: number, w: number, next: () => number): Planes {
+  const p = allocPlanes(c, h, w);
+  for (let ch = 0; ch < c; ch++)
+    for (let y = 0; y < h; y++) for (let x = 0; x < w; x++) p.data[at(p, ch, y, x)] = next();
+  return p;
+}
+
+function randomLayer(cin: number, cout: number, next: () => number): ConvLayer {
+  return {
+    name: 't',
+    inChannels: cin,
+    outChannels: cout,
+    weight: Float32Array.from({ length: cout * cin * 9 }, () => next() - 0.5),
+    bias: Float32Array.from({ length: cout }, () => 0.2 * (next() - 0.5)),
+  };
+}
+
+describe('Winograd F(4×4, 3×3) convolution', () => {
+  // Sizes: a multiple of 4, ragged right and bottom edges, one pixel, and more tiles than
+  // one block (WINOGRAD_TILES) with a ragged last block.
+  const sizes: [number, number][] = [
+    [8, 8],
+    [9, 13],
+    [1, 1],
+    [2, 3],
+    [4 * 5, 4 * (WINOGRAD_TILES / 4 + 3) + 1],
+  ];
+  for (const [h, w] of sizes)
+    it(`matches the direct convolution over [a, b] to float rounding, ${w}×${h}`, () => {
+      const next = randomStream(h * 100 + w);
+      const a = randomPlanes(5, h, w, next);
+      const b = randomPlanes(4, h, w, next);
+      const layer = randomLayer(9, 8, next);
+      const direct = allocPlanes(8, h, w);
+      const wino = allocPlanes(8, h, w);
+      conv3x3Relu(a, b, layer, direct);
+      winogradConv3x3Relu(a, b, layer, wino, allocWinogradScratch(9, 8));
+      // The scale of each output's rounding: Σ|w·x| + |bias|, the same convolution of
+      // absolute values (all terms positive, so ReLU leaves it alone).
+      const scale = allocPlanes(8, h, w);
+      const abs = (p: Planes): Planes => ({ ...p, data: p.data.map(Math.abs) });
+      conv3x3Relu(
+        abs(a),
+        abs(b),
+        { ...layer, weight: layer.weight.map(Math.abs), bias: layer.bias.map(Math.abs) },
+        scale,
+      );
+      let worst = 0;
+      let positives = 0;
+      for (let i = 0; i < direct.data.length; i++) {
+        const d = Math.abs(direct.data[i]! - wino.data[i]!);
+        // NaN (a read past the map) must fail: !(d <= 0) lets it into the maximum.
+        if (!(d <= 0)) worst = Math.max(worst, d / scale.data[i]!); // border: both zero
+        if (direct.data[i]! > 0) positives++;
+      }
+      // Float32 rounding of the transformed weights (2⁻²⁴ relative each) and of both
+      // results, amplified by the transforms' constants (up to 8 in Aᵀ, 5 in Bᵀ): well
+      // inside 64 ulps of the sum's scale. An error in a transform matrix is of order 1.
+      expect(worst).toBeLessThan(64 * 2 ** -24);
+      expect(positives).toBeGreaterThan(0);
+    });
+
+  it('gives the same bits whatever part of the map a tile is computed in', () => {
+    // A 16×16 map holds 16 tiles; computed alone it is one block. Embedded as the top-left
+    // corner of a larger map (zero elsewhere), the same tiles are spread over blocks
+    // differently; the top-left 12×12 outputs (whose windows see only the corner) agree.
+    const next = randomStream(5);
+    const small = randomPlanes(6, 16, 16, next);
+    const big = allocPlanes(6, 40, 72);
+    for (let c = 0; c < 6; c++)
+      for (let y = 0; y < 16; y++)
+        for (let x = 0; x < 16; x++) big.data[at(big, c, y, x)] = small.data[at(small, c, y, x)]!;
+    const layer = randomLayer(6, 12, next);
+    const s = allocWinogradScratch(6, 12);
+    const o1 = allocPlanes(12, 16, 16);
+    const o2 = allocPlanes(12, 40, 72);
+    winogradConv3x3Relu(small, null, layer, o1, s);
+    winogradConv3x3Relu(big, null, layer, o2, s);
+    for (let c = 0; c < 12; c++)
+      for (let y = 0; y < 12; y++)
+        for (let x = 0; x < 12; x++)
+          expect(o2.data[at(o2, c, y, x)]).toBe(o1.data[at(o1, c, y, x)]);
+  });
+
+  it('refuses a layer whose outputs are not in fours, and mismatched channels', () => {
+    const next = randomStream(3);
+    const a = randomPlanes(4, 8, 8, next);
+    const dst = allocPlanes(8, 8, 8);
+    const three = randomLayer(4, 3, next);
+    expect(winogradFits(three)).toBe(false);
+    expect(() => winogradConv3x3Relu(a, null, three, dst, allocWinogradScratch(4, 8))).toThrow(
+      /not in fours/,
+    );
+    expect(() =>
+      winogradConv3x3Relu(a, null, randomLayer(5, 8, next), dst, allocWinogradScratch(8, 8)),
+    ).toThrow(/4 input channels, expected 5/);
+  });
+});
