@@ -242,6 +242,12 @@ function products(
     const ub = xi * cin * cout;
     const mb = xi * pointStride(cout);
     let o = 0;
+    for (; o + 16 <= cout; o += 16) {
+      let c = 0;
+      for (; c + 4 <= cin; c += 4)
+        block4x16(v, u, m, vb + c * T, ub + c * cout + o, mb + o * T, cout, n);
+      for (; c < cin; c++) block1xK(v, u, m, vb + c * T, ub + c * cout + o, mb + o * T, 16, n);
+    }
     for (; o + 8 <= cout; o += 8) {
       let c = 0;
       for (; c + 4 <= cin; c += 4)
@@ -251,6 +257,111 @@ function products(
     for (; o < cout; o += 4)
       for (let c = 0; c < cin; c++)
         block1xK(v, u, m, vb + c * T, ub + c * cout + o, mb + o * T, 4, n);
+  }
+}
+
+/** M[o … o + 15][t] += Σ over 4 in-channels c of V[c][t] U[c][o]. */
+function block4x16(
+  v: Float64Array,
+  u: Float32Array,
+  m: Float64Array,
+  p0: number,
+  q: number,
+  k0: number,
+  cout: number,
+  n: number,
+): void {
+  const T = WINOGRAD_TILES;
+  const a0 = u[q]!,
+    a1 = u[q + 1]!,
+    a2 = u[q + 2]!,
+    a3 = u[q + 3]!,
+    a4 = u[q + 4]!,
+    a5 = u[q + 5]!,
+    a6 = u[q + 6]!,
+    a7 = u[q + 7]!,
+    a8 = u[q + 8]!,
+    a9 = u[q + 9]!,
+    a10 = u[q + 10]!,
+    a11 = u[q + 11]!,
+    a12 = u[q + 12]!,
+    a13 = u[q + 13]!,
+    a14 = u[q + 14]!,
+    a15 = u[q + 15]!;
+  const q1 = q + 1 * cout;
+  const b0 = u[q1]!,
+    b1 = u[q1 + 1]!,
+    b2 = u[q1 + 2]!,
+    b3 = u[q1 + 3]!,
+    b4 = u[q1 + 4]!,
+    b5 = u[q1 + 5]!,
+    b6 = u[q1 + 6]!,
+    b7 = u[q1 + 7]!,
+    b8 = u[q1 + 8]!,
+    b9 = u[q1 + 9]!,
+    b10 = u[q1 + 10]!,
+    b11 = u[q1 + 11]!,
+    b12 = u[q1 + 12]!,
+    b13 = u[q1 + 13]!,
+    b14 = u[q1 + 14]!,
+    b15 = u[q1 + 15]!;
+  const q2 = q + 2 * cout;
+  const c0 = u[q2]!,
+    c1 = u[q2 + 1]!,
+    c2 = u[q2 + 2]!,
+    c3 = u[q2 + 3]!,
+    c4 = u[q2 + 4]!,
+    c5 = u[q2 + 5]!,
+    c6 = u[q2 + 6]!,
+    c7 = u[q2 + 7]!,
+    c8 = u[q2 + 8]!,
+    c9 = u[q2 + 9]!,
+    c10 = u[q2 + 10]!,
+    c11 = u[q2 + 11]!,
+    c12 = u[q2 + 12]!,
+    c13 = u[q2 + 13]!,
+    c14 = u[q2 + 14]!,
+    c15 = u[q2 + 15]!;
+  const q3 = q + 3 * cout;
+  const d0 = u[q3]!,
+    d1 = u[q3 + 1]!,
+    d2 = u[q3 + 2]!,
+    d3 = u[q3 + 3]!,
+    d4 = u[q3 + 4]!,
+    d5 = u[q3 + 5]!,
+    d6 = u[q3 + 6]!,
+    d7 = u[q3 + 7]!,
+    d8 = u[q3 + 8]!,
+    d9 = u[q3 + 9]!,
+    d10 = u[q3 + 10]!,
+    d11 = u[q3 + 11]!,
+    d12 = u[q3 + 12]!,
+    d13 = u[q3 + 13]!,
+    d14 = u[q3 + 14]!,
+    d15 = u[q3 + 15]!;
+  for (let t = 0; t < n; t++) {
+    const p = p0 + t;
+    const x0 = v[p]!,
+      x1 = v[p + T]!,
+      x2 = v[p + 2 * T]!,
+      x3 = v[p + 3 * T]!;
+    const k = k0 + t;
+    m[k] = m[k]! + (x0 * a0 + x1 * b0 + (x2 * c0 + x3 * d0));
+    m[k + T] = m[k + T]! + (x0 * a1 + x1 * b1 + (x2 * c1 + x3 * d1));
+    m[k + 2 * T] = m[k + 2 * T]! + (x0 * a2 + x1 * b2 + (x2 * c2 + x3 * d2));
+    m[k + 3 * T] = m[k + 3 * T]! + (x0 * a3 + x1 * b3 + (x2 * c3 + x3 * d3));
+    m[k + 4 * T] = m[k + 4 * T]! + (x0 * a4 + x1 * b4 + (x2 * c4 + x3 * d4));
+    m[k + 5 * T] = m[k + 5 * T]! + (x0 * a5 + x1 * b5 + (x2 * c5 + x3 * d5));
+    m[k + 6 * T] = m[k + 6 * T]! + (x0 * a6 + x1 * b6 + (x2 * c6 + x3 * d6));
+    m[k + 7 * T] = m[k + 7 * T]! + (x0 * a7 + x1 * b7 + (x2 * c7 + x3 * d7));
+    m[k + 8 * T] = m[k + 8 * T]! + (x0 * a8 + x1 * b8 + (x2 * c8 + x3 * d8));
+    m[k + 9 * T] = m[k + 9 * T]! + (x0 * a9 + x1 * b9 + (x2 * c9 + x3 * d9));
+    m[k + 10 * T] = m[k + 10 * T]! + (x0 * a10 + x1 * b10 + (x2 * c10 + x3 * d10));
+    m[k + 11 * T] = m[k + 11 * T]! + (x0 * a11 + x1 * b11 + (x2 * c11 + x3 * d11));
+    m[k + 12 * T] = m[k + 12 * T]! + (x0 * a12 + x1 * b12 + (x2 * c12 + x3 * d12));
+    m[k + 13 * T] = m[k + 13 * T]! + (x0 * a13 + x1 * b13 + (x2 * c13 + x3 * d13));
+    m[k + 14 * T] = m[k + 14 * T]! + (x0 * a14 + x1 * b14 + (x2 * c14 + x3 * d14));
+    m[k + 15 * T] = m[k + 15 * T]! + (x0 * a15 + x1 * b15 + (x2 * c15 + x3 * d15));
   }
 }
 
