@@ -91,15 +91,14 @@ export function winogradWeights(layer: ConvLayer): Float32Array {
         const g0 = gg[i * 3]!,
           g1 = gg[i * 3 + 1]!,
           g2 = gg[i * 3 + 2]!;
-        const row = [
-          g0 / 4,
-          -(g0 + g1 + g2) / 6,
-          -(g0 - g1 + g2) / 6,
-          g0 / 24 + g1 / 12 + g2 / 6,
-          g0 / 24 - g1 / 12 + g2 / 6,
-          g2,
-        ];
-        for (let j = 0; j < 6; j++) u[((i * 6 + j) * cin + c) * cout + o] = row[j]!;
+        const q = (i * 6 * cin + c) * cout + o;
+        const step = cin * cout; // from point (i, j) to (i, j + 1)
+        u[q] = g0 / 4;
+        u[q + step] = -(g0 + g1 + g2) / 6;
+        u[q + 2 * step] = -(g0 - g1 + g2) / 6;
+        u[q + 3 * step] = g0 / 24 + g1 / 12 + g2 / 6;
+        u[q + 4 * step] = g0 / 24 - g1 / 12 + g2 / 6;
+        u[q + 5 * step] = g2;
       }
     }
   transformed.set(layer, u);
