@@ -29,16 +29,19 @@ export const MIN_AUTO_PIXELS = 65_536;
  * With the denoiser on (the `denoise` option), the automatic scale also keeps one denoise
  * of the full film within this long, so that a denoised picture follows a camera stop
  * within about two seconds. bench/denoise-scale.mjs measured the demo's denoised error
- * after 5 s on a 2-core machine (Cornell, the error plot's grid, medians of 3): flat at
- * 7–8e-5 for films of 192×128 to 382×256, ten times worse at 478×320 (one denoise took
- * 3.5 s, so the picture at 5 s was still the 1-spp one); full resolution did not win.
+ * after 5 s on a 2-core machine (Cornell, the error plot's grid, medians of 3). With the
+ * direct convolution it was flat at 7–8e-5 for films of 192×128 to 382×256 and ten times
+ * worse at 478×320, where one denoise took 3.5 s. With the Winograd convolution
+ * (December 5) it is flat at 5.9–7.5e-5 from 192×128 to 574×384, whose first denoised
+ * picture came at 2.4 s. Full resolution did not win.
  */
 export const DENOISE_BUDGET_MS = 1200;
 /**
- * The denoiser's cost per pixel until it is measured on this machine: 382×256 took
- * 1.5–2.0 s with two render workers beside it on two cores (tests/timing).
+ * The denoiser's cost per pixel until it is measured on this machine: 286×192 took
+ * 0.35–0.44 s with two render workers beside it on two cores (tests/timing, December 5,
+ * the Winograd convolution; the direct one took 0.018 ms a pixel).
  */
-export const DENOISE_MS_PER_PIXEL = 0.018;
+export const DENOISE_MS_PER_PIXEL = 0.008;
 
 /** The most pixels the automatic scale gives a film that is denoised at `msPerPixel`. */
 export function denoisePixelCap(msPerPixel = DENOISE_MS_PER_PIXEL): number {
