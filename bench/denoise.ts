@@ -2,9 +2,10 @@
  * Denoiser speed: pathwise's TypeScript U-Net (src/core/denoise) against native OIDN 2.5
  * (pyoidn, bench/oidn-threads.py, with the same thread counts) on the same colour, albedo and normal images, in one run:
  * each side gets one warm-up, then REPEAT timed runs (median reported). Ours runs in-process
- * (1 thread, one tile as OIDN) and across worker_threads (src/cli/denoise-pool.ts; with
- * more than one thread the image is cut into OIDN-style overlapped tiles of at most
- * --tile-pixels, so tiles can run in parallel).
+ * (1 thread, one tile as OIDN) and across worker_threads (src/cli/denoise-pool.ts: the
+ * threads share each tile in bands of rows). With --tile-pixels N, more than one thread
+ * also runs the image cut into OIDN-style overlapped tiles of at most N pixels, for
+ * comparison.
  *   npm run build:cli   (for dist/cli/denoise-worker.js)
  *   (from the repository root) node scripts/run-ts.mjs bench/denoise.ts COLOR.pfm ALBEDO.pfm NORMAL.pfm [--repeat 3]
  *        [--threads 1,2] [--tile-pixels 200000] [--python PY]
@@ -25,7 +26,7 @@ const flag = (name: string, dflt: string): string => {
 };
 const repeat = Number(flag('--repeat', '3'));
 const threads = flag('--threads', '1,2').split(',').map(Number);
-const tilePixels = Number(flag('--tile-pixels', '200000'));
+const tilePixels = Number(flag('--tile-pixels', '0'));
 const python = flag('--python', '/work/research/issue22/.venv/bin/python');
 const [colorPath, albedoPath, normalPath] = args;
 if (!colorPath || !albedoPath || !normalPath)
@@ -88,12 +89,23 @@ rows.push({
 });
 const workerUrl = pathToFileURL('dist/cli/denoise-worker.js');
 for (const t of threads) {
-  const tiles = t > 1 ? { maxTilePixels: tilePixels, minTileSide: 0 } : {};
   rows.push({
-    what: `pathwise, worker threads`,
+    what: `pathwise, worker threads, bands of 1 tile`,
     threads: t,
-    ...(await time(() => denoiseInWorkers(images, tza, { threads: t, workerUrl, tiles }))),
+    ...(await time(() => denoiseInWorkers(images, tza, { threads: t, workerUrl }))),
   });
+  if (tilePixels > 0 && t > 1)
+    rows.push({
+      what: `pathwise, worker threads, tiles of ${tilePixels} px`,
+      threads: t,
+      ...(await time(() =>
+        denoiseInWorkers(images, tza, {
+          threads: t,
+          workerUrl,
+          tiles: { maxTilePixels: tilePixels, minTileSide: 0 },
+        }),
+      )),
+    });
 }
 // Speed relative to native OIDN with as many threads: native seconds / our seconds, by wall
 // time and by process CPU time (the machine may be shared: CPU time is what load disturbs least).

@@ -1,15 +1,23 @@
 /**
- * The denoiser across worker_threads: the images go into shared memory once, each worker
- * (workers/node/denoise-worker.ts) builds the network and one tile workspace, and tiles
- * are handed out in order to whichever worker is free (src/core/denoise/denoise.ts,
- * denoiseTiles). The tile plan depends on the image and the tile options only, so the
- * result is the same bits for any number of threads.
+ * The denoiser across worker_threads: the images go into shared memory once, and so does
+ * one tile workspace; each worker (workers/node/denoise-worker.ts) builds the network and
+ * takes one band of rows of every layer of every tile, the bands meeting at a barrier
+ * after each layer (src/core/denoise/unet.ts, UNetBand). Tiles run one after the other,
+ * all threads on each, so an image of one tile (up to OIDN's 2160² by default) uses every
+ * thread, and no pixel is computed twice as overlapped tiles would be. Each value is
+ * computed as one thread computes it and the tile plan depends on the image and the tile
+ * options only, so the result is the same bits for any number of threads.
  */
 import { Worker } from 'node:worker_threads';
-import { denoiseTiles, prepareDenoise, type DenoiseImages } from '../core/denoise/denoise.ts';
+import {
+  denoiseWorkspaceBytes,
+  prepareDenoise,
+  type DenoiseImages,
+} from '../core/denoise/denoise.ts';
 import type { TileOptions } from '../core/denoise/tiles.ts';
 import { parseTza } from '../core/denoise/tza.ts';
 import { unetWeights } from '../core/denoise/unet-weights.ts';
+import { abortBarrier, BARRIER_WORDS } from '../../workers/node/barrier.ts';
 import type { DenoiseWorkerData, DenoiseWorkerReply } from '../../workers/node/denoise-worker.ts';
 
 export interface DenoisePoolOptions {
@@ -38,7 +46,9 @@ export async function denoiseInWorkers(
     inputScale: options.inputScale,
   });
   const out = new SharedArrayBuffer(images.width * images.height * 3 * 4);
-  const data: DenoiseWorkerData = {
+  const count = Math.max(1, Math.floor(options.threads));
+  const sync = new SharedArrayBuffer(BARRIER_WORDS * 4);
+  const data: Omit<DenoiseWorkerData, 'band'> = {
     weights: tza,
     width: images.width,
     height: images.height,
@@ -48,47 +58,45 @@ export async function denoiseInWorkers(
     albedo: images.albedo ? shared(images.albedo) : null,
     normal: images.normal ? shared(images.normal) : null,
     output: out,
+    bands: count,
+    memory: new SharedArrayBuffer(denoiseWorkspaceBytes(job)),
+    sync,
   };
   const url = options.workerUrl ?? new URL('./denoise-worker.js', import.meta.url);
-  const count = Math.max(1, Math.min(options.threads, job.plan.tiles.length));
-  const workers = Array.from({ length: count }, () => new Worker(url, { workerData: data }));
-  // A worker that throws or exits mid-job fails the whole call with its error (nothing hangs).
+  const workers = Array.from(
+    { length: count },
+    (_, band) => new Worker(url, { workerData: { ...data, band } satisfies DenoiseWorkerData }),
+  );
+  // A worker that throws or exits mid-job fails the whole call with its error, and the
+  // others, which may be waiting for it at the barrier, are released (nothing hangs).
   let fail: (e: Error) => void = () => {};
   const failed = new Promise<never>((_, reject) => (fail = reject));
   failed.catch(() => {}); // observed by the races below; terminate()'s exits come after
+  const failWith = (e: Error): void => {
+    abortBarrier(new Int32Array(sync));
+    fail(e);
+  };
   for (const w of workers) {
-    w.on('error', (e: Error) => fail(e));
+    w.on('error', (e: Error) => failWith(e));
     w.on('exit', (code) =>
-      fail(new Error(`denoise worker exited (code ${code}) before the image was done`)),
+      failWith(new Error(`denoise worker exited (code ${code}) before the image was done`)),
     );
   }
-  const free = [...workers];
-  const waiting: ((w: Worker) => void)[] = [];
-  const release = (w: Worker): void => {
-    const next = waiting.shift();
-    if (next) next(w);
-    else free.push(w);
-  };
-  const acquire = (): Promise<Worker> =>
-    free.length ? Promise.resolve(free.pop()!) : new Promise((resolve) => waiting.push(resolve));
   try {
-    await denoiseTiles(
-      job,
-      async (tile) => {
-        const w = await acquire();
-        const done = new Promise<void>((resolve, reject) => {
-          w.once('message', (m: DenoiseWorkerReply) =>
-            m.done === tile
-              ? resolve()
-              : reject(new Error(`denoise worker answered tile ${m.done} for ${tile}`)),
-          );
-        });
-        w.postMessage({ tile });
-        await Promise.race([done, failed]);
-        release(w);
-      },
-      count,
-    );
+    for (let tile = 0; tile < job.plan.tiles.length; tile++) {
+      const done = workers.map(
+        (w) =>
+          new Promise<void>((resolve, reject) => {
+            w.once('message', (m: DenoiseWorkerReply) =>
+              m.done === tile
+                ? resolve()
+                : reject(new Error(`denoise worker answered tile ${m.done} for ${tile}`)),
+            );
+            w.postMessage({ tile });
+          }),
+      );
+      await Promise.race([Promise.all(done), failed]);
+    }
   } finally {
     await Promise.all(workers.map((w) => w.terminate()));
   }

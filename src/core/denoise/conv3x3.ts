@@ -16,8 +16,18 @@
 import type { ConvLayer } from './unet-weights.ts';
 import type { Planes } from './planes.ts';
 
-/** dst ← ReLU(conv3x3([a, b], layer)). a, b and dst have one size; b may be null. */
-export function conv3x3Relu(a: Planes, b: Planes | null, layer: ConvLayer, dst: Planes): void {
+/**
+ * dst ← ReLU(conv3x3([a, b], layer)), rows y0 … y1 − 1 of dst. a, b and dst have one
+ * size; b may be null.
+ */
+export function conv3x3Relu(
+  a: Planes,
+  b: Planes | null,
+  layer: ConvLayer,
+  dst: Planes,
+  y0 = 0,
+  y1 = dst.h,
+): void {
   const cin = a.c + (b ? b.c : 0);
   if (cin !== layer.inChannels)
     throw new RangeError(`${layer.name}: ${cin} input channels, expected ${layer.inChannels}`);
@@ -28,17 +38,25 @@ export function conv3x3Relu(a: Planes, b: Planes | null, layer: ConvLayer, dst: 
   dst.c = layer.outChannels;
   const cout = layer.outChannels;
   let oc = 0;
-  for (; oc + 4 <= cout; oc += 4) fused4(a, b, layer, dst, oc);
-  for (; oc < cout; oc++) single(a, b, layer, dst, oc);
+  for (; oc + 4 <= cout; oc += 4) fused4(a, b, layer, dst, oc, y0, y1);
+  for (; oc < cout; oc++) single(a, b, layer, dst, oc, y0, y1);
 }
 
-function single(a: Planes, b: Planes | null, layer: ConvLayer, dst: Planes, oc: number): void {
-  const { h, w, stride, plane } = dst;
+function single(
+  a: Planes,
+  b: Planes | null,
+  layer: ConvLayer,
+  dst: Planes,
+  oc: number,
+  y0: number,
+  y1: number,
+): void {
+  const { w, stride, plane } = dst;
   const out = dst.data;
   const wt = layer.weight;
   const cin = layer.inChannels;
   const k0 = oc * cin * 9;
-  for (let y = 0; y < h; y++) {
+  for (let y = y0; y < y1; y++) {
     const d0 = oc * plane + (y + 1) * stride + 1;
     out.fill(layer.bias[oc]!, d0, d0 + w);
     for (let ic = 0; ic < cin; ic++) {
@@ -69,13 +87,21 @@ function relu(out: Float32Array, i: number, n: number): void {
   for (let e = i + n; i < e; i++) if (!(out[i]! > 0)) out[i] = 0;
 }
 
-function fused4(a: Planes, b: Planes | null, layer: ConvLayer, dst: Planes, oc: number): void {
-  const { h, w, stride, plane } = dst;
+function fused4(
+  a: Planes,
+  b: Planes | null,
+  layer: ConvLayer,
+  dst: Planes,
+  oc: number,
+  y0: number,
+  y1: number,
+): void {
+  const { w, stride, plane } = dst;
   const out = dst.data;
   const wt = layer.weight;
   const cin = layer.inChannels;
   const k0 = oc * cin * 9;
-  for (let y = 0; y < h; y++) {
+  for (let y = y0; y < y1; y++) {
     const d0 = oc * plane + (y + 1) * stride + 1;
     const d1 = d0 + plane,
       d2 = d1 + plane,

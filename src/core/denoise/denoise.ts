@@ -9,7 +9,14 @@
 import { at } from './planes.ts';
 import { planTiles, type TileOptions, type TilePlan } from './tiles.ts';
 import { autoexposure, decodeHdr, encodeAlbedo, encodeHdr, encodeNormal } from './transfer.ts';
-import { allocUNetWorkspace, runUNet, type UNetWorkspace } from './unet.ts';
+import {
+  allocUNetWorkspace,
+  bandRows,
+  runUNet,
+  unetWorkspaceBytes,
+  type UNetBand,
+  type UNetWorkspace,
+} from './unet.ts';
 import type { UNetWeights } from './unet-weights.ts';
 
 export interface DenoiseImages {
@@ -58,14 +65,24 @@ export function prepareDenoise(
   return { images, weights, plan: planTiles(width, height, options), inputScale };
 }
 
-/** A workspace for the job's tile size (allocate once per thread, reuse for every tile). */
-export function allocDenoiseWorkspace(job: DenoiseJob): UNetWorkspace {
-  return allocUNetWorkspace(job.weights, job.plan.tileH, job.plan.tileW);
+/**
+ * A workspace for the job's tile size (allocate once per thread, reuse for every tile).
+ * Threads that run tiles together in bands pass the same `shared` memory, of
+ * `denoiseWorkspaceBytes(job)`.
+ */
+export function allocDenoiseWorkspace(job: DenoiseJob, shared?: ArrayBufferLike): UNetWorkspace {
+  return allocUNetWorkspace(job.weights, job.plan.tileH, job.plan.tileW, shared);
+}
+
+export function denoiseWorkspaceBytes(job: DenoiseJob): number {
+  return unetWorkspaceBytes(job.weights, job.plan.tileH, job.plan.tileW);
 }
 
 /**
  * Denoises tile `index` of the job into `output` (RGB, the image's size). Returns false,
  * leaving the tile's output unwritten, when `stop` (asked between layers) said to stop.
+ * With `band`, this thread is one of `band.count` that run the tile together on a shared
+ * workspace (unet.ts, UNetBand): each encodes, computes and decodes its band of rows.
  */
 export function runDenoiseTile(
   job: DenoiseJob,
@@ -73,14 +90,21 @@ export function runDenoiseTile(
   ws: UNetWorkspace,
   output: Float32Array,
   stop?: () => boolean,
+  band?: UNetBand,
 ): boolean {
   const tile = job.plan.tiles[index];
   if (!tile) throw new RangeError(`denoise: no tile ${index}`);
   const { width, color, albedo, normal } = job.images;
   const { input } = ws;
-  input.data.fill(0); // the tile's padding is zero in the encoded domain, as OIDN's input process
   const scale = job.inputScale;
-  for (let y = 0; y < tile.srcH; y++) {
+  // The tile's padding is zero in the encoded domain, as OIDN's input process: each band
+  // clears its rows of the buffer (the planes' borders are never written), then encodes
+  // the image rows that fall in them.
+  const [b0, b1] = bandRows(ws.h, band);
+  for (let c = 0; c < input.c; c++) input.data.fill(0, at(input, c, b0, -1), at(input, c, b1, -1));
+  const y0 = Math.max(0, b0 - tile.bufY);
+  const y1 = Math.min(tile.srcH, b1 - tile.bufY);
+  for (let y = y0; y < y1; y++) {
     for (let x = 0; x < tile.srcW; x++) {
       const p = 3 * ((tile.srcY + y) * width + tile.srcX + x);
       const q = at(input, 0, tile.bufY + y, tile.bufX + x);
@@ -92,10 +116,12 @@ export function runDenoiseTile(
         for (let c = 0; c < 3; c++) input.data[q + (6 + c) * plane] = encodeNormal(normal[p + c]!);
     }
   }
-  if (!runUNet(job.weights, ws, stop)) return false;
+  band?.sync();
+  if (!runUNet(job.weights, ws, stop, band)) return false;
   const out = ws.output;
   const outputScale = scale !== 0 ? 1 / scale : 0;
-  for (let y = 0; y < tile.outH; y++) {
+  const [o0, o1] = bandRows(tile.outH, band);
+  for (let y = o0; y < o1; y++) {
     for (let x = 0; x < tile.outW; x++) {
       const p = 3 * ((tile.outY + y) * width + tile.outX + x);
       const q = at(out, 0, tile.outBufY + y, tile.outBufX + x);

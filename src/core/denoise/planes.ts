@@ -18,10 +18,34 @@ export interface Planes {
   readonly data: Float32Array;
 }
 
-export function allocPlanes(capacity: number, h: number, w: number): Planes {
+/**
+ * Memory that planes are carved from in allocation order. Threads that carve the same
+ * sizes in the same order from one SharedArrayBuffer get views of the same planes: the
+ * shared workspace of a tile that several threads run together (unet.ts, bands).
+ */
+export interface PlaneArena {
+  readonly buffer: ArrayBufferLike;
+  /** Bytes carved so far. */
+  offset: number;
+}
+
+/** Bytes of a feature map of `capacity` channels of h × w (with its border). */
+export function planesBytes(capacity: number, h: number, w: number): number {
+  return capacity * (h + 2) * (w + 2) * 4;
+}
+
+export function allocPlanes(capacity: number, h: number, w: number, arena?: PlaneArena): Planes {
   const stride = w + 2;
   const plane = (h + 2) * stride;
-  return { c: capacity, capacity, h, w, stride, plane, data: new Float32Array(capacity * plane) };
+  let data: Float32Array;
+  if (arena) {
+    const bytes = planesBytes(capacity, h, w);
+    if (arena.offset + bytes > arena.buffer.byteLength)
+      throw new RangeError(`planes arena of ${arena.buffer.byteLength} bytes is too small`);
+    data = new Float32Array(arena.buffer, arena.offset, capacity * plane);
+    arena.offset += bytes;
+  } else data = new Float32Array(capacity * plane);
+  return { c: capacity, capacity, h, w, stride, plane, data };
 }
 
 /** Index of interior pixel (y, x) of channel ch. */

@@ -6,8 +6,8 @@
  */
 import type { Planes } from './planes.ts';
 
-/** dst (h/2 × w/2) ← 2×2 max of src, channel by channel. */
-export function maxPool2x2(src: Planes, dst: Planes): void {
+/** dst (h/2 × w/2) ← 2×2 max of src, channel by channel; rows y0 … y1 − 1 of dst. */
+export function maxPool2x2(src: Planes, dst: Planes, y0 = 0, y1 = dst.h): void {
   const { h, w } = dst;
   if (src.h !== 2 * h || src.w !== 2 * w)
     throw new RangeError('maxPool2x2: dst must be half of src');
@@ -15,7 +15,7 @@ export function maxPool2x2(src: Planes, dst: Planes): void {
   const s = src.data;
   const d = dst.data;
   for (let ch = 0; ch < src.c; ch++) {
-    for (let y = 0; y < h; y++) {
+    for (let y = y0; y < y1; y++) {
       const i = ch * src.plane + (2 * y + 1) * src.stride + 1;
       const j = i + src.stride;
       const o = ch * dst.plane + (y + 1) * dst.stride + 1;
@@ -28,15 +28,15 @@ export function maxPool2x2(src: Planes, dst: Planes): void {
   }
 }
 
-/** dst (2h × 2w) ← src, each pixel repeated in a 2×2 block. */
-export function upsample2x(src: Planes, dst: Planes): void {
+/** dst (2h × 2w) ← src, each pixel repeated in a 2×2 block; rows y0 … y1 − 1 of src. */
+export function upsample2x(src: Planes, dst: Planes, y0 = 0, y1 = src.h): void {
   const { h, w } = src;
   if (dst.h !== 2 * h || dst.w !== 2 * w) throw new RangeError('upsample2x: dst must be twice src');
   dst.c = src.c;
   const s = src.data;
   const d = dst.data;
   for (let ch = 0; ch < src.c; ch++) {
-    for (let y = 0; y < h; y++) {
+    for (let y = y0; y < y1; y++) {
       const i = ch * src.plane + (y + 1) * src.stride + 1;
       const o0 = ch * dst.plane + (2 * y + 1) * dst.stride + 1;
       const o1 = o0 + dst.stride;

@@ -11,13 +11,14 @@
  *   level 4 (1/16)  pool4, enc_conv5a, enc_conv5b
  */
 import { conv3x3Relu } from './conv3x3.ts';
-import { allocPlanes, type Planes } from './planes.ts';
+import { allocPlanes, planesBytes, type Planes } from './planes.ts';
 import { maxPool2x2, upsample2x } from './pool-upsample.ts';
 import type { ConvLayer, UNetWeights } from './unet-weights.ts';
 import {
   allocWinogradScratch,
   winogradConv3x3Relu,
   winogradFits,
+  winogradRows,
   type WinogradScratch,
 } from './winograd.ts';
 
@@ -36,7 +37,8 @@ export interface UNetWorkspace {
   readonly winograd: WinogradScratch;
 }
 
-export function allocUNetWorkspace(weights: UNetWeights, h: number, w: number): UNetWorkspace {
+/** The feature maps' sizes, [channels, h, w], in allocation order (see the header). */
+function workspaceMaps(weights: UNetWeights, h: number, w: number): [number, number, number][] {
   if (h % TILE_ALIGNMENT || w % TILE_ALIGNMENT || h <= 0 || w <= 0)
     throw new RangeError(`U-Net tile ${w}×${h} is not a positive multiple of ${TILE_ALIGNMENT}`);
   const L = byName(weights);
@@ -55,16 +57,44 @@ export function allocUNetWorkspace(weights: UNetWeights, h: number, w: number): 
     Math.max(out('enc_conv4'), out('enc_conv5b'), out('dec_conv4a'), out('dec_conv4b')),
     Math.max(out('enc_conv5a'), out('enc_conv5b')),
   ];
-  const x = width.map(
-    (c, k) => [allocPlanes(c, h >> k, w >> k), allocPlanes(c, h >> k, w >> k)] as const,
-  );
-  const pool = [
-    allocPlanes(out('enc_conv1'), h >> 1, w >> 1),
-    allocPlanes(out('enc_conv2'), h >> 2, w >> 2),
-    allocPlanes(out('enc_conv3'), h >> 3, w >> 3),
-    allocPlanes(out('enc_conv4'), h >> 4, w >> 4),
-  ];
-  const input = allocPlanes(weights.inputChannels, h, w);
+  const maps: [number, number, number][] = [];
+  for (let k = 0; k < width.length; k++)
+    maps.push([width[k]!, h >> k, w >> k], [width[k]!, h >> k, w >> k]);
+  for (const [k, n] of [
+    [1, 'enc_conv1'],
+    [2, 'enc_conv2'],
+    [3, 'enc_conv3'],
+    [4, 'enc_conv4'],
+  ] as const)
+    maps.push([out(n), h >> k, w >> k]);
+  maps.push([weights.inputChannels, h, w]);
+  return maps;
+}
+
+/** Bytes of the feature maps of a workspace (what `allocUNetWorkspace` carves from an arena). */
+export function unetWorkspaceBytes(weights: UNetWeights, h: number, w: number): number {
+  let bytes = 0;
+  for (const [c, mh, mw] of workspaceMaps(weights, h, w)) bytes += planesBytes(c, mh, mw);
+  return bytes;
+}
+
+/**
+ * A workspace for h × w tiles. With `shared` (unetWorkspaceBytes of it), the feature maps
+ * are views of that memory, so threads that each allocate a workspace on the same buffer
+ * share the maps and can run one tile together in bands (`runUNet`); the Winograd scratch
+ * is always the thread's own.
+ */
+export function allocUNetWorkspace(
+  weights: UNetWeights,
+  h: number,
+  w: number,
+  shared?: ArrayBufferLike,
+): UNetWorkspace {
+  const arena = shared ? { buffer: shared, offset: 0 } : undefined;
+  const maps = workspaceMaps(weights, h, w).map(([c, mh, mw]) => allocPlanes(c, mh, mw, arena));
+  const x = [0, 1, 2, 3, 4].map((k) => [maps[2 * k]!, maps[2 * k + 1]!] as const);
+  const pool = maps.slice(10, 14);
+  const input = maps[14]!;
   const winograd = allocWinogradScratch(
     Math.max(...weights.layers.map((l) => l.inChannels)),
     Math.max(...weights.layers.map((l) => l.outChannels)),
@@ -85,7 +115,36 @@ function byName(weights: UNetWeights): (n: string) => ConvLayer {
  * given, is asked between layers: the pass ends early (returning false, the output
  * undefined) once it answers true, so a caller can drop a picture no longer wanted.
  */
-export function runUNet(weights: UNetWeights, ws: UNetWorkspace, stop?: () => boolean): boolean {
+/**
+ * One of `count` threads that run a tile together on a shared workspace: each computes
+ * its band of every layer's rows, and `sync` (a barrier) returns once all of them have
+ * finished the layer. Every value is computed as it is by one thread (a Winograd block,
+ * a pooled or upsampled pixel, a direct convolution's row), so the bits do not depend on
+ * the number of threads.
+ */
+export interface UNetBand {
+  readonly index: number;
+  readonly count: number;
+  readonly sync: () => void;
+}
+
+/** The rows [from, to) of n that band `band` computes (all of them without a band). */
+export function bandRows(n: number, band?: UNetBand): [number, number] {
+  if (!band) return [0, n];
+  return [
+    Math.floor((n * band.index) / band.count),
+    Math.floor((n * (band.index + 1)) / band.count),
+  ];
+}
+
+export function runUNet(
+  weights: UNetWeights,
+  ws: UNetWorkspace,
+  stop?: () => boolean,
+  band?: UNetBand,
+): boolean {
+  // A band that stopped alone would leave the others waiting at the next barrier.
+  if (band && stop) throw new RangeError('runUNet: a band cannot stop early');
   const [e0, e1, e2, e3, e4, e5a, e5b, d4a, d4b, d3a, d3b, d2a, d2b, d1a, d1b, d0] =
     weights.layers as [
       ConvLayer,
@@ -115,49 +174,66 @@ export function runUNet(weights: UNetWeights, ws: UNetWorkspace, stop?: () => bo
   const [p1, p2, p3, p4] = ws.pool as [Planes, Planes, Planes, Planes];
   // Winograd where the outputs come in fours (every layer but dec_conv0's 3); the direct
   // convolution for the rest, where the transforms would cost more than they save.
-  const conv = (a: Planes, b: Planes | null, layer: ConvLayer, dst: Planes): void =>
-    winogradFits(layer)
-      ? winogradConv3x3Relu(a, b, layer, dst, ws.winograd)
-      : conv3x3Relu(a, b, layer, dst);
+  const sync = band ? band.sync : () => {};
+  const conv = (a: Planes, b: Planes | null, layer: ConvLayer, dst: Planes): void => {
+    if (winogradFits(layer)) {
+      const [r0, r1] = bandRows(winogradRows(dst.h), band);
+      winogradConv3x3Relu(a, b, layer, dst, ws.winograd, r0, r1);
+    } else {
+      const [y0, y1] = bandRows(dst.h, band);
+      conv3x3Relu(a, b, layer, dst, y0, y1);
+    }
+    sync();
+  };
+  const pool = (src: Planes, dst: Planes): void => {
+    const [y0, y1] = bandRows(dst.h, band);
+    maxPool2x2(src, dst, y0, y1);
+    sync();
+  };
+  const up = (src: Planes, dst: Planes): void => {
+    const [y0, y1] = bandRows(src.h, band);
+    upsample2x(src, dst, y0, y1);
+    sync();
+  };
   const steps: (() => void)[] = [
     // Encoder.
     () => conv(ws.input, null, e0, x0[0]),
     () => conv(x0[0], null, e1, x0[1]),
     () => {
-      maxPool2x2(x0[1], p1);
+      pool(x0[1], p1);
       conv(p1, null, e2, x1[0]);
     },
     () => {
-      maxPool2x2(x1[0], p2);
+      pool(x1[0], p2);
       conv(p2, null, e3, x2[0]);
     },
     () => {
-      maxPool2x2(x2[0], p3);
+      pool(x2[0], p3);
       conv(p3, null, e4, x3[0]);
     },
     () => {
-      maxPool2x2(x3[0], p4);
+      pool(x3[0], p4);
       conv(p4, null, e5a, x4[0]);
       conv(x4[0], null, e5b, x4[1]);
     },
     // Decoder: upsample, then convolve [upsampled, skip].
     () => {
-      upsample2x(x4[1], x3[0]);
+      up(x4[1], x3[0]);
       conv(x3[0], p3, d4a, x3[1]);
       conv(x3[1], null, d4b, x3[0]);
     },
     () => {
-      upsample2x(x3[0], x2[0]);
+      up(x3[0], x2[0]);
       conv(x2[0], p2, d3a, x2[1]);
     },
     () => conv(x2[1], null, d3b, x2[0]),
     () => {
-      upsample2x(x2[0], x1[0]);
+      up(x2[0], x1[0]);
       conv(x1[0], p1, d2a, x1[1]);
     },
     () => conv(x1[1], null, d2b, x1[0]),
     () => {
-      upsample2x(x1[0], x0[0]);
+      up(x1[0], x0[0]);
       conv(x0[0], ws.input, d1a, x0[1]);
     },
     () => conv(x0[1], null, d1b, x0[0]),

@@ -105,13 +105,23 @@ export function winogradWeights(layer: ConvLayer): Float32Array {
   return u;
 }
 
-/** dst ← ReLU(conv3x3([a, b], layer)), as `conv3x3Relu`; the layer must `winogradFits`. */
+/** Rows of 4×4 blocks that cover a map of h rows. */
+export function winogradRows(h: number): number {
+  return (h + 3) >> 2;
+}
+
+/**
+ * dst ← ReLU(conv3x3([a, b], layer)), as `conv3x3Relu`, for block rows r0 … r1 − 1 (of
+ * `winogradRows(dst.h)`); the layer must `winogradFits`.
+ */
 export function winogradConv3x3Relu(
   a: Planes,
   b: Planes | null,
   layer: ConvLayer,
   dst: Planes,
   scratch: WinogradScratch,
+  r0 = 0,
+  r1 = winogradRows(dst.h),
 ): void {
   const cin = a.c + (b ? b.c : 0);
   const cout = layer.outChannels;
@@ -127,8 +137,8 @@ export function winogradConv3x3Relu(
   dst.c = cout;
   const u = winogradWeights(layer);
   const tilesX = (dst.w + 3) >> 2;
-  const tiles = tilesX * ((dst.h + 3) >> 2);
-  for (let t0 = 0; t0 < tiles; t0 += WINOGRAD_TILES) {
+  const tiles = tilesX * Math.min(r1, winogradRows(dst.h));
+  for (let t0 = tilesX * r0; t0 < tiles; t0 += WINOGRAD_TILES) {
     const n = Math.min(WINOGRAD_TILES, tiles - t0);
     for (let c = 0; c < cin; c++) {
       const fromA = c < a.c;

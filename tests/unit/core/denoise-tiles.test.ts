@@ -69,6 +69,31 @@ describe('denoiser tiles and threads', () => {
     ).toBe(true);
   });
 
+  it('more threads than block rows at the deepest level: the idle bands change no bit', async () => {
+    // A 40×24 image is one 48×32 tile; its 1/16 level is 3×2, one row of Winograd blocks,
+    // so with 3 threads two bands are empty there.
+    const small = {
+      width: 40,
+      height: 24,
+      color: images.color.subarray(0, 40 * 24 * 3),
+      albedo: images.albedo.subarray(0, 40 * 24 * 3),
+      normal: images.normal.subarray(0, 40 * 24 * 3),
+    };
+    const workerUrl = pathToFileURL('dist/cli/denoise-worker.js');
+    const alone = denoise(small, unetWeights(parseTza(tza)));
+    for (const threads of [2, 3]) {
+      const banded = await denoiseInWorkers(small, tza, { threads, workerUrl });
+      expect(Buffer.from(banded.buffer).equals(Buffer.from(alone.buffer))).toBe(true);
+    }
+  });
+
+  it('a band that fails mid-tile rejects the call with its error and frees the others', async () => {
+    const workerUrl = pathToFileURL('tests/fixtures/denoise/failing-band-worker.mjs');
+    await expect(denoiseInWorkers(images, tza, { threads: 3, workerUrl, tiles })).rejects.toThrow(
+      /band 1 failed on purpose/,
+    );
+  });
+
   it('a worker that fails rejects the call with its error instead of hanging', async () => {
     const workerUrl = pathToFileURL('dist/cli/no-such-denoise-worker.js');
     await expect(denoiseInWorkers(images, tza, { threads: 2, workerUrl, tiles })).rejects.toThrow(
