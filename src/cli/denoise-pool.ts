@@ -46,7 +46,9 @@ export async function denoiseInWorkers(
     inputScale: options.inputScale,
   });
   const out = new SharedArrayBuffer(images.width * images.height * 3 * 4);
-  const count = Math.max(1, Math.floor(options.threads));
+  // No more bands than rows of 4×4 blocks at full resolution: a thread past that would
+  // only parse the weights and wait at every barrier.
+  const count = Math.max(1, Math.min(Math.floor(options.threads), job.plan.tileH / 4));
   const sync = new SharedArrayBuffer(BARRIER_WORDS * 4);
   const data: Omit<DenoiseWorkerData, 'band'> = {
     weights: tza,

@@ -36,7 +36,7 @@ export type DenoiseReply =
 /**
  * Tiles of at most this many pixels (OIDN's tiling, src/core/denoise/tiles.ts): the
  * small network's workspace is about 350 bytes a pixel, so a tile stays under ~100 MB
- * however large the canvas; for one worker, images up to 512² are one tile.
+ * however large the canvas; images up to 512² are one tile, for any number of workers.
  */
 export const BROWSER_TILE_PIXELS = 512 * 512;
 export const BROWSER_MIN_TILE_SIDE = 512;

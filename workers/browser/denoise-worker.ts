@@ -3,7 +3,7 @@
  * Image Denoise's "RT" U-Net in TypeScript (src/core/denoise), with the weights OIDN runs
  * at quality "fast" (rt_hdr_alb_nrm_small), which match native OIDN 2.5.1 at that
  * quality (tests/unit/core/denoise-oidn.test.ts) and take half the base network's time,
- * so a still view is denoised within a second or two on two cores. The weights are
+ * so a still view is denoised within half a second on two cores (tests/timing). The weights are
  * fetched once, on the first request; one workspace is kept for the tile size in use.
  * Each request names the tiles this worker runs; it writes only their regions.
  */

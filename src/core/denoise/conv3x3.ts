@@ -1,5 +1,5 @@
 /**
- * The U-Net's only heavy operation: a 3×3 convolution, stride 1, zero padding 1, with
+ * The U-Net's heavy operation, computed directly: a 3×3 convolution, stride 1, zero padding 1, with
  * bias and ReLU (OIDN core/unet_filter.cpp: every conv is Activation::ReLU), over the
  * concatenation of one or two feature maps (OIDN's concat-conv: the decoder's "a" layers
  * read [upsampled, skip] without copying them into one tensor).
@@ -11,7 +11,9 @@
  * output and input channel, the nine products summed in double first. (Per kernel row,
  * as before, it was three read-modify-writes: 15 % slower on the small network.) The
  * order of additions is fixed (bias, then input channel by channel), so a pixel's value
- * depends only on its inputs, never on the tile or thread that computes it.
+ * depends only on its inputs, never on the tile or thread that computes it. The network
+ * runs it for dec_conv0 (3 outputs) only; every other layer goes through winograd.ts,
+ * whose tests take this one as their reference.
  */
 import type { ConvLayer } from './unet-weights.ts';
 import type { Planes } from './planes.ts';

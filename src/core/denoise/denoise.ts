@@ -3,8 +3,10 @@
  * UNetFilter::execute): the input scale comes from the whole image's autoexposure, once;
  * each tile is then encoded into the network's input (transfer.ts), run (unet.ts) and
  * decoded into its own, disjoint region of the output. Tiles share nothing but read-only
- * inputs, so any executor may run them in any order and on any thread — a worker pool
- * passes its own `runTile` — and the output's bits do not depend on it.
+ * inputs, so any executor may run them in any order and on any thread (the browser's
+ * denoise workers each take some), and the output's bits do not depend on it. Threads
+ * that share memory may also run one tile together, in bands of rows (UNetBand; the
+ * command line's pool, src/cli/denoise-pool.ts).
  */
 import { at } from './planes.ts';
 import { planTiles, type TileOptions, type TilePlan } from './tiles.ts';
@@ -92,14 +94,16 @@ export function runDenoiseTile(
   stop?: () => boolean,
   band?: UNetBand,
 ): boolean {
+  // A band that stopped alone would leave the others waiting at the next barrier.
+  if (band && stop) throw new RangeError('runDenoiseTile: a band cannot stop early');
   const tile = job.plan.tiles[index];
   if (!tile) throw new RangeError(`denoise: no tile ${index}`);
   const { width, color, albedo, normal } = job.images;
   const { input } = ws;
   const scale = job.inputScale;
   // The tile's padding is zero in the encoded domain, as OIDN's input process: each band
-  // clears its rows of the buffer (the planes' borders are never written), then encodes
-  // the image rows that fall in them.
+  // clears its rows of the buffer (with their border columns, which stay zero), then
+  // encodes the image rows that fall in them.
   const [b0, b1] = bandRows(ws.h, band);
   for (let c = 0; c < input.c; c++) input.data.fill(0, at(input, c, b0, -1), at(input, c, b1, -1));
   const y0 = Math.max(0, b0 - tile.bufY);
@@ -143,22 +147,4 @@ export function denoise(
   const output = new Float32Array(images.width * images.height * 3);
   for (let i = 0; i < job.plan.tiles.length; i++) runDenoiseTile(job, i, ws, output);
   return output;
-}
-
-/**
- * Runs every tile of a job through `execute` (e.g. a worker pool's), at most `lanes` at a
- * time, claiming tiles in order. Each call must write its tile's output region.
- */
-export async function denoiseTiles(
-  job: DenoiseJob,
-  execute: (index: number) => Promise<void>,
-  lanes: number,
-): Promise<void> {
-  let next = 0;
-  const lane = async (): Promise<void> => {
-    while (next < job.plan.tiles.length) await execute(next++);
-  };
-  await Promise.all(
-    Array.from({ length: Math.max(1, Math.min(lanes, job.plan.tiles.length)) }, lane),
-  );
 }

@@ -1,6 +1,6 @@
 /**
  * OIDN's tiling (core/unet_filter.cpp, UNetFilter::init and execute), for images larger
- * than one tile and to spread one image over threads. Tiles overlap by the network's
+ * than one tile (and, in the browser, to spread a large image over denoise workers). Tiles overlap by the network's
  * half receptive field rounded up to the alignment (174 / 2 → 96 pixels), so each
  * output pixel is computed from all the input that can reach it; tile origins are
  * multiples of 16, so every tile's poolings fall on the same grid as the whole image's.

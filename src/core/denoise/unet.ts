@@ -111,11 +111,6 @@ function byName(weights: UNetWeights): (n: string) => ConvLayer {
 }
 
 /**
- * Runs the network on ws.input; the result is in ws.output (channels 0–2). `stop`, when
- * given, is asked between layers: the pass ends early (returning false, the output
- * undefined) once it answers true, so a caller can drop a picture no longer wanted.
- */
-/**
  * One of `count` threads that run a tile together on a shared workspace: each computes
  * its band of every layer's rows, and `sync` (a barrier) returns once all of them have
  * finished the layer. Every value is computed as it is by one thread (a Winograd block,
@@ -137,6 +132,12 @@ export function bandRows(n: number, band?: UNetBand): [number, number] {
   ];
 }
 
+/**
+ * Runs the network on ws.input; the result is in ws.output (channels 0–2). `stop`, when
+ * given, is asked between layers: the pass ends early (returning false, the output
+ * undefined) once it answers true, so a caller can drop a picture no longer wanted.
+ * With `band`, this thread computes its band of every layer (UNetBand); a band cannot stop.
+ */
 export function runUNet(
   weights: UNetWeights,
   ws: UNetWorkspace,

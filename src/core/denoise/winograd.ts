@@ -228,12 +228,12 @@ function inputTransform(
 
 /**
  * M[ξ][o][t] = Σ_c V[ξ][c][t] U[ξ][c][o] for the 36 points ξ. The inner loop runs over the
- * tiles with a block of 4 in-channels × 8 out-channels of U held in locals (V8 keeps the
+ * tiles with a block of 4 in-channels × 16 out-channels of U held in locals (V8 keeps the
  * ones that do not fit in registers on the stack, read without bounds checks): 4 loads and
- * 8 read-modify-writes per 32 multiply-adds. That ran at 4.9 GMAC/s on the 2-core
- * machine, as fast as the direct convolution, where 4 tiles × 4 out-channels summed in
- * registers (8 loads per 16) ran at 3.1. Leftover out-channels go 4 at a time, leftover
- * in-channels one at a time. The sum for each M is taken in a fixed order: in-channel
+ * 16 read-modify-writes per 64 multiply-adds. That ran at 5.0–5.2 GMAC/s on the 2-core
+ * machine, × 8 out-channels at 4.5–4.9 (as fast as the direct convolution), and 4 tiles ×
+ * 4 out-channels summed in registers (8 loads per 16) at 3.1. Leftover out-channels go 8,
+ * then 4 at a time, leftover in-channels one at a time. The sum for each M is taken in a fixed order: in-channel
  * blocks in turn, four products inside a block.
  */
 function products(
@@ -525,7 +525,7 @@ function outputTransform(
   }
 }
 
-/** max(z, 0) without a branch: ReLU's sign is a coin toss, and a mispredicted branch per output cost more than the transform. */
+/** max(z, 0), and 0 for NaN, as the direct convolution's ReLU (conv3x3.ts). */
 function relu(z: number): number {
-  return (z + Math.abs(z)) * 0.5;
+  return z > 0 ? z : 0;
 }

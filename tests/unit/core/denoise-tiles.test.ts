@@ -48,10 +48,11 @@ describe('denoiser tiles and threads', () => {
       worst = Math.max(worst, Math.abs(whole[i]! - tiled[i]!)); // NaN fails below
       peak = Math.max(peak, Math.abs(whole[i]!));
     }
-    // Rounding of float32 sums through 16 layers: a few ulps of the peak. A tile cut in
-    // the wrong place (overlap short of the receptive field, a pooling grid shifted)
-    // changes values by the size of the image's detail, orders of magnitude more.
-    expect(worst).toBeLessThan(1e-5 * peak);
+    // Rounding through 16 layers: measured 1.7e-7 of the peak (a few float32 ulps). A
+    // tile cut in the wrong place (overlap short of the receptive field, a pooling grid
+    // shifted) changes values by the size of the image's detail: 0.098 at a peak of 226
+    // with the kept region 48 pixels too wide.
+    expect(worst).toBeLessThan(1e-6 * peak);
     expect(peak).toBeGreaterThan(0);
   });
 

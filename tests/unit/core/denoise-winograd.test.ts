@@ -37,19 +37,26 @@ describe('Winograd F(4×4, 3×3) convolution', () => {
     [2, 3],
     [4 * 5, 4 * (WINOGRAD_TILES / 4 + 3) + 1],
   ];
-  for (const [h, w] of sizes)
-    it(`matches the direct convolution over [a, b] to float rounding, ${w}×${h}`, () => {
-      const next = randomStream(h * 100 + w);
-      const a = randomPlanes(5, h, w, next);
-      const b = randomPlanes(4, h, w, next);
-      const layer = randomLayer(9, 8, next);
-      const direct = allocPlanes(8, h, w);
-      const wino = allocPlanes(8, h, w);
+  // Channels: [a, b] of 5 + 4 → 8 (out-channels by 8, in-channels by 4 and one left
+  // over), and 14 + 8 → 28 (by 16, by 8 and by 4; 22 in-channels, two left over).
+  const cases = [
+    ...sizes.map(([h, w]) => [h, w, 5, 4, 8] as const),
+    [9, 13, 14, 8, 28] as const,
+    [20, 24, 14, 8, 28] as const,
+  ];
+  for (const [h, w, ca, cb, cout] of cases)
+    it(`matches the direct convolution over [a, b] to float rounding, ${w}×${h}, ${ca}+${cb} → ${cout}`, () => {
+      const next = randomStream(h * 100 + w + cout);
+      const a = randomPlanes(ca, h, w, next);
+      const b = randomPlanes(cb, h, w, next);
+      const layer = randomLayer(ca + cb, cout, next);
+      const direct = allocPlanes(cout, h, w);
+      const wino = allocPlanes(cout, h, w);
       conv3x3Relu(a, b, layer, direct);
-      winogradConv3x3Relu(a, b, layer, wino, allocWinogradScratch(9, 8));
+      winogradConv3x3Relu(a, b, layer, wino, allocWinogradScratch(ca + cb, cout));
       // The scale of each output's rounding: Σ|w·x| + |bias|, the same convolution of
       // absolute values (all terms positive, so ReLU leaves it alone).
-      const scale = allocPlanes(8, h, w);
+      const scale = allocPlanes(cout, h, w);
       const abs = (p: Planes): Planes => ({ ...p, data: p.data.map(Math.abs) });
       conv3x3Relu(
         abs(a),
