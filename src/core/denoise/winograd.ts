@@ -1,10 +1,10 @@
 /**
- * The U-Net's 3×3 convolutions by Winograd's minimal filtering F(4×4, 3×3) (Lavin and
- * Gray 2016, "Fast Algorithms for Convolutional Neural Networks", §4–5): each 4×4 block
- * of outputs is Aᵀ[(G g Gᵀ) ⊙ (Bᵀ d B)]A over the 6×6 input window d. Per block and
- * pair of channels that is 36 multiply-adds instead of the direct convolution's 144, so
- * the layer becomes 36 small matrix products (tiles × in-channels by in-channels ×
- * out-channels, one per point of the 6×6 transform domain) between two cheap linear
+ * The U-Net's 3×3 convolutions by Winograd's minimal filtering F(6×6, 3×3) (Lavin and
+ * Gray 2016, "Fast Algorithms for Convolutional Neural Networks", §4–5): each 6×6 block
+ * of outputs is Aᵀ[(G g Gᵀ) ⊙ (Bᵀ d B)]A over the 8×8 input window d. Per block and
+ * pair of channels that is 64 multiply-adds instead of the direct convolution's 324, so
+ * the layer becomes 64 small matrix products (tiles × in-channels by in-channels ×
+ * out-channels, one per point of the 8×8 transform domain) between two cheap linear
  * transforms. Scalar JavaScript has no SIMD (docs/denoise.md, Speed): fewer
  * multiplications is the lever left.
  *
@@ -13,10 +13,17 @@
  * as float32 (a relative rounding of 2⁻²⁴ each). The result differs from the direct
  * convolution's by rounding only (tests/unit/core/denoise-winograd.test.ts).
  *
- * Determinism: a pixel's value depends only on its 4×4 block's 6×6 input window, the
+ * Determinism: a pixel's value depends only on its 6×6 block's 8×8 input window, the
  * weights and a fixed order of additions, never on the block of tiles it is computed in
  * or the thread; tile positions are fixed by the feature map, as the direct
  * convolution's rows were.
+ *
+ * The matrices are Cook–Toom's for the points 0, ±1, ±1/2, ±2 and ∞ (as in Lavin and
+ * Gray, and NNPACK's F(6×6, 3×3)), checked in exact rational arithmetic against the
+ * correlation they compute when they were written out here; the tests compare every
+ * layer shape the network uses with the direct convolution. F(4×4, 3×3) (36 per 16
+ * outputs) ran 9–18 % slower per layer on the 2-core machine, with the same rounding
+ * (under 16 ulps of Σ|w·x| in the tests).
  */
 import type { Planes } from './planes.ts';
 import type { ConvLayer } from './unet-weights.ts';
@@ -26,17 +33,17 @@ export const WINOGRAD_TILES = 64;
 
 /** Scratch for `winogradConv3x3Relu`, sized for the widest layer it will see. */
 export interface WinogradScratch {
-  /** Transformed inputs: [36][inChannels][WINOGRAD_TILES]. */
+  /** Transformed inputs: [64][inChannels][WINOGRAD_TILES]. */
   readonly v: Float64Array;
-  /** Products: [36][outChannels][WINOGRAD_TILES]. */
+  /** Products: [64][outChannels][WINOGRAD_TILES]. */
   readonly m: Float64Array;
-  /** One 6×6 window between the transform's two passes. */
+  /** One 8×8 window between the transform's two passes. */
   readonly t: Float64Array;
 }
 
 /**
  * Floats between one transform point's matrix and the next: the matrix plus one cache
- * line. Unpadded, the 36 values of one tile lay a multiple of 4 KB apart and fell into
+ * line. Unpadded, the 64 values of one tile lay a multiple of 4 KB apart and fell into
  * the same L1 set.
  */
 function pointStride(channels: number): number {
@@ -45,9 +52,9 @@ function pointStride(channels: number): number {
 
 export function allocWinogradScratch(maxIn: number, maxOut: number): WinogradScratch {
   return {
-    v: new Float64Array(36 * pointStride(maxIn)),
-    m: new Float64Array(36 * pointStride(maxOut)),
-    t: new Float64Array(36),
+    v: new Float64Array(64 * pointStride(maxIn)),
+    m: new Float64Array(64 * pointStride(maxOut)),
+    t: new Float64Array(64),
   };
 }
 
@@ -59,7 +66,7 @@ export function winogradFits(layer: ConvLayer): boolean {
 const transformed = new WeakMap<ConvLayer, Float32Array>();
 
 /**
- * U = G g Gᵀ for every (out, in) pair, laid out [36][inChannels][outChannels] so that the
+ * U = G g Gᵀ for every (out, in) pair, laid out [64][inChannels][outChannels] so that the
  * product's inner loop (over in-channels) reads four adjacent out-channels. Computed once
  * per layer and thread.
  */
@@ -69,45 +76,49 @@ export function winogradWeights(layer: ConvLayer): Float32Array {
   const cin = layer.inChannels;
   const cout = layer.outChannels;
   const w = layer.weight;
-  u = new Float32Array(36 * cin * cout);
-  const gg = new Float64Array(18);
+  u = new Float32Array(64 * cin * cout);
+  const gg = new Float64Array(24);
   for (let o = 0; o < cout; o++)
     for (let c = 0; c < cin; c++) {
       const q = (o * cin + c) * 9;
-      // G g: 6×3, one column of g at a time.
+      // G g: 8×3, one column of g at a time.
       for (let j = 0; j < 3; j++) {
         const g0 = w[q + j]!,
           g1 = w[q + 3 + j]!,
           g2 = w[q + 6 + j]!;
-        gg[j] = g0 / 4;
-        gg[3 + j] = -(g0 + g1 + g2) / 6;
-        gg[6 + j] = -(g0 - g1 + g2) / 6;
-        gg[9 + j] = g0 / 24 + g1 / 12 + g2 / 6;
-        gg[12 + j] = g0 / 24 - g1 / 12 + g2 / 6;
-        gg[15 + j] = g2;
+        gg[j] = -g0;
+        gg[3 + j] = -(2 / 9) * g0 - (2 / 9) * g1 - (2 / 9) * g2;
+        gg[6 + j] = -(2 / 9) * g0 + (2 / 9) * g1 - (2 / 9) * g2;
+        gg[9 + j] = (32 / 45) * g0 + (16 / 45) * g1 + (8 / 45) * g2;
+        gg[12 + j] = (32 / 45) * g0 - (16 / 45) * g1 + (8 / 45) * g2;
+        gg[15 + j] = (1 / 90) * g0 + (1 / 45) * g1 + (2 / 45) * g2;
+        gg[18 + j] = (1 / 90) * g0 - (1 / 45) * g1 + (2 / 45) * g2;
+        gg[21 + j] = g2;
       }
-      // (G g) Gᵀ: 6×6.
-      for (let i = 0; i < 6; i++) {
+      // (G g) Gᵀ: 8×8.
+      for (let i = 0; i < 8; i++) {
         const g0 = gg[i * 3]!,
           g1 = gg[i * 3 + 1]!,
           g2 = gg[i * 3 + 2]!;
-        const q = (i * 6 * cin + c) * cout + o;
-        const step = cin * cout; // from point (i, j) to (i, j + 1)
-        u[q] = g0 / 4;
-        u[q + step] = -(g0 + g1 + g2) / 6;
-        u[q + 2 * step] = -(g0 - g1 + g2) / 6;
-        u[q + 3 * step] = g0 / 24 + g1 / 12 + g2 / 6;
-        u[q + 4 * step] = g0 / 24 - g1 / 12 + g2 / 6;
-        u[q + 5 * step] = g2;
+        const q = (i * 8 * cin + c) * cout + o;
+        const step = cin * cout;
+        u[q] = -g0;
+        u[q + 1 * step] = -(2 / 9) * g0 - (2 / 9) * g1 - (2 / 9) * g2;
+        u[q + 2 * step] = -(2 / 9) * g0 + (2 / 9) * g1 - (2 / 9) * g2;
+        u[q + 3 * step] = (32 / 45) * g0 + (16 / 45) * g1 + (8 / 45) * g2;
+        u[q + 4 * step] = (32 / 45) * g0 - (16 / 45) * g1 + (8 / 45) * g2;
+        u[q + 5 * step] = (1 / 90) * g0 + (1 / 45) * g1 + (2 / 45) * g2;
+        u[q + 6 * step] = (1 / 90) * g0 - (1 / 45) * g1 + (2 / 45) * g2;
+        u[q + 7 * step] = g2;
       }
     }
   transformed.set(layer, u);
   return u;
 }
 
-/** Rows of 4×4 blocks that cover a map of h rows. */
+/** Rows of 6×6 blocks that cover a map of h rows. */
 export function winogradRows(h: number): number {
-  return (h + 3) >> 2;
+  return Math.ceil(h / 6);
 }
 
 /**
@@ -132,11 +143,11 @@ export function winogradConv3x3Relu(
   if (a.h !== dst.h || a.w !== dst.w || (b && (b.h !== dst.h || b.w !== dst.w)))
     throw new RangeError(`${layer.name}: inputs and output differ in size`);
   if (!winogradFits(layer)) throw new RangeError(`${layer.name}: ${cout} outputs, not in fours`);
-  if (scratch.v.length < 36 * pointStride(cin) || scratch.m.length < 36 * pointStride(cout))
+  if (scratch.v.length < 64 * pointStride(cin) || scratch.m.length < 64 * pointStride(cout))
     throw new RangeError(`${layer.name}: Winograd scratch too small`);
   dst.c = cout;
   const u = winogradWeights(layer);
-  const tilesX = (dst.w + 3) >> 2;
+  const tilesX = Math.ceil(dst.w / 6);
   const tiles = tilesX * Math.min(r1, winogradRows(dst.h));
   for (let t0 = tilesX * r0; t0 < tiles; t0 += WINOGRAD_TILES) {
     const n = Math.min(WINOGRAD_TILES, tiles - t0);
@@ -175,59 +186,75 @@ function inputTransform(
     const t = t0 + k;
     const ty = (t / tilesX) | 0;
     const tx = t - ty * tilesX;
-    // The window's top-left, in the padded plane: rows 4ty … 4ty + 5, columns 4tx … 4tx + 5.
-    const r0 = ty << 2;
-    const c0 = tx << 2;
-    const inside = r0 + 5 <= h + 1 && c0 + 5 <= w + 1;
-    // Pass 1 (Bᵀ d), column by column.
-    for (let j = 0; j < 6; j++) {
-      let d0: number, d1: number, d2: number, d3: number, d4: number, d5: number;
+    // The window's top-left, in the padded plane: rows 6ty … 6ty + 7, columns 6tx … 6tx + 7.
+    const r0 = ty * 6;
+    const c0 = tx * 6;
+    const inside = r0 + 7 <= h + 1 && c0 + 7 <= w + 1;
+    // Pass 1 (Bᵀ d), column by column; outside the padded plane the window reads zero.
+    for (let j = 0; j < 8; j++) {
       const p = base + r0 * stride + c0 + j;
+      let d0 = 0,
+        d1 = 0,
+        d2 = 0,
+        d3 = 0,
+        d4 = 0,
+        d5 = 0,
+        d6 = 0,
+        d7 = 0;
       if (inside) {
         d0 = data[p]!;
-        d1 = data[p + stride]!;
+        d1 = data[p + 1 * stride]!;
         d2 = data[p + 2 * stride]!;
         d3 = data[p + 3 * stride]!;
         d4 = data[p + 4 * stride]!;
         d5 = data[p + 5 * stride]!;
-      } else {
-        const okX = c0 + j <= w + 1;
-        d0 = okX && r0 <= h + 1 ? data[p]! : 0;
-        d1 = okX && r0 + 1 <= h + 1 ? data[p + stride]! : 0;
-        d2 = okX && r0 + 2 <= h + 1 ? data[p + 2 * stride]! : 0;
-        d3 = okX && r0 + 3 <= h + 1 ? data[p + 3 * stride]! : 0;
-        d4 = okX && r0 + 4 <= h + 1 ? data[p + 4 * stride]! : 0;
-        d5 = okX && r0 + 5 <= h + 1 ? data[p + 5 * stride]! : 0;
+        d6 = data[p + 6 * stride]!;
+        d7 = data[p + 7 * stride]!;
+      } else if (c0 + j <= w + 1) {
+        if (r0 + 0 <= h + 1) d0 = data[p]!;
+        if (r0 + 1 <= h + 1) d1 = data[p + 1 * stride]!;
+        if (r0 + 2 <= h + 1) d2 = data[p + 2 * stride]!;
+        if (r0 + 3 <= h + 1) d3 = data[p + 3 * stride]!;
+        if (r0 + 4 <= h + 1) d4 = data[p + 4 * stride]!;
+        if (r0 + 5 <= h + 1) d5 = data[p + 5 * stride]!;
+        if (r0 + 6 <= h + 1) d6 = data[p + 6 * stride]!;
+        if (r0 + 7 <= h + 1) d7 = data[p + 7 * stride]!;
       }
-      tmp[j] = 4 * d0 - 5 * d2 + d4;
-      tmp[6 + j] = d3 + d4 - 4 * (d1 + d2);
-      tmp[12 + j] = d4 - d3 + 4 * (d1 - d2);
-      tmp[18 + j] = d4 - d2 + 2 * (d3 - d1);
-      tmp[24 + j] = d4 - d2 - 2 * (d3 - d1);
-      tmp[30 + j] = 4 * d1 - 5 * d3 + d5;
+      tmp[j] = -d0 + 5.25 * d2 - 5.25 * d4 + d6;
+      tmp[8 + j] = d1 + d2 - 4.25 * d3 - 4.25 * d4 + d5 + d6;
+      tmp[16 + j] = -d1 + d2 + 4.25 * d3 - 4.25 * d4 - d5 + d6;
+      tmp[24 + j] = 2 * d1 + 4 * d2 - 2.5 * d3 - 5 * d4 + 0.5 * d5 + d6;
+      tmp[32 + j] = -2 * d1 + 4 * d2 + 2.5 * d3 - 5 * d4 - 0.5 * d5 + d6;
+      tmp[40 + j] = 0.5 * d1 + 0.25 * d2 - 2.5 * d3 - 1.25 * d4 + 2 * d5 + d6;
+      tmp[48 + j] = -0.5 * d1 + 0.25 * d2 + 2.5 * d3 - 1.25 * d4 - 2 * d5 + d6;
+      tmp[56 + j] = -d1 + 5.25 * d3 - 5.25 * d5 + d7;
     }
     // Pass 2 (… B), row by row, into V.
     const o = vc + k;
-    for (let i = 0; i < 6; i++) {
-      const e0 = tmp[i * 6]!,
-        e1 = tmp[i * 6 + 1]!,
-        e2 = tmp[i * 6 + 2]!,
-        e3 = tmp[i * 6 + 3]!,
-        e4 = tmp[i * 6 + 4]!,
-        e5 = tmp[i * 6 + 5]!;
-      const q = o + i * 6 * xiStride;
-      v[q] = 4 * e0 - 5 * e2 + e4;
-      v[q + xiStride] = e3 + e4 - 4 * (e1 + e2);
-      v[q + 2 * xiStride] = e4 - e3 + 4 * (e1 - e2);
-      v[q + 3 * xiStride] = e4 - e2 + 2 * (e3 - e1);
-      v[q + 4 * xiStride] = e4 - e2 - 2 * (e3 - e1);
-      v[q + 5 * xiStride] = 4 * e1 - 5 * e3 + e5;
+    for (let i = 0; i < 8; i++) {
+      const e0 = tmp[i * 8]!,
+        e1 = tmp[i * 8 + 1]!,
+        e2 = tmp[i * 8 + 2]!,
+        e3 = tmp[i * 8 + 3]!,
+        e4 = tmp[i * 8 + 4]!,
+        e5 = tmp[i * 8 + 5]!,
+        e6 = tmp[i * 8 + 6]!,
+        e7 = tmp[i * 8 + 7]!;
+      const q = o + i * 8 * xiStride;
+      v[q] = -e0 + 5.25 * e2 - 5.25 * e4 + e6;
+      v[q + 1 * xiStride] = e1 + e2 - 4.25 * e3 - 4.25 * e4 + e5 + e6;
+      v[q + 2 * xiStride] = -e1 + e2 + 4.25 * e3 - 4.25 * e4 - e5 + e6;
+      v[q + 3 * xiStride] = 2 * e1 + 4 * e2 - 2.5 * e3 - 5 * e4 + 0.5 * e5 + e6;
+      v[q + 4 * xiStride] = -2 * e1 + 4 * e2 + 2.5 * e3 - 5 * e4 - 0.5 * e5 + e6;
+      v[q + 5 * xiStride] = 0.5 * e1 + 0.25 * e2 - 2.5 * e3 - 1.25 * e4 + 2 * e5 + e6;
+      v[q + 6 * xiStride] = -0.5 * e1 + 0.25 * e2 + 2.5 * e3 - 1.25 * e4 - 2 * e5 + e6;
+      v[q + 7 * xiStride] = -e1 + 5.25 * e3 - 5.25 * e5 + e7;
     }
   }
 }
 
 /**
- * M[ξ][o][t] = Σ_c V[ξ][c][t] U[ξ][c][o] for the 36 points ξ. The inner loop runs over the
+ * M[ξ][o][t] = Σ_c V[ξ][c][t] U[ξ][c][o] for the 64 points ξ. The inner loop runs over the
  * tiles with a block of 4 in-channels × 16 out-channels of U held in locals (V8 keeps the
  * ones that do not fit in registers on the stack, read without bounds checks): 4 loads and
  * 16 read-modify-writes per 64 multiply-adds. That ran at 5.0–5.2 GMAC/s on the 2-core
@@ -245,8 +272,8 @@ function products(
   n: number,
 ): void {
   const T = WINOGRAD_TILES;
-  m.fill(0, 0, 36 * pointStride(cout));
-  for (let xi = 0; xi < 36; xi++) {
+  m.fill(0, 0, 64 * pointStride(cout));
+  for (let xi = 0; xi < 64; xi++) {
     const vb = xi * pointStride(cin);
     const ub = xi * cin * cout;
     const mb = xi * pointStride(cout);
@@ -480,46 +507,59 @@ function outputTransform(
     const ty = (t / tilesX) | 0;
     const tx = t - ty * tilesX;
     const q = o * WINOGRAD_TILES + k;
-    // Pass 1 (Aᵀ M), column by column: 4 rows of 6.
-    for (let j = 0; j < 6; j++) {
+    // Pass 1 (Aᵀ M), column by column: 6 rows of 8.
+    for (let j = 0; j < 8; j++) {
       const p = q + j * xiStride;
       const m0 = m[p]!,
-        m1 = m[p + 6 * xiStride]!,
-        m2 = m[p + 12 * xiStride]!,
-        m3 = m[p + 18 * xiStride]!,
-        m4 = m[p + 24 * xiStride]!,
-        m5 = m[p + 30 * xiStride]!;
-      tmp[j] = m0 + m1 + m2 + m3 + m4;
-      tmp[6 + j] = m1 - m2 + 2 * (m3 - m4);
-      tmp[12 + j] = m1 + m2 + 4 * (m3 + m4);
-      tmp[18 + j] = m1 - m2 + 8 * (m3 - m4) + m5;
+        m1 = m[p + 8 * xiStride]!,
+        m2 = m[p + 16 * xiStride]!,
+        m3 = m[p + 24 * xiStride]!,
+        m4 = m[p + 32 * xiStride]!,
+        m5 = m[p + 40 * xiStride]!,
+        m6 = m[p + 48 * xiStride]!,
+        m7 = m[p + 56 * xiStride]!;
+      tmp[j] = m0 + m1 + m2 + m3 + m4 + m5 + m6;
+      tmp[8 + j] = m1 - m2 + 0.5 * m3 - 0.5 * m4 + 2 * m5 - 2 * m6;
+      tmp[16 + j] = m1 + m2 + 0.25 * m3 + 0.25 * m4 + 4 * m5 + 4 * m6;
+      tmp[24 + j] = m1 - m2 + 0.125 * m3 - 0.125 * m4 + 8 * m5 - 8 * m6;
+      tmp[32 + j] = m1 + m2 + 0.0625 * m3 + 0.0625 * m4 + 16 * m5 + 16 * m6;
+      tmp[40 + j] = m1 - m2 + 0.03125 * m3 - 0.03125 * m4 + 32 * m5 - 32 * m6 + m7;
     }
     // Pass 2 (… A), row by row, with bias and ReLU.
-    const y0 = ty << 2;
-    const x0 = tx << 2;
-    const rows = Math.min(4, h - y0);
-    const cols = Math.min(4, w - x0);
+    const y0 = ty * 6;
+    const x0 = tx * 6;
+    const rows = Math.min(6, h - y0);
+    const cols = Math.min(6, w - x0);
     for (let r = 0; r < rows; r++) {
-      const e0 = tmp[r * 6]!,
-        e1 = tmp[r * 6 + 1]!,
-        e2 = tmp[r * 6 + 2]!,
-        e3 = tmp[r * 6 + 3]!,
-        e4 = tmp[r * 6 + 4]!,
-        e5 = tmp[r * 6 + 5]!;
+      const e0 = tmp[r * 8]!,
+        e1 = tmp[r * 8 + 1]!,
+        e2 = tmp[r * 8 + 2]!,
+        e3 = tmp[r * 8 + 3]!,
+        e4 = tmp[r * 8 + 4]!,
+        e5 = tmp[r * 8 + 5]!,
+        e6 = tmp[r * 8 + 6]!,
+        e7 = tmp[r * 8 + 7]!;
       const d = base + (y0 + r) * stride + x0;
-      const z0 = bias + (e0 + e1 + e2 + e3 + e4);
-      const z1 = bias + (e1 - e2 + 2 * (e3 - e4));
-      const z2 = bias + (e1 + e2 + 4 * (e3 + e4));
-      const z3 = bias + (e1 - e2 + 8 * (e3 - e4) + e5);
-      if (cols === 4) {
+      const z0 = bias + (e0 + e1 + e2 + e3 + e4 + e5 + e6);
+      const z1 = bias + (e1 - e2 + 0.5 * e3 - 0.5 * e4 + 2 * e5 - 2 * e6);
+      const z2 = bias + (e1 + e2 + 0.25 * e3 + 0.25 * e4 + 4 * e5 + 4 * e6);
+      const z3 = bias + (e1 - e2 + 0.125 * e3 - 0.125 * e4 + 8 * e5 - 8 * e6);
+      const z4 = bias + (e1 + e2 + 0.0625 * e3 + 0.0625 * e4 + 16 * e5 + 16 * e6);
+      const z5 = bias + (e1 - e2 + 0.03125 * e3 - 0.03125 * e4 + 32 * e5 - 32 * e6 + e7);
+      if (cols === 6) {
         out[d] = relu(z0);
         out[d + 1] = relu(z1);
         out[d + 2] = relu(z2);
         out[d + 3] = relu(z3);
+        out[d + 4] = relu(z4);
+        out[d + 5] = relu(z5);
       } else {
         out[d] = relu(z0);
         if (cols > 1) out[d + 1] = relu(z1);
         if (cols > 2) out[d + 2] = relu(z2);
+        if (cols > 3) out[d + 3] = relu(z3);
+        if (cols > 4) out[d + 4] = relu(z4);
+        if (cols > 5) out[d + 5] = relu(z5);
       }
     }
   }

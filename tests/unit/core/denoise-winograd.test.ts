@@ -27,15 +27,17 @@ function randomLayer(cin: number, cout: number, next: () => number): ConvLayer {
   };
 }
 
-describe('Winograd F(4×4, 3×3) convolution', () => {
-  // Sizes: a multiple of 4, ragged right and bottom edges, one pixel, and more tiles than
-  // one block (WINOGRAD_TILES) with a ragged last block.
+describe('Winograd F(6×6, 3×3) convolution', () => {
+  // Sizes: whole 6×6 tiles, ragged right and bottom edges, one pixel, and more tiles than
+  // are transformed together (WINOGRAD_TILES), the last group ragged.
   const sizes: [number, number][] = [
+    [12, 18],
+    [12, 13], // whole tiles down, ragged across: the last row's windows end at the array's end
     [8, 8],
     [9, 13],
     [1, 1],
     [2, 3],
-    [4 * 5, 4 * (WINOGRAD_TILES / 4 + 3) + 1],
+    [6 * 5 + 2, 6 * 13 + 1], // 6 × 14 tiles
   ];
   // Channels: [a, b] of 5 + 4 → 8 (out-channels by 8, in-channels by 4 and one left
   // over), and 14 + 8 → 28 (by 16, by 8 and by 4; 22 in-channels, two left over).
@@ -80,9 +82,9 @@ describe('Winograd F(4×4, 3×3) convolution', () => {
     });
 
   it('gives the same bits whatever part of the map a tile is computed in', () => {
-    // A 16×16 map holds 16 tiles; computed alone it is one block. Embedded as the top-left
-    // corner of a larger map (zero elsewhere), the same tiles are spread over blocks
-    // differently; the top-left 12×12 outputs (whose windows see only the corner) agree.
+    // A 16×16 map holds 9 tiles, transformed together. Embedded as the top-left corner of
+    // a larger map (zero elsewhere), the same tiles fall in other groups at other places
+    // in them; the top-left 12×12 outputs (whose windows see only the corner) agree.
     const next = randomStream(5);
     const small = randomPlanes(6, 16, 16, next);
     const big = allocPlanes(6, 40, 72);
