@@ -37,9 +37,10 @@ export const MIN_AUTO_PIXELS = 65_536;
  */
 export const DENOISE_BUDGET_MS = 1200;
 /**
- * The denoiser's cost per pixel until it is measured on this machine: 286×192 took
- * 0.35–0.44 s with two render workers beside it on two cores (tests/timing, December 5,
- * the Winograd convolution; the direct one took 0.018 ms a pixel).
+ * The denoiser's cost per pixel until it is measured on this machine: with the Winograd
+ * convolution 286×192 took 0.35–0.44 s and 478×320 0.75–0.95 s, 0.005–0.008 ms a pixel,
+ * with two render workers beside it on two cores (tests/timing, December 5); the direct
+ * convolution took 0.018.
  */
 export const DENOISE_MS_PER_PIXEL = 0.008;
 
