@@ -259,9 +259,9 @@ function inputTransform(
  * ones that do not fit in registers on the stack, read without bounds checks): 4 loads and
  * 16 read-modify-writes per 64 multiply-adds. That ran at 5.0–5.2 GMAC/s on the 2-core
  * machine, × 8 out-channels at 4.5–4.9 (as fast as the direct convolution), and 4 tiles ×
- * 4 out-channels summed in registers (8 loads per 16) at 3.1. Leftover out-channels go 8,
- * then 4 at a time, leftover in-channels one at a time. The sum for each M is taken in a fixed order: in-channel
- * blocks in turn, four products inside a block.
+ * 4 out-channels summed in registers (8 loads per 16) at 3.1. Leftover in-channels go
+ * one at a time, and so do all in-channels of leftover out-channels. The sum for each M
+ * is taken in a fixed order: in-channel blocks in turn, four products inside a block.
  */
 function products(
   v: Float64Array,
@@ -284,15 +284,11 @@ function products(
         block4x16(v, u, m, vb + c * T, ub + c * cout + o, mb + o * T, cout, n);
       for (; c < cin; c++) block1xK(v, u, m, vb + c * T, ub + c * cout + o, mb + o * T, 16, n);
     }
-    for (; o + 8 <= cout; o += 8) {
-      let c = 0;
-      for (; c + 4 <= cin; c += 4)
-        block4x8(v, u, m, vb + c * T, ub + c * cout + o, mb + o * T, cout, n);
-      for (; c < cin; c++) block1xK(v, u, m, vb + c * T, ub + c * cout + o, mb + o * T, 8, n);
-    }
-    for (; o < cout; o += 4)
+    // Out-channels past the last 16 (none in OIDN's base and small networks, whose
+    // widths all come in 16s), one in-channel at a time.
+    if (o < cout)
       for (let c = 0; c < cin; c++)
-        block1xK(v, u, m, vb + c * T, ub + c * cout + o, mb + o * T, 4, n);
+        block1xK(v, u, m, vb + c * T, ub + c * cout + o, mb + o * T, cout - o, n);
   }
 }
 
@@ -398,71 +394,6 @@ function block4x16(
     m[k + 13 * T] = m[k + 13 * T]! + (x0 * a13 + x1 * b13 + (x2 * c13 + x3 * d13));
     m[k + 14 * T] = m[k + 14 * T]! + (x0 * a14 + x1 * b14 + (x2 * c14 + x3 * d14));
     m[k + 15 * T] = m[k + 15 * T]! + (x0 * a15 + x1 * b15 + (x2 * c15 + x3 * d15));
-  }
-}
-
-/** M[o … o + 7][t] += Σ over 4 in-channels c of V[c][t] U[c][o]. */
-function block4x8(
-  v: Float64Array,
-  u: Float32Array,
-  m: Float64Array,
-  p0: number,
-  q: number,
-  k0: number,
-  cout: number,
-  n: number,
-): void {
-  const T = WINOGRAD_TILES;
-  const a0 = u[q]!,
-    a1 = u[q + 1]!,
-    a2 = u[q + 2]!,
-    a3 = u[q + 3]!,
-    a4 = u[q + 4]!,
-    a5 = u[q + 5]!,
-    a6 = u[q + 6]!,
-    a7 = u[q + 7]!;
-  const r = q + cout;
-  const b0 = u[r]!,
-    b1 = u[r + 1]!,
-    b2 = u[r + 2]!,
-    b3 = u[r + 3]!,
-    b4 = u[r + 4]!,
-    b5 = u[r + 5]!,
-    b6 = u[r + 6]!,
-    b7 = u[r + 7]!;
-  const s = r + cout;
-  const c0 = u[s]!,
-    c1 = u[s + 1]!,
-    c2 = u[s + 2]!,
-    c3 = u[s + 3]!,
-    c4 = u[s + 4]!,
-    c5 = u[s + 5]!,
-    c6 = u[s + 6]!,
-    c7 = u[s + 7]!;
-  const w = s + cout;
-  const d0 = u[w]!,
-    d1 = u[w + 1]!,
-    d2 = u[w + 2]!,
-    d3 = u[w + 3]!,
-    d4 = u[w + 4]!,
-    d5 = u[w + 5]!,
-    d6 = u[w + 6]!,
-    d7 = u[w + 7]!;
-  for (let t = 0; t < n; t++) {
-    const p = p0 + t;
-    const x0 = v[p]!,
-      x1 = v[p + T]!,
-      x2 = v[p + 2 * T]!,
-      x3 = v[p + 3 * T]!;
-    const k = k0 + t;
-    m[k] = m[k]! + (x0 * a0 + x1 * b0 + (x2 * c0 + x3 * d0));
-    m[k + T] = m[k + T]! + (x0 * a1 + x1 * b1 + (x2 * c1 + x3 * d1));
-    m[k + 2 * T] = m[k + 2 * T]! + (x0 * a2 + x1 * b2 + (x2 * c2 + x3 * d2));
-    m[k + 3 * T] = m[k + 3 * T]! + (x0 * a3 + x1 * b3 + (x2 * c3 + x3 * d3));
-    m[k + 4 * T] = m[k + 4 * T]! + (x0 * a4 + x1 * b4 + (x2 * c4 + x3 * d4));
-    m[k + 5 * T] = m[k + 5 * T]! + (x0 * a5 + x1 * b5 + (x2 * c5 + x3 * d5));
-    m[k + 6 * T] = m[k + 6 * T]! + (x0 * a6 + x1 * b6 + (x2 * c6 + x3 * d6));
-    m[k + 7 * T] = m[k + 7 * T]! + (x0 * a7 + x1 * b7 + (x2 * c7 + x3 * d7));
   }
 }
 

@@ -8,14 +8,8 @@ import {
   winogradConv3x3Relu,
   winogradFits,
 } from '../../../src/core/denoise/winograd.ts';
+import { randomPlanes } from '../../helpers/planes.ts';
 import { randomStream } from '../../helpers/tza.ts';
-
-function randomPlanes(c: number, h: number, w: number, next: () => number): Planes {
-  const p = allocPlanes(c, h, w);
-  for (let ch = 0; ch < c; ch++)
-    for (let y = 0; y < h; y++) for (let x = 0; x < w; x++) p.data[at(p, ch, y, x)] = next();
-  return p;
-}
 
 function randomLayer(cin: number, cout: number, next: () => number): ConvLayer {
   return {
@@ -39,8 +33,8 @@ describe('Winograd F(6×6, 3×3) convolution', () => {
     [2, 3],
     [6 * 5 + 2, 6 * 13 + 1], // 6 × 14 tiles
   ];
-  // Channels: [a, b] of 5 + 4 → 8 (out-channels by 8, in-channels by 4 and one left
-  // over), and 14 + 8 → 28 (by 16, by 8 and by 4; 22 in-channels, two left over).
+  // Channels: [a, b] of 5 + 4 → 8 (out-channels all left over, in-channels by 4 and one
+  // left over), and 14 + 8 → 28 (by 16 and 12 left over; 22 in-channels, two left over).
   const cases = [
     ...sizes.map(([h, w]) => [h, w, 5, 4, 8] as const),
     [9, 13, 14, 8, 28] as const,
