@@ -12,14 +12,9 @@ import {
   puInverse,
 } from '../../../src/core/denoise/transfer.ts';
 import type { ConvLayer } from '../../../src/core/denoise/unet-weights.ts';
+import { randomPlanes } from '../../helpers/planes.ts';
 import { randomStream } from '../../helpers/tza.ts';
 
-function randomPlanes(c: number, h: number, w: number, next: () => number): Planes {
-  const p = allocPlanes(c, h, w);
-  for (let ch = 0; ch < c; ch++)
-    for (let y = 0; y < h; y++) for (let x = 0; x < w; x++) p.data[at(p, ch, y, x)] = next();
-  return p;
-}
 const get = (p: Planes, ch: number, y: number, x: number): number =>
   y < 0 || x < 0 || y >= p.h || x >= p.w ? 0 : p.data[at(p, ch, y, x)]!;
 

@@ -8,10 +8,7 @@
  * path a browser without them takes). The film must end bit-identical to
  * an undisturbed render, in shared memory and in transfer mode.
  */
-import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { join } from 'node:path';
-import { build } from 'esbuild';
+import { readFileSync } from 'node:fs';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import {
   DEFAULT_SAMPLER,
@@ -33,6 +30,7 @@ import {
   C_LOCK,
   type JobConfig,
 } from '../../../workers/browser/render-protocol.ts';
+import { bundleWorker } from '../../helpers/bundle-worker.ts';
 import { differingWords, mulberry32 } from '../../helpers/faults.ts';
 import { NodeWebWorker } from '../../../bench/node-web-worker.ts';
 
@@ -43,27 +41,14 @@ const SPP = 12;
 const SEED = 5;
 
 const scene = parseScene(readFileSync('scenes/cornell.json', 'utf8'));
-let dir = '';
 let workerFile = '';
+let dispose = (): void => {};
 
 beforeAll(async () => {
-  dir = mkdtempSync(join(tmpdir(), 'pathwise-pool-faults-'));
-  workerFile = join(dir, 'worker.mjs');
-  await build({
-    entryPoints: ['bench/pool-node-worker.ts'],
-    outfile: workerFile,
-    bundle: true,
-    platform: 'node',
-    format: 'esm',
-    target: 'node20',
-    logLevel: 'warning',
-    ignoreAnnotations: true,
-  });
+  ({ file: workerFile, dispose } = await bundleWorker('bench/pool-node-worker.ts', 'pool-faults'));
 });
 
-afterAll(() => {
-  if (dir) rmSync(dir, { recursive: true, force: true });
-});
+afterAll(() => dispose());
 
 function reference(aux: boolean): Film {
   const film = new Film(WIDTH, HEIGHT, undefined, 0, 0, aux);

@@ -3,32 +3,20 @@
  * thread passes only when all have arrived, for many rounds; and an abort releases a
  * thread that waits alone, with an exception, without terminating it.
  */
-import { mkdtempSync, rmSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { join } from 'node:path';
 import { Worker } from 'node:worker_threads';
-import { build } from 'esbuild';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { abortBarrier, BARRIER_WORDS } from '../../../workers/node/barrier.ts';
+import { bundleWorker } from '../../helpers/bundle-worker.ts';
 
-let dir = '';
 let workerFile = '';
+let dispose = (): void => {};
 beforeAll(async () => {
-  dir = mkdtempSync(join(tmpdir(), 'pathwise-barrier-'));
-  workerFile = join(dir, 'barrier-worker.mjs');
-  await build({
-    entryPoints: ['tests/fixtures/barrier-worker.ts'],
-    outfile: workerFile,
-    bundle: true,
-    platform: 'node',
-    format: 'esm',
-    target: 'node20',
-    logLevel: 'warning',
-  });
+  ({ file: workerFile, dispose } = await bundleWorker(
+    'tests/fixtures/barrier-worker.ts',
+    'barrier-worker',
+  ));
 });
-afterAll(() => {
-  if (dir) rmSync(dir, { recursive: true, force: true });
-});
+afterAll(() => dispose());
 
 function start(
   parties: number,
