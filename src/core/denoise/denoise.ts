@@ -84,7 +84,8 @@ export function denoiseWorkspaceBytes(job: DenoiseJob): number {
  * Denoises tile `index` of the job into `output` (RGB, the image's size). Returns false,
  * leaving the tile's output unwritten, when `stop` (asked between layers) said to stop.
  * With `band`, this thread is one of `band.count` that run the tile together on a shared
- * workspace (unet.ts, UNetBand): each encodes, computes and decodes its band of rows.
+ * workspace (unet.ts, UNetBand): each encodes, computes and decodes its band of rows. A
+ * band cannot stop early (runUNet refuses `stop` with a band).
  */
 export function runDenoiseTile(
   job: DenoiseJob,
@@ -94,8 +95,6 @@ export function runDenoiseTile(
   stop?: () => boolean,
   band?: UNetBand,
 ): boolean {
-  // A band that stopped alone would leave the others waiting at the next barrier.
-  if (band && stop) throw new RangeError('runDenoiseTile: a band cannot stop early');
   const tile = job.plan.tiles[index];
   if (!tile) throw new RangeError(`denoise: no tile ${index}`);
   const { width, color, albedo, normal } = job.images;
