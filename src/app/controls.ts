@@ -111,6 +111,8 @@ export function attachControls(c: Controller): Controls {
     (v) => void c.setWorkers(v),
   );
 
+  const adaptive = byId<HTMLInputElement>('adaptive');
+  adaptive.addEventListener('change', () => c.setAdaptive(adaptive.checked));
   const denoise = byId<HTMLInputElement>('denoise');
   denoise.addEventListener('change', () => c.setDenoise(denoise.checked));
 
@@ -132,6 +134,7 @@ export function attachControls(c: Controller): Controls {
   const sync = () => {
     const s = c.stats();
     workers.set(s.workers);
+    adaptive.checked = c.adaptive;
     denoise.checked = c.denoise;
     showPause();
     refresh();

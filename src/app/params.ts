@@ -5,7 +5,8 @@
  * `?display=canvas2d` (or `webgl2`, even on a software renderer), `?workers=2`,
  * `?bench=2` (a 2-second benchmark), `?scale=1&dpr=3` (a fixed render scale;
  * devicePixelRatio counted up to 3 instead of 2), `?denoise=1` (the Denoise switch on),
- * `?restdraw=0` (draw every frame while the view rests; bench/browser-demo.mjs compares).
+ * `?restdraw=0` (draw every frame while the view rests; bench/browser-demo.mjs compares),
+ * `?adaptive=0` (every pixel in every pass; adaptive sampling is on by default).
  */
 import type { PathTracerOptions } from '../view/index.ts';
 import { PRESETS, type PresetName } from './presets.ts';
@@ -54,6 +55,7 @@ export function readParams(search: string): DemoParams {
     display: displayParam(q.get('display')),
     shared: q.get('shared') === 'off' ? 'off' : 'auto',
     denoise: q.get('denoise') === '1',
+    adaptive: q.get('adaptive') !== '0',
     restDrawMs: nonNegativeInt(q.get('restdraw')),
   };
   return {

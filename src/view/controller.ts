@@ -173,6 +173,7 @@ export class Controller extends EventTarget implements PathTracerController {
         interacting: () => this.interacting,
         restDrawMs: () => this.options.restDrawMs ?? REST_DRAW_MS,
         restart: () => this.restart(),
+        wakeWorkers: () => this.job.pool.kick(),
         denoise: (spp) => this.denoising.update(spp, this.target),
       },
       this.films,
@@ -396,6 +397,17 @@ export class Controller extends EventTarget implements PathTracerController {
 
   setDenoise(on: boolean): void {
     this.denoising.set(on);
+  }
+
+  /** See PathTracerOptions.adaptive; the film is remade and the render starts over. */
+  setAdaptive(on: boolean): void {
+    if (this.films.adaptive === on) return;
+    this.films.adaptive = on;
+    this.restart();
+  }
+
+  get adaptive(): boolean {
+    return this.films.adaptive;
   }
 
   /** See PathTracerOptions.sizeStep; applies from the next restart that sizes the film. */

@@ -15,6 +15,8 @@ export interface FilmJob {
   readonly stripeRows: number;
   /** The film has first-hit albedo and normal planes (Film's aux), for the denoiser. */
   readonly aux: boolean;
+  /** Adaptive sampling (pilot-gate.ts): passes past the pilot follow a per-pixel map. */
+  readonly adaptive: boolean;
   /** Approximate bytes held for this film (sums, exact sums, control). */
   readonly memoryBytes: number;
   /** Clears the film and drops all work in flight. */
@@ -23,7 +25,15 @@ export interface FilmJob {
   setVersion(version: number): void;
   setTarget(spp: number): void;
   setPaused(paused: boolean): void;
-  /** Passes finished by every stripe: the image's samples per pixel. */
+  /**
+   * Adaptive films: once every stripe holds the pilot, builds the sample map and lets
+   * the workers past it (pilot-gate.ts). True when it did: the workers need waking.
+   */
+  advance(): boolean;
+  /**
+   * Passes finished by every stripe: the image's samples per pixel (past an adaptive
+   * film's pilot, the most any pixel holds).
+   */
   passesDone(): number;
   /** Passes finished, averaged over stripes (fractional; for the progress bar). */
   progress(): number;

@@ -65,6 +65,11 @@ export class Films {
    * denoising is on; a full film without them is remade at the next restart.
    */
   aux = false;
+  /**
+   * The full film is sampled adaptively (PathTracerOptions.adaptive, pilot-gate.ts); a
+   * full film made otherwise is remade at the next restart.
+   */
+  adaptive: boolean;
   /** The automatic scale's cap on the full film's pixels (the denoiser's budget while it is on). */
   maxAutoPixels = Infinity;
   /** See PathTracerOptions.sizeStep; takes effect when the full film is next sized. */
@@ -92,6 +97,7 @@ export class Films {
     this.options = options;
     this.compute = compute;
     this.workers = workers;
+    this.adaptive = options.adaptive !== false;
     this.autoScale = options.renderScale === undefined && !this.fixedSize;
     // Until a speed is measured, the automatic scale is the largest one: the
     // quick first pass runs in the preview film, which it sizes.
@@ -185,15 +191,21 @@ export class Films {
    * A film job of w × h. Memory that cannot be had (the allocation throws a
    * RangeError, SharedArrayBuffer's included) is reported in plain words.
    */
-  private make(width: number, height: number, target: number, aux: boolean): FilmJob {
+  private make(
+    width: number,
+    height: number,
+    target: number,
+    aux: boolean,
+    adaptive: boolean,
+  ): FilmJob {
     try {
       if (this.compute === 'shared') {
         const rows = Math.max(1, Math.floor(height / SHARED_STRIPES_TARGET));
-        return new SharedFilmJob(width, height, rows, target, aux);
+        return new SharedFilmJob(width, height, rows, target, aux, adaptive);
       }
       // Each transferred stripe is a message both ways: keep them few.
       const rows = chooseStripeRows(height, this.workers());
-      return new TransferFilmJob(width, height, rows, target, aux);
+      return new TransferFilmJob(width, height, rows, target, aux, adaptive);
     } catch (e) {
       if (!(e instanceof RangeError)) throw e;
       const what = this.compute === 'shared' ? 'shared memory (SharedArrayBuffer)' : 'memory';
@@ -213,7 +225,15 @@ export class Films {
   ensureFull(target: number): boolean {
     let [w, h] = this.fullSize();
     const full = this.full;
-    if (full && full.width === w && full.height === h && (full.aux || !this.aux)) return false;
+    if (
+      full &&
+      full.width === w &&
+      full.height === h &&
+      (full.aux || !this.aux) &&
+      full.adaptive === this.adaptive
+    ) {
+      return false;
+    }
     if (this.fixedSize) {
       const problem = filmSizeProblem(w, h, this.maxSide, this.aux);
       if (problem) throw new FilmMemoryError(problem);
@@ -221,7 +241,7 @@ export class Films {
     let made: FilmJob;
     for (;;) {
       try {
-        made = this.make(w, h, target, this.aux);
+        made = this.make(w, h, target, this.aux, this.adaptive);
         break;
       } catch (e) {
         if (!(e instanceof FilmMemoryError) || this.fixedSize || w * h <= MIN_FALLBACK_PIXELS) {
@@ -252,7 +272,8 @@ export class Films {
     const [fw, fh] = this.full ? [this.full.width, this.full.height] : this.fullSize();
     const [w, h] = Films.previewSize(fw, fh);
     if (!this.preview || this.preview.width !== w || this.preview.height !== h) {
-      const made = this.make(w, h, target, false);
+      // The preview lives for a drag's few passes: uniform, no pilot to wait for.
+      const made = this.make(w, h, target, false, false);
       this.preview?.setVersion(-1);
       this.preview = made;
     }

@@ -33,6 +33,8 @@ export interface LoopHost {
   restDrawMs(): number;
   /** A new configuration version and reset of the active film (Controller.restart). */
   restart(): void;
+  /** Asks the pool's workers to look for work (an adaptive film's pilot gate opened). */
+  wakeWorkers(): void;
   /**
    * The full film rests at `spp` samples: a denoised picture may be due
    * (denoise-view.ts). True while one is in flight or due.
@@ -109,6 +111,8 @@ export class FrameLoop {
       if (films.resizePending) this.wake();
       return;
     }
+    // An adaptive film whose pilot is done: the map is built and passes past it may start.
+    if (job.advance()) host.wakeWorkers();
     const segments = job.takeSegments();
     meter.traced(now, segments);
     // Preview passes are not the image's samples: the full film has none yet.

@@ -100,6 +100,8 @@ export class RenderJob {
       camera: image.camera,
       stripeRows: active.stripeRows,
       aux: active.aux,
+      adaptive: active.adaptive,
+      map: shared?.mapBuffer ?? undefined,
       film: shared?.filmBuffer,
       ctrl: shared?.ctrlBuffer,
       journal: shared?.journalBuffer,

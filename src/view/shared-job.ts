@@ -37,6 +37,7 @@ import {
   recoverDead,
 } from '../../workers/browser/shared-claims.ts';
 import type { FilmJob } from './film-job.ts';
+import { PilotGate } from './pilot-gate.ts';
 import { faults, isDead } from './worker-deaths.ts';
 
 /** How long the main thread spins for a lock before it gives the buffers up. */
@@ -70,8 +71,24 @@ export class SharedFilmJob implements FilmJob {
 
   /** The film has albedo and normal planes (for the denoiser). */
   readonly aux: boolean;
+  /**
+   * An adaptive film's per-pixel rates (pilot-gate.ts), which the workers read; null
+   * for a uniform film. Kept when the job moves to new buffers: only this thread writes
+   * it, and only between a finished pilot and the passes after it.
+   */
+  readonly mapBuffer: SharedArrayBuffer | null;
+  private readonly gate: PilotGate;
+  /** The caller's target; the control block holds the gate's cap of it. */
+  private target: number;
 
-  constructor(width: number, height: number, stripeRows: number, target: number, aux = false) {
+  constructor(
+    width: number,
+    height: number,
+    stripeRows: number,
+    target: number,
+    aux = false,
+    adaptive = false,
+  ) {
     this.width = width;
     this.aux = aux;
     this.height = height;
@@ -80,8 +97,15 @@ export class SharedFilmJob implements FilmJob {
     this.stripes = this.layout.stripes;
     this.seen = new Int32Array(height).fill(-1);
     this.allocate();
+    this.mapBuffer = adaptive ? new SharedArrayBuffer(width * height) : null;
+    this.gate = new PilotGate(this.mapBuffer && new Uint8Array(this.mapBuffer));
+    this.target = target;
     this.ctrl[C_CONFIG] = -1;
-    this.ctrl[C_TARGET] = target;
+    this.ctrl[C_TARGET] = this.gate.cap(target);
+  }
+
+  get adaptive(): boolean {
+    return this.gate.adaptive;
   }
 
   /** New, zeroed buffers (a RangeError when the memory is not there). */
@@ -103,7 +127,12 @@ export class SharedFilmJob implements FilmJob {
   }
 
   get memoryBytes(): number {
-    return this.filmBuffer.byteLength + this.ctrlBuffer.byteLength + this.journalBuffer.byteLength;
+    return (
+      this.filmBuffer.byteLength +
+      this.ctrlBuffer.byteLength +
+      this.journalBuffer.byteLength +
+      (this.mapBuffer?.byteLength ?? 0)
+    );
   }
 
   /** Takes the lock for the main thread; see the header for what happens when it cannot. */
@@ -174,10 +203,13 @@ export class SharedFilmJob implements FilmJob {
 
   /**
    * Under the lock: a new generation with nothing claimed, reclaimed, done
-   * or committed (row stamps stay: they only ever grow).
+   * or committed (row stamps stay: they only ever grow), and an adaptive
+   * film's gate closed until its new pilot is done.
    */
   private clearProgress(): void {
     const ctrl = this.ctrl;
+    this.gate.close();
+    ctrl[C_TARGET] = this.gate.cap(this.target);
     ctrl[C_CLAIM] = 0;
     initControl(ctrl);
     ctrl.fill(0, C_DONE, C_DONE + this.stripes);
@@ -197,7 +229,16 @@ export class SharedFilmJob implements FilmJob {
   }
 
   setTarget(spp: number): void {
-    Atomics.store(this.ctrl, C_TARGET, spp);
+    this.target = spp;
+    Atomics.store(this.ctrl, C_TARGET, this.gate.cap(spp));
+  }
+
+  advance(): boolean {
+    if (!this.gate.tryOpen(this.film, this.passesDone())) return false;
+    // The map's writes happen before this store, and a worker takes a claim
+    // past the pilot only after reading the new target (under the lock).
+    Atomics.store(this.ctrl, C_TARGET, this.target);
+    return true;
   }
 
   setPaused(paused: boolean): void {

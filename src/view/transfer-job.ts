@@ -6,13 +6,14 @@
  * and the film's sums are exact, so the image is the same, bit for bit,
  * as the shared path's.
  */
-import { Film } from '../core/index.ts';
+import { ADAPTIVE_PILOT, Film } from '../core/index.ts';
 import {
   stripeOrder,
   type StripeResult,
   type StripeTask,
 } from '../../workers/browser/render-protocol.ts';
 import type { FilmJob } from './film-job.ts';
+import { PilotGate } from './pilot-gate.ts';
 
 export class TransferFilmJob implements FilmJob {
   readonly film: Film;
@@ -22,7 +23,9 @@ export class TransferFilmJob implements FilmJob {
   readonly stripes: number;
   private gen = 0;
   private version = -1;
+  /** The caller's target; stripes are handed out up to the gate's cap of it. */
   private target: number;
+  private readonly gate: PilotGate;
   private paused = false;
   private done: Int32Array;
   private inFlight: Uint8Array;
@@ -39,7 +42,14 @@ export class TransferFilmJob implements FilmJob {
   /** The film has albedo and normal planes (for the denoiser). */
   readonly aux: boolean;
 
-  constructor(width: number, height: number, stripeRows: number, target: number, aux = false) {
+  constructor(
+    width: number,
+    height: number,
+    stripeRows: number,
+    target: number,
+    aux = false,
+    adaptive = false,
+  ) {
     this.width = width;
     this.aux = aux;
     this.height = height;
@@ -47,25 +57,44 @@ export class TransferFilmJob implements FilmJob {
     this.stripes = Math.ceil(height / stripeRows);
     this.film = new Film(width, height, undefined, 0, 0, aux);
     this.target = target;
+    this.gate = new PilotGate(adaptive ? new Uint8Array(width * height) : null);
     this.done = new Int32Array(this.stripes);
     this.inFlight = new Uint8Array(this.stripes);
     this.order = stripeOrder(this.stripes);
     this.requeue();
   }
 
+  get adaptive(): boolean {
+    return this.gate.adaptive;
+  }
+
   get memoryBytes(): number {
-    return this.film.buffer.byteLength;
+    return this.film.buffer.byteLength + (this.gate.map?.byteLength ?? 0);
+  }
+
+  /** Passes stripes may be taken to now (the caller's target, capped at a closed gate). */
+  private limit(): number {
+    return this.gate.cap(this.target);
   }
 
   private requeue(): void {
     this.queue = [];
+    const limit = this.limit();
     for (const s of this.order) {
-      if (!this.inFlight[s] && this.done[s] < this.target) this.queue.push(s);
+      if (!this.inFlight[s] && this.done[s] < limit) this.queue.push(s);
     }
+  }
+
+  advance(): boolean {
+    // No stripe is out once all hold the pilot: the capped target handed out no more.
+    if (!this.gate.tryOpen(this.film, this.passesDone())) return false;
+    this.requeue();
+    return true;
   }
 
   reset(): void {
     this.gen++;
+    this.gate.close();
     this.film.clear();
     this.done = new Int32Array(this.stripes);
     // Tasks of the old generation still out are dropped when they return.
@@ -136,16 +165,23 @@ export class TransferFilmJob implements FilmJob {
     const window = new Film(this.width, rows, buffer, y0, 0, this.aux);
     window.copyRowsFrom(this.film);
     this.inFlight[stripe] = 1;
+    const pass = this.done[stripe];
+    const map = this.gate.map;
     return {
       type: 'task',
       job,
       version: this.version,
       gen: this.gen,
       stripe,
-      pass: this.done[stripe],
+      pass,
       y0,
       rows,
       buffer,
+      // Past the pilot, the stripe's rows of the map travel with it.
+      map:
+        map !== null && pass >= ADAPTIVE_PILOT
+          ? map.slice(y0 * this.width, (y0 + rows) * this.width)
+          : undefined,
     };
   }
 
@@ -157,7 +193,7 @@ export class TransferFilmJob implements FilmJob {
     if (task.gen !== this.gen) return;
     const s = task.stripe;
     this.inFlight[s] = 0;
-    if (this.done[s] < this.target) this.queue.unshift(s);
+    if (this.done[s] < this.limit()) this.queue.unshift(s);
   }
 
   onResult(result: StripeResult): void {
@@ -174,7 +210,9 @@ export class TransferFilmJob implements FilmJob {
       if (this.dirty.length > 2 * this.stripes) this.dirty = [0, this.height];
       else this.dirty.push(result.y0, result.y0 + result.rows);
     }
-    if (this.done[s] < this.target) {
+    // The last stripe of the pilot opens the gate (the queue is then refilled).
+    if (this.gate.closed && this.advance()) return;
+    if (this.done[s] < this.limit()) {
       // A stripe that was not rendered goes first again, to keep pass order tight.
       if (result.rendered) this.queue.push(s);
       else this.queue.unshift(s);

@@ -121,6 +121,13 @@ export interface PathTracerOptions extends BareModelChoices {
    */
   restDrawMs?: number;
   /**
+   * Adaptive sampling (docs/adaptive-sampling.md): after a uniform pilot of 16 passes, each
+   * pixel takes the later passes at a rate set by its neighbours' pilot error, as
+   * `pathwise render --adaptive on` does, bit for bit. Default true; false samples
+   * every pixel in every pass.
+   */
+  adaptive?: boolean;
+  /**
    * Show a denoised picture while the view rests (Open Image Denoise's network on a
    * worker of its own, guided by the first-hit albedo and normal the film then records;
    * docs/denoise.md says what it costs and when it misleads). Default false.
@@ -181,6 +188,9 @@ export interface PathTracerController extends EventTarget {
   setSeed(seed: number): void;
   /** A fixed render scale, or null for the automatic one (see PathTracerOptions.renderScale). */
   setRenderScale(scale: number | null): void;
+  /** Turns adaptive sampling on or off (see PathTracerOptions.adaptive); the render starts over. */
+  setAdaptive(on: boolean): void;
+  readonly adaptive: boolean;
   /** Turns the denoised picture on or off (see PathTracerOptions.denoise). */
   setDenoise(on: boolean): void;
   readonly denoise: boolean;

@@ -18,6 +18,7 @@ export const OBSERVED_ATTRIBUTES = [
   'render-scale',
   'alt',
   'denoise',
+  'adaptive',
 ] as const;
 
 export type ObservedAttribute = (typeof OBSERVED_ATTRIBUTES)[number];
@@ -46,6 +47,9 @@ export function parsePositive(value: string | null): number | undefined {
 export function parseAutoplay(value: string | null): boolean {
   return value === null || value.trim().toLowerCase() !== 'false';
 }
+
+/** `adaptive` (adaptive sampling) is on unless written `adaptive="false"`, as `autoplay`. */
+export const parseAdaptive = parseAutoplay;
 
 /** Writes a number attribute, or removes it for null/undefined (back to the default). */
 export function writeNumber(

@@ -20,6 +20,7 @@ import {
   DEFAULT_EXPOSURE,
   DEFAULT_SPP,
   OBSERVED_ATTRIBUTES,
+  parseAdaptive,
   parseAutoplay,
   parseNumber,
   parsePositive,
@@ -178,6 +179,17 @@ export class PathwiseViewElement extends ElementBase {
   }
   set denoise(value: boolean) {
     writeBoolean(this, 'denoise', value);
+  }
+
+  /**
+   * Adaptive sampling (PathTracerOptions.adaptive; docs/adaptive-sampling.md): default
+   * true; `adaptive="false"` samples every pixel in every pass. A change starts over.
+   */
+  get adaptive(): boolean {
+    return parseAdaptive(this.getAttribute('adaptive'));
+  }
+  set adaptive(value: boolean) {
+    this.setAttribute('adaptive', String(value));
   }
 
   /** Start tracing as soon as the scene loads (default true; `autoplay="false"` opts out). */
@@ -369,6 +381,9 @@ export class PathwiseViewElement extends ElementBase {
       case 'denoise':
         tracer.setDenoise(this.denoise);
         break;
+      case 'adaptive':
+        tracer.setAdaptive(this.adaptive);
+        break;
       case 'paused':
         this.applyRunState();
         break;
@@ -387,6 +402,7 @@ export class PathwiseViewElement extends ElementBase {
       autoplay: this.shouldRun(),
       cameraControls: false,
       denoise: this.denoise,
+      adaptive: this.adaptive,
     };
     if (this.bounces !== null) options.bounces = this.bounces;
     if (this.renderScale !== null) options.renderScale = this.renderScale;

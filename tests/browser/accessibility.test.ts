@@ -66,6 +66,7 @@ describe('demo accessibility (Chromium)', () => {
     expect(await page.getByRole('img', { name: /Error against time/ }).count()).toBe(1);
     expect(await page.getByRole('button', { name: 'Open scene…' }).count()).toBe(1);
     expect(await page.getByRole('checkbox', { name: 'Denoise' }).count()).toBe(1);
+    expect(await page.getByRole('checkbox', { name: 'Adaptive' }).count()).toBe(1);
     await page.close();
   });
 
@@ -96,6 +97,7 @@ describe('demo accessibility (Chromium)', () => {
       '#aperture',
       '#scale',
       '#workers',
+      '#adaptive',
       '#denoise',
       '#benchmark',
     ];

@@ -7,6 +7,8 @@ import { join } from 'node:path';
 import { nodeGltfDecoders, nodeTangentGenerator } from '../../src/cli/gltf-node.ts';
 import { nodeSceneFiles } from '../../src/cli/scene-files.ts';
 import {
+  ADAPTIVE_PILOT,
+  buildSampleMap,
   Film,
   PathTracer,
   RenderStats,
@@ -26,8 +28,9 @@ export function nodeRender(
   spp: number,
   camera?: CameraDesc,
   maxBounces?: number,
+  adaptive = false,
 ): Float32Array {
-  return nodeFilm(scene, width, height, seed, spp, camera, maxBounces).mean();
+  return nodeFilm(scene, width, height, seed, spp, camera, maxBounces, adaptive).mean();
 }
 
 /** The Node core's film (sums and squared luminance) of the same render. */
@@ -39,11 +42,16 @@ export function nodeFilm(
   spp: number,
   camera?: CameraDesc,
   maxBounces?: number,
+  adaptive = false,
 ): Film {
   const parsed = parseScene(readFileSync(join(root, 'scenes', `${scene}.json`), 'utf8'));
-  return sceneFilm(parsed, width, height, seed, spp, camera, maxBounces);
+  return sceneFilm(parsed, width, height, seed, spp, camera, maxBounces, adaptive);
 }
 
+/**
+ * `adaptive`: as `pathwise render --adaptive on` does (core/film/adaptive.ts), the
+ * uniform pilot, the map from it, then the passes after it at the map's rates.
+ */
 function sceneFilm(
   scene: Scene,
   width: number,
@@ -52,6 +60,7 @@ function sceneFilm(
   spp: number,
   camera?: CameraDesc,
   maxBounces?: number,
+  adaptive = false,
 ): Film {
   const tracer = new PathTracer(compileScene(scene), {
     width,
@@ -61,7 +70,13 @@ function sceneFilm(
     camera: camera ?? scene.camera,
   });
   const film = new Film(width, height);
-  tracer.renderRows(film, 0, height, 0, spp, new RenderStats());
+  if (adaptive && spp > ADAPTIVE_PILOT) {
+    tracer.renderRows(film, 0, height, 0, ADAPTIVE_PILOT, new RenderStats());
+    tracer.sampleMap = buildSampleMap(film, new Uint8Array(width * height));
+    tracer.renderRows(film, 0, height, ADAPTIVE_PILOT, spp, new RenderStats());
+  } else {
+    tracer.renderRows(film, 0, height, 0, spp, new RenderStats());
+  }
   return film;
 }
 

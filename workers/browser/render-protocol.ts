@@ -170,6 +170,12 @@ export interface JobConfig extends RenderSettings {
   ctrl?: SharedArrayBuffer;
   /** Shared mode: one row of film, where a commit puts its row first (see C_JOURNAL_ROW). */
   journal?: SharedArrayBuffer;
+  /**
+   * Shared mode, an adaptive film (`adaptive`): the per-pixel rates, width·height bytes,
+   * which the main thread fills before any pass past the pilot may be claimed
+   * (src/view/pilot-gate.ts). Transfer mode ships each stripe's rows with its task.
+   */
+  map?: SharedArrayBuffer;
 }
 
 /** What a worker learns from the pool before anything else. */
@@ -198,6 +204,8 @@ export interface StripeTask {
   rows: number;
   /** Film window (every plane of rows [y0, y0+rows)); transferred. */
   buffer: ArrayBuffer;
+  /** An adaptive film past its pilot: the rates of rows [y0, y0+rows) (src/view/pilot-gate.ts). */
+  map?: Uint8Array;
 }
 
 export interface StripeResult extends Omit<StripeTask, 'type'> {

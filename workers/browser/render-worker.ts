@@ -67,6 +67,8 @@ interface Job {
   /** The job's commit journal (one row, shared). */
   journal?: Film;
   layout?: ControlLayout;
+  /** Transfer mode, an adaptive film: the rates of the rows tasks brought (whole image). */
+  map?: Uint8Array;
 }
 
 const jobs = new Map<number, Job>();
@@ -135,6 +137,17 @@ function configure(id: number, config: JobConfig): void {
     tracer = new PathTracer(compiled, config);
   }
   const job: Job = { config: { ...config, scene: undefined }, compiled, tracer };
+  // An adaptive film: passes past the pilot follow the map (shared mode: the main thread's,
+  // filled before any such pass is claimed; transfer mode: filled from the tasks).
+  if (config.adaptive === true) {
+    job.map =
+      config.mode === 'shared'
+        ? new Uint8Array(config.map!)
+        : old?.map?.length === config.width * config.height
+          ? old.map
+          : new Uint8Array(config.width * config.height);
+  }
+  tracer.sampleMap = job.map ?? null;
   if (config.mode === 'shared') {
     const aux = config.aux;
     job.film =
@@ -294,6 +307,7 @@ function renderTask(task: StripeTask, port: MessagePort): void {
   const rejected = stats.rejected;
   let rendered = false;
   if (job && job.config.version === task.version) {
+    if (task.map) job.map!.set(task.map, task.y0 * job.config.width);
     const film = new Film(job.config.width, task.rows, task.buffer, task.y0, 0, job.config.aux);
     job.tracer.renderRows(film, task.y0, task.y0 + task.rows, task.pass, task.pass + 1, stats);
     rendered = true;
