@@ -30,6 +30,8 @@ export interface FilmJob {
    * the workers past it (pilot-gate.ts). True when it did: the workers need waking.
    */
   advance(): boolean;
+  /** An adaptive film whose map is not built yet (its pilot is under way). */
+  readonly pilotPending: boolean;
   /**
    * Passes finished by every stripe: the image's samples per pixel (past an adaptive
    * film's pilot, the most any pixel holds).

@@ -15,6 +15,10 @@
  * picture refining ten times a second looks no different. Dragging, the
  * first pass after a restart, an exposure change and a new denoised picture
  * are drawn at once.
+ *
+ * An adaptive film's pilot gate (pilot-gate.ts) is checked each frame and, while it is
+ * closed, by a timer too: a hidden tab runs no animation frames but its workers go on,
+ * and would otherwise wait at the end of the pilot until the tab is shown.
  */
 import type { Fallbacks } from './fallbacks.ts';
 import type { Films } from './films.ts';
@@ -44,6 +48,8 @@ export interface LoopHost {
 
 /** The least time between draws of new samples while the view rests (PathTracerOptions.restDrawMs). */
 export const REST_DRAW_MS = 100;
+/** How often the pilot gate is checked besides the frames (a hidden tab has none). */
+const PILOT_CHECK_MS = 250;
 
 export class FrameLoop {
   private readonly host: LoopHost;
@@ -58,6 +64,8 @@ export class FrameLoop {
   count = 0;
   /** When the picture was last drawn (frame time). */
   private lastDraw = -Infinity;
+  /** The pending check of the pilot gate; 0 when none. */
+  private pilotTimer: ReturnType<typeof setTimeout> | 0 = 0;
 
   constructor(
     host: LoopHost,
@@ -85,6 +93,24 @@ export class FrameLoop {
   stop(): void {
     cancelAnimationFrame(this.raf);
     this.raf = 0;
+    clearTimeout(this.pilotTimer);
+    this.pilotTimer = 0;
+  }
+
+  /** Opens the active film's pilot gate when its pilot is done; keeps a timer on it while closed. */
+  private checkPilot(): void {
+    const job = this.films.active();
+    if (!job || this.host.destroyed()) return;
+    if (job.advance()) {
+      this.host.wakeWorkers();
+      this.wake();
+    }
+    if (job.pilotPending && !this.host.paused() && this.pilotTimer === 0) {
+      this.pilotTimer = setTimeout(() => {
+        this.pilotTimer = 0;
+        this.checkPilot();
+      }, PILOT_CHECK_MS);
+    }
   }
 
   private readonly frame = (now: number): void => {
@@ -112,7 +138,7 @@ export class FrameLoop {
       return;
     }
     // An adaptive film whose pilot is done: the map is built and passes past it may start.
-    if (job.advance()) host.wakeWorkers();
+    this.checkPilot();
     const segments = job.takeSegments();
     meter.traced(now, segments);
     // Preview passes are not the image's samples: the full film has none yet.

@@ -108,6 +108,10 @@ export class SharedFilmJob implements FilmJob {
     return this.gate.adaptive;
   }
 
+  get pilotPending(): boolean {
+    return this.gate.closed;
+  }
+
   /** New, zeroed buffers (a RangeError when the memory is not there). */
   private allocate(): void {
     const filmBuffer = new SharedArrayBuffer(Film.byteLength(this.width, this.height, this.aux));

@@ -68,6 +68,10 @@ export class TransferFilmJob implements FilmJob {
     return this.gate.adaptive;
   }
 
+  get pilotPending(): boolean {
+    return this.gate.closed;
+  }
+
   get memoryBytes(): number {
     return this.film.buffer.byteLength + (this.gate.map?.byteLength ?? 0);
   }

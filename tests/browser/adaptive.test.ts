@@ -76,6 +76,17 @@ describe('adaptive sampling in the browser (Chromium)', () => {
     });
   }
 
+  it('opens the gate without animation frames (a hidden tab runs none, its workers go on)', async () => {
+    const page = await openDemo(ctx.browser, ctx.url, `${fixed}&spp=${PASSES}`);
+    await waitForSpp(page, 2);
+    await page.evaluate(() => {
+      window.requestAnimationFrame = () => 0;
+    });
+    await waitForSpp(page, PASSES);
+    expect(bitDifferences((await readLinear(page)).rgb, adaptive())).toBe(0);
+    await page.close();
+  });
+
   it('<pathwise-view adaptive="false"> turns it off, and the attribute switches it', async () => {
     const page = await openDemo(ctx.browser, ctx.url, `width=16&height=16&spp=1`);
     await page.addScriptTag({ type: 'module', content: "import '/src/widget/register.ts';" });

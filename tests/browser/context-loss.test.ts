@@ -148,7 +148,8 @@ describe('WebGL2 context loss (Chromium)', () => {
       return target;
     });
     await waitForSpp(page, passes);
-    const expected = nodeRender('cornell', SIZE, SIZE, SEED, passes);
+    // Adaptive sampling is on by default (past the 16-pass pilot: the adaptive reference).
+    const expected = nodeRender('cornell', SIZE, SIZE, SEED, passes, undefined, undefined, true);
     expect(bitDifferences((await readLinear(page)).rgb, expected)).toBe(0);
     // The rebuilt display shows what an undisturbed one shows.
     const undisturbed = await openDemo(ctx.browser, ctx.url, query(passes));
