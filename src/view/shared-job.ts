@@ -169,6 +169,9 @@ export class SharedFilmJob implements FilmJob {
     );
     this.allocate();
     for (const [w, v] of carried) this.ctrl[w] = v;
+    // The new film is empty: an adaptive one starts a new pilot.
+    this.gate.close();
+    this.ctrl[C_TARGET] = this.gate.cap(this.target);
     this.ctrl[C_GEN]++;
     Atomics.add(old, C_GEN, 1);
     Atomics.store(old, C_CONFIG, -1);
