@@ -11,6 +11,8 @@
 import { readFileSync } from 'node:fs';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import {
+  ADAPTIVE_PILOT,
+  buildSampleMap,
   DEFAULT_SAMPLER,
   Film,
   PathTracer,
@@ -37,7 +39,7 @@ import { NodeWebWorker } from '../../../bench/node-web-worker.ts';
 const WIDTH = 32;
 const HEIGHT = 96;
 const STRIPE_ROWS = 3;
-const SPP = 12;
+const SPP_UNIFORM = 12;
 const SEED = 5;
 
 const scene = parseScene(readFileSync('scenes/cornell.json', 'utf8'));
@@ -50,37 +52,51 @@ beforeAll(async () => {
 
 afterAll(() => dispose());
 
-function reference(aux: boolean): Film {
+/** Passes of the adaptive renders: past the 16-pass pilot, so faults land on both sides. */
+const ADAPTIVE_SPP = 24;
+
+function reference(aux: boolean, adaptive = false): Film {
   const film = new Film(WIDTH, HEIGHT, undefined, 0, 0, aux);
-  new PathTracer(compileScene(scene), {
+  const tracer = new PathTracer(compileScene(scene), {
     width: WIDTH,
     height: HEIGHT,
     maxBounces: scene.settings.maxBounces,
     seed: SEED,
     camera: scene.camera,
-  }).renderRows(film, 0, HEIGHT, 0, SPP, new RenderStats());
+  });
+  if (adaptive) {
+    // As `pathwise render --adaptive on`: the pilot, its map, the passes after it.
+    tracer.renderRows(film, 0, HEIGHT, 0, ADAPTIVE_PILOT, new RenderStats());
+    tracer.sampleMap = buildSampleMap(film, new Uint8Array(WIDTH * HEIGHT));
+    tracer.renderRows(film, 0, HEIGHT, ADAPTIVE_PILOT, ADAPTIVE_SPP, new RenderStats());
+  } else {
+    tracer.renderRows(film, 0, HEIGHT, 0, SPP_UNIFORM, new RenderStats());
+  }
   return film;
 }
 
-const sleep = (ms: number) => new Promise((r) => setTimeout(r, ms));
+const sleepFor = (ms: number) => new Promise((r) => setTimeout(r, ms));
 
 /**
  * Renders with `threads` workers, doing `faults` at seeded random points of
  * the render: 'kill' terminates a worker, 'crash' makes one throw in its
  * next stripe (or task), 'hang' freezes one inside a row commit and then
- * terminates it.
+ * terminates it. `adaptive`: ADAPTIVE_SPP passes, adaptively; the waits here open the
+ * pilot gate as the page's frame loop does.
  */
 async function renderWithFaults(
   mode: 'shared' | 'transfer',
   kinds: ('kill' | 'crash' | 'hang')[],
   seed: number,
   aux = false,
+  adaptive = false,
 ): Promise<{ film: Film; errors: string[] }> {
   const random = mulberry32(seed);
+  const SPP = adaptive ? ADAPTIVE_SPP : SPP_UNIFORM;
   const job: FilmJob =
     mode === 'shared'
-      ? new SharedFilmJob(WIDTH, HEIGHT, STRIPE_ROWS, SPP, aux)
-      : new TransferFilmJob(WIDTH, HEIGHT, STRIPE_ROWS, SPP, aux);
+      ? new SharedFilmJob(WIDTH, HEIGHT, STRIPE_ROWS, SPP, aux, adaptive)
+      : new TransferFilmJob(WIDTH, HEIGHT, STRIPE_ROWS, SPP, aux, adaptive);
   const shared = job instanceof SharedFilmJob ? job : null;
   const config = (): JobConfig => ({
     mode,
@@ -96,6 +112,8 @@ async function renderWithFaults(
     camera: scene.camera,
     stripeRows: STRIPE_ROWS,
     aux,
+    adaptive,
+    map: shared?.mapBuffer ?? undefined,
     film: shared?.filmBuffer,
     ctrl: shared?.ctrlBuffer,
     journal: shared?.journalBuffer,
@@ -118,6 +136,11 @@ async function renderWithFaults(
     { workerFactory: () => new NodeWebWorker(workerFile) as unknown as Worker },
     2,
   );
+  // Each wait first lets an adaptive render past its pilot once every stripe holds it.
+  const sleep = (ms: number) => {
+    if (job.advance()) pool.kick();
+    return sleepFor(ms);
+  };
   pool.register(client);
   // The render is held two passes past the next fault's point (never past
   // SPP), so that a fast machine cannot finish before every fault has landed;
@@ -240,6 +263,23 @@ describe('the browser pool with workers killed on real threads (Node)', () => {
     expect(errors).toEqual([]);
     expect(differingWords(film, expected)).toBe(0);
     expect(faults.tasksResent - before.tasksResent).toBeGreaterThanOrEqual(2);
+  });
+
+  const expectedAdaptive = reference(false, true);
+  it('adaptive sampling, faults before and after the pilot gate: bit-identical to the adaptive render (shared memory and transfer mode)', async () => {
+    expect(differingWords(expectedAdaptive, reference(false))).toBeGreaterThan(0);
+    const shared = await renderWithFaults(
+      'shared',
+      ['kill', 'crash', 'kill', 'hang'],
+      7,
+      false,
+      true,
+    );
+    expect(shared.errors).toEqual([]);
+    expect(differingWords(shared.film, expectedAdaptive)).toBe(0);
+    const transfer = await renderWithFaults('transfer', ['kill', 'crash', 'kill'], 8, false, true);
+    expect(transfer.errors).toEqual([]);
+    expect(differingWords(transfer.film, expectedAdaptive)).toBe(0);
   });
 
   it('transfer mode with albedo and normal planes: the windows carry them, bit-identical', async () => {
