@@ -2,7 +2,9 @@
  * The Benchmark button: a fixed 10-second run on the Cornell box with all
  * workers, reporting segments (rays) per second, the samples per pixel
  * reached, the worker count and the browser's core count. The user's
- * scene and settings come back afterwards.
+ * scene and settings come back afterwards. It samples uniformly: an adaptive
+ * pass past the pilot costs less than a uniform one, so its samples per pixel
+ * would not compare with other runs'.
  */
 import type { CameraDesc } from '../core/index.ts';
 import type { Controller } from '../view/index.ts';
@@ -28,12 +30,14 @@ export async function runBenchmark(
   c: Controller,
   seconds = BENCHMARK_SECONDS,
 ): Promise<BenchmarkResult> {
-  const before: { scene: unknown; camera: CameraDesc | null; paused: boolean; target: number } = {
-    scene: c.scene,
-    camera: c.scene ? c.getCamera() : null,
+  const before = {
+    scene: c.scene as unknown,
+    camera: c.scene ? c.getCamera() : (null as CameraDesc | null),
     paused: c.paused,
     target: c.stats().target,
+    adaptive: c.adaptive,
   };
+  c.setAdaptive(false);
   await c.setScene(PRESETS.cornell);
   // No target: the run must not stop early by converging.
   c.setTargetSpp(1 << 20);
@@ -56,6 +60,7 @@ export async function runBenchmark(
     seconds: (t1 - t0) / 1000,
   };
   c.setTargetSpp(before.target);
+  c.setAdaptive(before.adaptive);
   if (before.scene) {
     await c.setScene(before.scene);
     if (before.camera) c.setCamera(before.camera);

@@ -17,9 +17,11 @@
  * are drawn at once.
  *
  * An adaptive film's pilot gate (pilot-gate.ts) is checked each frame and, while it is
- * closed, by a timer too: a hidden tab runs no animation frames but its workers go on,
- * and would otherwise wait at the end of the pilot until the tab is shown.
+ * closed and the render is to pass it, by a timer too: a hidden tab runs no animation
+ * frames but its workers go on, and would otherwise wait at the end of the pilot until
+ * the tab is shown.
  */
+import { ADAPTIVE_PILOT } from '../core/index.ts';
 import type { Fallbacks } from './fallbacks.ts';
 import type { Films } from './films.ts';
 import type { FirstPass } from './first-pass.ts';
@@ -83,9 +85,14 @@ export class FrameLoop {
     this.fallbacks = fallbacks;
   }
 
-  /** Makes sure an animation frame is coming (the loop stops itself when idle). */
+  /**
+   * Makes sure an animation frame is coming (the loop stops itself when idle), and that
+   * a closed pilot gate is watched even where no frame comes (a hidden tab).
+   */
   wake(): void {
-    if (this.host.destroyed() || this.raf !== 0) return;
+    if (this.host.destroyed()) return;
+    this.watchPilot();
+    if (this.raf !== 0) return;
     this.raf = requestAnimationFrame(this.frame);
   }
 
@@ -105,12 +112,23 @@ export class FrameLoop {
       this.host.wakeWorkers();
       this.wake();
     }
-    if (job.pilotPending && !this.host.paused() && this.pilotTimer === 0) {
-      this.pilotTimer = setTimeout(() => {
-        this.pilotTimer = 0;
-        this.checkPilot();
-      }, PILOT_CHECK_MS);
-    }
+    this.watchPilot();
+  }
+
+  /**
+   * Arms the gate's timer while the active film's pilot is under way and will end: not
+   * paused, and a target past the pilot (at or below it the gate never has to open, and
+   * an idle view costs nothing). Every change that can restart the film wakes the loop,
+   * and so comes here.
+   */
+  private watchPilot(): void {
+    const job = this.films.active();
+    if (this.pilotTimer !== 0 || !job?.pilotPending) return;
+    if (this.host.paused() || this.host.target() <= ADAPTIVE_PILOT) return;
+    this.pilotTimer = setTimeout(() => {
+      this.pilotTimer = 0;
+      this.checkPilot();
+    }, PILOT_CHECK_MS);
   }
 
   private readonly frame = (now: number): void => {

@@ -242,8 +242,9 @@ export class SharedFilmJob implements FilmJob {
 
   advance(): boolean {
     if (!this.gate.tryOpen(this.film, this.passesDone())) return false;
-    // The map's writes happen before this store, and a worker takes a claim
-    // past the pilot only after reading the new target (under the lock).
+    // The map's writes come before this atomic store, and a worker takes a claim past
+    // the pilot only after an atomic load of the new target (takeClaim): the load
+    // synchronises with the store, so the worker sees the whole map.
     Atomics.store(this.ctrl, C_TARGET, this.target);
     return true;
   }

@@ -79,7 +79,10 @@ export interface PathTracerOptions extends BareModelChoices {
    * relative to the page. A scene loaded from `src` reads them relative to its own URL.
    */
   files?: SceneFileReader;
-  /** Target samples per pixel; tracing stops there (default 512). */
+  /**
+   * Target passes, the samples per pixel of a uniform render; tracing stops there
+   * (default 512). Past an adaptive render's pilot a pixel holds at most that many.
+   */
   spp?: number;
   /** Max bounces; default from the scene. */
   bounces?: number;

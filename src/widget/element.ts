@@ -130,7 +130,10 @@ export class PathwiseViewElement extends ElementBase {
     this.setAttribute('src', value);
   }
 
-  /** Target samples per pixel (default 512); tracing stops there and `converged` fires. */
+  /**
+   * Target passes, the samples per pixel (default 512; past the adaptive pilot, the most
+   * any pixel holds); tracing stops there and `converged` fires.
+   */
   get spp(): number {
     return parsePositive(this.getAttribute('spp')) ?? DEFAULT_SPP;
   }

@@ -79,11 +79,28 @@ describe('adaptive sampling in the browser (Chromium)', () => {
   it('opens the gate without animation frames (a hidden tab runs none, its workers go on)', async () => {
     const page = await openDemo(ctx.browser, ctx.url, `${fixed}&spp=${PASSES}`);
     await waitForSpp(page, 2);
+    // Frames stop during the pilot: the gate's timer, armed then, opens it.
     await page.evaluate(() => {
+      (window as any).__raf = window.requestAnimationFrame;
       window.requestAnimationFrame = () => 0;
     });
     await waitForSpp(page, PASSES);
     expect(bitDifferences((await readLinear(page)).rgb, adaptive())).toBe(0);
+    // Past the pilot (no timer left), a restart with no frames: it arms the timer again.
+    await page.evaluate((seed) => (window as any).__pathwise.controller.setSeed(seed), SEED + 1);
+    await page.waitForFunction(() => (window as any).__pathwise.controller.stats().spp < 16);
+    await waitForSpp(page, PASSES);
+    const reseeded = nodeRender(
+      'cornell',
+      SIZE,
+      SIZE,
+      SEED + 1,
+      PASSES,
+      undefined,
+      undefined,
+      true,
+    );
+    expect(bitDifferences((await readLinear(page)).rgb, reseeded)).toBe(0);
     await page.close();
   });
 

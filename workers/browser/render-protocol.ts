@@ -19,7 +19,10 @@ export const C_GEN = 1;
 export const C_CONFIG = 2;
 /** Next new claim: claim c is pass ⌊c / stripes⌋ of stripe order[c mod stripes]. */
 export const C_CLAIM = 3;
-/** Target passes (samples per pixel). */
+/**
+ * Target passes: the caller's, or at most the pilot's while an adaptive film's map is
+ * not built (src/view/pilot-gate.ts). Past the pilot a pixel holds at most that many samples.
+ */
 export const C_TARGET = 4;
 export const C_PAUSED = 5;
 /** Rows committed so far (any generation); also the stamp of the latest row change. */

@@ -14,8 +14,9 @@
  * nothing counts twice.
  *
  * Transfer mode (no SharedArrayBuffer): the main thread sends one pass of
- * one stripe with its rows of the film; the worker adds the pass and sends
- * the rows back.
+ * one stripe with its rows of the film (and, past an adaptive film's pilot,
+ * its rows of the sample map); the worker adds the pass and sends the rows
+ * back.
  *
  * Several controllers may share the pool, so a worker holds one job per
  * controller and serves them in turn.
@@ -314,6 +315,8 @@ function renderTask(task: StripeTask, port: MessagePort): void {
   }
   const result: StripeResult = {
     ...task,
+    // The map rows came for the render; they need not travel back.
+    map: undefined,
     type: 'result',
     segments: stats.segments - segments,
     rejected: stats.rejected - rejected,

@@ -171,7 +171,9 @@ export function takeClaim(
     claim = ctrl[at];
   } else {
     claim = ctrl[C_CLAIM];
-    if (claim >= layout.stripes * ctrl[C_TARGET]) return -1;
+    // Atomic: the main thread raises the target without the lock, after writing an
+    // adaptive film's map (src/view/shared-job.ts advance), which this load makes visible.
+    if (claim >= layout.stripes * Atomics.load(ctrl, C_TARGET)) return -1;
   }
   writeSlot(ctrl, slot, token, claim, gen);
   die?.(1);
