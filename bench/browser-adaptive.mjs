@@ -16,11 +16,9 @@
 import { mkdtempSync } from 'node:fs';
 import { loadavg, tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
-import { build, preview } from 'vite';
+import { launchChromium, serveBuiltDemo } from './browser.mjs';
+import { logLogCrossing, logLogInterp } from './lib.mjs';
 
-const root = fileURLToPath(new URL('..', import.meta.url));
 const args = process.argv.slice(2);
 const arg = (name, fallback) => {
   const i = args.indexOf(`--${name}`);
@@ -34,51 +32,24 @@ const workers = Number(arg('workers', '2'));
 /** The references' sizes (src/app/references.ts, REFERENCE_SIZES). */
 const SIZES = { cornell: [128, 128], spheres: [160, 90], mirror: [128, 128], sky: [128, 128] };
 
-const outDir = join(mkdtempSync(join(tmpdir(), 'pathwise-bench-')), 'web');
-await build({ root, logLevel: 'error', build: { outDir, emptyOutDir: true } });
-const server = await preview({
-  root,
-  logLevel: 'error',
-  build: { outDir },
-  preview: { host: '127.0.0.1', port: 0 },
-});
-const url = server.resolvedUrls.local[0];
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM_PATH ?? '/usr/bin/chromium',
-  args: [
-    '--no-sandbox',
-    '--disable-gpu',
-    '--disable-background-networking',
-    '--no-first-run',
-    '--disable-quic',
-    '--disable-component-update',
-    '--disable-sync',
-  ],
-});
+const { server, url } = await serveBuiltDemo(
+  join(mkdtempSync(join(tmpdir(), 'pathwise-bench-')), 'web'),
+);
+const browser = await launchChromium();
 
 /** Tracing seconds at which `points` (the error meter's) first reach `goal`; NaN if never. */
-function timeTo(points, goal) {
-  for (let i = 1; i < points.length; i++) {
-    const a = points[i - 1];
-    const b = points[i];
-    if (!(b.truth <= goal) || !(a.truth > goal)) continue;
-    const t = Math.log(goal / a.truth) / Math.log(b.truth / a.truth);
-    return Math.exp(Math.log(a.seconds) + t * (Math.log(b.seconds) - Math.log(a.seconds)));
-  }
-  return points.length && points[0].truth <= goal ? points[0].seconds : NaN;
-}
+const timeTo = (points, goal) =>
+  logLogCrossing(
+    points.map((q) => [q.seconds, q.truth]),
+    goal,
+  ) ?? NaN;
 
-/** The meter's relMSE at tracing time `t`, interpolated on log-log axes; NaN outside. */
-function truthAt(points, t) {
-  for (let i = 1; i < points.length; i++) {
-    const a = points[i - 1];
-    const b = points[i];
-    if (!(a.seconds <= t && t <= b.seconds)) continue;
-    const s = Math.log(t / a.seconds) / Math.log(b.seconds / a.seconds);
-    return Math.exp(Math.log(a.truth) + s * (Math.log(b.truth) - Math.log(a.truth)));
-  }
-  return NaN;
-}
+/** The meter's relMSE at tracing time `t`, on the log-log polyline through its points. */
+const truthAt = (points, t) =>
+  logLogInterp(
+    points.map((q) => [q.seconds, q.truth]),
+    t,
+  ) ?? NaN;
 
 async function run(scene, seed, adaptive) {
   const [w, h] = SIZES[scene];

@@ -12,8 +12,7 @@ import { mkdtempSync, rmSync } from 'node:fs';
 import { loadavg, tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
-import { build, preview } from 'vite';
+import { launchChromium, serveBuiltDemo } from './browser.mjs';
 
 const root = fileURLToPath(new URL('..', import.meta.url));
 const args = process.argv.slice(2);
@@ -68,27 +67,8 @@ const cli = cliRun(4);
 const cliLong = cliRun(16);
 
 // 2. The demo, as built for production, served with COOP/COEP by `vite preview`.
-const outDir = join(tmp, 'web');
-await build({ root, logLevel: 'error', build: { outDir, emptyOutDir: true } });
-const server = await preview({
-  root,
-  logLevel: 'error',
-  build: { outDir },
-  preview: { host: '127.0.0.1', port: 0 },
-});
-const url = server.resolvedUrls.local[0];
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM_PATH ?? '/usr/bin/chromium',
-  args: [
-    '--no-sandbox',
-    '--disable-gpu',
-    '--disable-background-networking',
-    '--no-first-run',
-    '--disable-quic',
-    '--disable-component-update',
-    '--disable-sync',
-  ],
-});
+const { server, url } = await serveBuiltDemo(join(tmp, 'web'));
+const browser = await launchChromium();
 
 async function open(query) {
   const page = await browser.newPage({ viewport: { width: 1600, height: 900 } });
