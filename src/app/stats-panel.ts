@@ -42,7 +42,10 @@ export function startStatsPanel(
       fraction = elapsed / bench.seconds;
     } else {
       const done = s.spp >= s.target;
-      text('s-spp', `${s.spp} / ${s.target}${done ? ' (done)' : s.paused ? ' (paused)' : ''}`);
+      // Past an adaptive render's pilot, passes and samples part: the mean says how many.
+      const mean = s.samples < s.spp ? `, mean ${s.samples.toFixed(0)}` : '';
+      const state = done ? ' (done)' : s.paused ? ' (paused)' : '';
+      text('s-spp', `${s.spp} / ${s.target}${mean}${state}`);
       fraction = c.progress() / s.target;
     }
     const idle = (!bench && s.spp >= s.target) || s.paused;

@@ -56,7 +56,7 @@ export { acesFilmic, srgbEncode, toDisplayByte, tonemapSums } from './io/tonemap
 export { pcgHash } from './rng/pcg.ts';
 export { Sampler, SAMPLER_KINDS, DEFAULT_SAMPLER, type SamplerKind } from './sampling/sampler.ts';
 export { estimateNoise, type NoiseInput } from './film/noise.ts';
-export { ADAPTIVE_PILOT, buildSampleMap } from './film/adaptive.ts';
+export { ADAPTIVE_PILOT, RATE_ONE, adaptiveCount, buildSampleMap } from './film/adaptive.ts';
 export { emptyImageMessage, filmIsEmpty } from './integrator/empty-image.ts';
 export {
   FILM_FORMAT,

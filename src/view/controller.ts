@@ -501,7 +501,9 @@ export class Controller extends EventTarget implements PathTracerController {
     const now = performance.now();
     const textureBytes = job && this.mode.display === 'webgl2' ? job.width * job.height * 16 : 0;
     return {
-      ...this.meter.info(job && !this.films.previewing ? job.passesDone() : 0),
+      ...(job && !this.films.previewing
+        ? this.meter.info(job.passesDone(), job.meanSamples())
+        : this.meter.info(0)),
       fps: this.meter.fps(now),
       frameMs: this.meter.frameMs,
       width: job?.width ?? 0,

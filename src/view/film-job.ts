@@ -37,6 +37,11 @@ export interface FilmJob {
    * film's pilot, the most any pixel holds).
    */
   passesDone(): number;
+  /**
+   * Mean samples per pixel after passesDone() passes: the same for a uniform film, fewer
+   * past an adaptive film's pilot.
+   */
+  meanSamples(): number;
   /** Passes finished, averaged over stripes (fractional; for the progress bar). */
   progress(): number;
   /** True once after each reset: the whole film went back to zero. */

@@ -14,12 +14,20 @@
  *
  * A reset closes the gate again: the map belongs to the film's samples.
  */
-import { ADAPTIVE_PILOT, buildSampleMap, type Film } from '../core/index.ts';
+import {
+  ADAPTIVE_PILOT,
+  RATE_ONE,
+  adaptiveCount,
+  buildSampleMap,
+  type Film,
+} from '../core/index.ts';
 
 export class PilotGate {
   /** The per-pixel rates, row-major (the workers read them); null for a uniform render. */
   readonly map: Uint8Array | null;
   private built = false;
+  /** Pixels of each rate in the built map (for meanSamples: O(rates), not O(pixels)). */
+  private readonly rates = new Float64Array(RATE_ONE + 1);
 
   /** `map`: width·height bytes for an adaptive film (shared with the workers or not); else null. */
   constructor(map: Uint8Array | null) {
@@ -53,8 +61,23 @@ export class PilotGate {
    */
   tryOpen(film: Film, passesDone: number): boolean {
     if (!this.closed || passesDone < ADAPTIVE_PILOT) return false;
-    buildSampleMap(film, this.map!);
+    const map = buildSampleMap(film, this.map!);
+    const rates = this.rates.fill(0);
+    for (let p = 0; p < map.length; p++) rates[map[p]]++;
     this.built = true;
     return true;
+  }
+
+  /**
+   * The mean samples per pixel after `passes` whole passes (film/adaptive.ts's counts
+   * over the map): `passes` itself for a uniform film or before the map exists.
+   */
+  meanSamples(passes: number): number {
+    if (this.map === null || !this.built || passes <= ADAPTIVE_PILOT) return passes;
+    let sum = 0;
+    for (let k = 0; k <= RATE_ONE; k++) {
+      if (this.rates[k] > 0) sum += this.rates[k] * adaptiveCount(passes, ADAPTIVE_PILOT, k);
+    }
+    return sum / this.map.length;
   }
 }

@@ -96,7 +96,7 @@ export class ProgressMeter {
       this.lastProgressAt = now;
       this.lastProgressSpp = spp;
       this.lastProgressTarget = host.target();
-      host.emit('progress', this.info(spp));
+      host.emit('progress', this.info(spp, spp === 0 ? 0 : job.meanSamples()));
     }
     // Once per film, after its first whole pass: a film that accepted no
     // sample is no picture (empty-image.ts), so it is an error, not black.
@@ -110,7 +110,7 @@ export class ProgressMeter {
     }
     if (!this.convergedSent && !host.previewing() && spp >= host.target()) {
       this.convergedSent = true;
-      host.emit('converged', this.info(spp));
+      host.emit('converged', this.info(spp, job.meanSamples()));
     }
   }
 
@@ -119,9 +119,11 @@ export class ProgressMeter {
     return spp !== this.lastProgressSpp || this.host.target() !== this.lastProgressTarget;
   }
 
-  info(spp: number): ProgressInfo {
+  /** `samples`: the film's mean samples per pixel (FilmJob.meanSamples), `spp` by default. */
+  info(spp: number, samples = spp): ProgressInfo {
     return {
       spp,
+      samples,
       target: this.host.target(),
       raysPerSecond: this.rays.rate(performance.now()),
       noise: this.noise,

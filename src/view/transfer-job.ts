@@ -127,6 +127,10 @@ export class TransferFilmJob implements FilmJob {
     return min === Infinity ? 0 : min;
   }
 
+  meanSamples(): number {
+    return this.gate.meanSamples(this.passesDone());
+  }
+
   progress(): number {
     let sum = 0;
     for (let s = 0; s < this.stripes; s++) sum += this.done[s];

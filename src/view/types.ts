@@ -28,7 +28,10 @@ export interface FallbackInfo {
 }
 
 export interface ProgressInfo {
+  /** Passes every pixel has had: its samples, or for an adaptive render the most any pixel holds. */
   spp: number;
+  /** Mean samples per pixel: `spp` for a uniform render, fewer past an adaptive one's pilot. */
+  samples: number;
   target: number;
   /** Segments (camera, bounce and shadow rays) per second, recent average. */
   raysPerSecond: number;

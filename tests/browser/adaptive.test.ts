@@ -37,6 +37,23 @@ describe('adaptive sampling in the browser (Chromium)', () => {
       expect(c.adaptive).toBe(true);
       expect(c.compute).toBe(query.startsWith('shared=off') ? 'transfer' : 'shared');
       expect(bitDifferences((await readLinear(page)).rgb, adaptive())).toBe(0);
+      // The mean samples per pixel the stats give is the film's own, below the passes.
+      const counts = await page.evaluate(() => {
+        const c = (window as any).__pathwise.controller;
+        const f = c.filmSnapshot();
+        let sum = 0;
+        for (let p = 0; p < f.width * f.height; p++) sum += f.sums[4 * p + 3];
+        return { mean: sum / (f.width * f.height), stats: c.stats() };
+      });
+      expect(counts.stats.spp).toBe(PASSES);
+      expect(counts.stats.samples).toBeCloseTo(counts.mean, 9);
+      expect(counts.stats.samples).toBeLessThan(PASSES);
+      // The demo's stats line says it (refreshed a few times a second).
+      await page.waitForFunction(
+        (text) => document.getElementById('s-spp')!.textContent!.includes(text),
+        `${PASSES} / ${PASSES}, mean ${counts.mean.toFixed(0)}`,
+        { timeout: 10_000 },
+      );
       await page.close();
     });
   }
@@ -46,6 +63,9 @@ describe('adaptive sampling in the browser (Chromium)', () => {
     await waitForSpp(page, PASSES);
     expect(await page.evaluate(() => (window as any).__pathwise.controller.adaptive)).toBe(false);
     expect(bitDifferences((await readLinear(page)).rgb, uniform())).toBe(0);
+    expect(await page.evaluate(() => (window as any).__pathwise.controller.stats().samples)).toBe(
+      PASSES,
+    );
     // Switched on with the demo's Adaptive switch: the render starts over, adaptively.
     const box = page.getByRole('checkbox', { name: 'Adaptive' });
     expect(await box.isChecked()).toBe(false);
