@@ -14,6 +14,9 @@
 //   node bench/hard-time.mjs --scene many-lights|caustic|window|dense|FILE.json|MODEL.glb
 //        --reference REF.pfm
 //        [--count 10000] [--threads 2] [--max-spp 1024] [--python PY --mitsuba-spp 64]
+//        [--adaptive] [--no-anchor]
+// --adaptive adds a sweep of pathwise with adaptive sampling (`--adaptive on`) beside the
+// uniform one; --no-anchor skips the anchor's sweep (its times do not depend on pathwise).
 import { execFileSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -34,6 +37,8 @@ const maxSpp = Number(flag('max-spp', '1024'));
 const refFile = flag('reference', null);
 const python = flag('python', null);
 const mitsubaSpp = Number(flag('mitsuba-spp', '64'));
+const withAdaptive = argv.includes('--adaptive');
+const withAnchor = !argv.includes('--no-anchor');
 if (refFile === null) throw new Error('--reference REF.pfm is required');
 const ref = readPfm(refFile);
 const sceneName = flag('scene', 'many-lights');
@@ -90,10 +95,17 @@ const rows = [];
 process.stderr.write('pathwise\n');
 const pw = sweep((spp, out) => renderOnce({ ...common, spp, out }).process_seconds);
 rows.push(['pathwise (light BVH, Sobol)', pw]);
+if (withAdaptive) {
+  process.stderr.write('pathwise, adaptive\n');
+  const pa = sweep(
+    (spp, out) => renderOnce({ ...common, spp, out, adaptive: true }).process_seconds,
+  );
+  rows.push(['pathwise, adaptive (--adaptive on)', pa]);
+}
 // The anchor renders spheres and quads only: a scene with a mesh is compared with Mitsuba alone.
 const anchorReads =
   scene !== null && scene.shapes.every((s) => s.type === 'sphere' || s.type === 'quad');
-const native = anchorReads ? findNative(flag('native', undefined)) : null;
+const native = anchorReads && withAnchor ? findNative(flag('native', undefined)) : null;
 if (!anchorReads) process.stderr.write('native anchor: skipped (it renders no meshes or glTF)\n');
 if (native !== null) {
   process.stderr.write('native anchor\n');
