@@ -19,12 +19,11 @@
  * since) are dropped; on isolated pages the picture in progress stops at its next layer.
  */
 import {
-  BROWSER_MIN_TILE_SIDE,
-  BROWSER_TILE_PIXELS,
+  DENOISE_TILE_OPTIONS,
   type DenoiseReply,
   type DenoiseRequest,
 } from '../../workers/browser/denoise-protocol.ts';
-import { planTiles, type TileOptions, type TilePlan } from '../core/denoise/tiles.ts';
+import { planTiles, type TilePlan } from '../core/denoise/tiles.ts';
 import type { FilmJob } from './film-job.ts';
 import { startModuleWorker } from './worker-source.ts';
 
@@ -42,17 +41,6 @@ const MAX_DENOISE_WORKERS = 4;
 export function denoiseWorkerCount(cores: number): number {
   return Math.max(1, Math.min(MAX_DENOISE_WORKERS, Math.floor(cores / 4)));
 }
-
-/**
- * The tile options for every image: OIDN's tiles of at most BROWSER_TILE_PIXELS, the
- * same whatever the number of workers. The Winograd convolution's bits depend on the tile
- * a pixel is computed in (src/core/denoise/winograd.ts), so a plan that split the image
- * for more workers would give other bits; workers share out the tiles of this one plan.
- */
-export const DENOISE_TILE_OPTIONS: TileOptions = {
-  maxTilePixels: BROWSER_TILE_PIXELS,
-  minTileSide: BROWSER_MIN_TILE_SIDE,
-};
 
 /** A denoised picture, as the display takes film sums: RGBA with A = 1. */
 export interface DenoisedImage {
@@ -156,8 +144,7 @@ export class ViewDenoiser {
 
   private start(job: FilmJob, spp: number): void {
     const { width, height, film } = job;
-    const tileOptions = DENOISE_TILE_OPTIONS;
-    const plan = planTiles(width, height, tileOptions);
+    const plan = planTiles(width, height, DENOISE_TILE_OPTIONS);
     const lanes = Math.min(this.maxWorkers, plan.tiles.length);
     const workers = this.ensureWorkers(lanes);
     if (!workers) return;
@@ -188,7 +175,6 @@ export class ViewDenoiser {
         albedo,
         normal,
         tiles: plan.tiles.map((_, i) => i).filter((i) => i % lanes === k),
-        tileOptions,
         stop: this.wanted ? (this.wanted.buffer as SharedArrayBuffer) : null,
       };
       // The last worker takes the arrays themselves; the others get copies.

@@ -2,7 +2,7 @@
  * Messages between the page and the denoise workers (denoise-worker.ts), which run Open
  * Image Denoise's "RT" U-Net (src/core/denoise) off the page's thread and off the render
  * workers, so that a denoised picture never stalls the render or the page. Each request
- * names the tiles (of the plan its tile options make) that one worker runs.
+ * names the tiles (of the plan DENOISE_TILE_OPTIONS make) that one worker runs.
  */
 import type { TileOptions } from '../../src/core/denoise/tiles.ts';
 
@@ -15,9 +15,8 @@ export interface DenoiseRequest {
   color: Float32Array;
   albedo: Float32Array;
   normal: Float32Array;
-  /** The tiles this worker runs, indices into planTiles(width, height, tileOptions). */
+  /** The tiles this worker runs, indices into planTiles(width, height, DENOISE_TILE_OPTIONS). */
   tiles: number[];
-  tileOptions: TileOptions;
   /**
    * One Int32 holding the id of the request still wanted (isolated pages): the worker
    * asks it between the network's layers and drops this request once it changed.
@@ -34,9 +33,14 @@ export type DenoiseReply =
   | { type: 'error'; id: number; message: string };
 
 /**
- * Tiles of at most this many pixels (OIDN's tiling, src/core/denoise/tiles.ts): the
- * small network's workspace is about 350 bytes a pixel, so a tile stays under ~100 MB
- * however large the canvas; images up to 512² are one tile, for any number of workers.
+ * The one tile plan of every image (OIDN's tiling, src/core/denoise/tiles.ts): tiles of
+ * at most 512² pixels, so that with the small network's workspace of about 350 bytes a
+ * pixel a tile stays under ~100 MB however large the canvas. It is the same whatever the
+ * number of workers: the Winograd convolution's bits depend on the tile a pixel is
+ * computed in (src/core/denoise/winograd.ts), so a plan that split the image for more
+ * workers would give other bits; workers share out the tiles of this one plan.
  */
-export const BROWSER_TILE_PIXELS = 512 * 512;
-export const BROWSER_MIN_TILE_SIDE = 512;
+export const DENOISE_TILE_OPTIONS: TileOptions = {
+  maxTilePixels: 512 * 512,
+  minTileSide: 512,
+};

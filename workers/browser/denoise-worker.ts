@@ -15,7 +15,11 @@ import {
 import { parseTza } from '../../src/core/denoise/tza.ts';
 import type { UNetWorkspace } from '../../src/core/denoise/unet.ts';
 import { unetWeights, type UNetWeights } from '../../src/core/denoise/unet-weights.ts';
-import type { DenoiseReply, DenoiseRequest } from './denoise-protocol.ts';
+import {
+  DENOISE_TILE_OPTIONS,
+  type DenoiseReply,
+  type DenoiseRequest,
+} from './denoise-protocol.ts';
 
 const WEIGHTS_URL = new URL('../../vendor/oidn-weights/rt_hdr_alb_nrm_small.tza', import.meta.url);
 
@@ -41,7 +45,7 @@ self.onmessage = async (e: MessageEvent<DenoiseRequest>) => {
     const t0 = performance.now();
     const { width, height, color, albedo, normal } = req;
     // Every worker of a request sees the whole image: the same autoexposure, the same plan.
-    const job = prepareDenoise({ width, height, color, albedo, normal }, w, req.tileOptions);
+    const job = prepareDenoise({ width, height, color, albedo, normal }, w, DENOISE_TILE_OPTIONS);
     if (workspace?.h !== job.plan.tileH || workspace.w !== job.plan.tileW) {
       workspace = null; // the old one is garbage before the new one is allocated
       workspace = allocDenoiseWorkspace(job);
