@@ -6,9 +6,8 @@ import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { nodeGltfDecoders, nodeTangentGenerator } from '../../src/cli/gltf-node.ts';
 import { nodeSceneFiles } from '../../src/cli/scene-files.ts';
+import { renderAdaptiveFilm } from '../helpers/render.ts';
 import {
-  ADAPTIVE_PILOT,
-  buildSampleMap,
   Film,
   PathTracer,
   RenderStats,
@@ -70,13 +69,8 @@ function sceneFilm(
     camera: camera ?? scene.camera,
   });
   const film = new Film(width, height);
-  if (adaptive && spp > ADAPTIVE_PILOT) {
-    tracer.renderRows(film, 0, height, 0, ADAPTIVE_PILOT, new RenderStats());
-    tracer.sampleMap = buildSampleMap(film, new Uint8Array(width * height));
-    tracer.renderRows(film, 0, height, ADAPTIVE_PILOT, spp, new RenderStats());
-  } else {
-    tracer.renderRows(film, 0, height, 0, spp, new RenderStats());
-  }
+  if (adaptive) return renderAdaptiveFilm(tracer, film, spp);
+  tracer.renderRows(film, 0, height, 0, spp, new RenderStats());
   return film;
 }
 

@@ -8,6 +8,9 @@ import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { nodeSceneFiles } from '../../src/cli/scene-files.ts';
 import {
+  ADAPTIVE_PILOT,
+  buildSampleMap,
+  Film,
   PathTracer,
   RenderStats,
   compileScene,
@@ -101,6 +104,27 @@ export function renderSampled(scene: Scene, options: RenderOptions): SampledImag
     }
   }
   return { width, height, mean, varianceOfMean, stats };
+}
+
+/**
+ * Passes [0, passes) into `film` (a whole image, the tracer's size) as `pathwise render --adaptive on`
+ * renders them, in one thread: the uniform pilot, the map built from it
+ * (core/film/adaptive.ts), then the passes after it at the map's rates. The tests' one
+ * reference for adaptive films.
+ */
+export function renderAdaptiveFilm(
+  tracer: PathTracer,
+  film: Film,
+  passes: number,
+  stats = new RenderStats(),
+): Film {
+  const { width, rows: height } = film;
+  tracer.renderRows(film, 0, height, 0, Math.min(passes, ADAPTIVE_PILOT), stats);
+  if (passes > ADAPTIVE_PILOT) {
+    tracer.sampleMap = buildSampleMap(film, new Uint8Array(width * height));
+    tracer.renderRows(film, 0, height, ADAPTIVE_PILOT, passes, stats);
+  }
+  return film;
 }
 
 /** Per-channel image mean and the standard error of that mean. */

@@ -7,7 +7,7 @@
  * honest estimate of the variance of their average — for Sobol too, where
  * a per-sample variance s²/n would not be.
  */
-import { ADAPTIVE_PILOT, buildSampleMap } from '../../src/core/film/adaptive.ts';
+import { renderAdaptiveFilm } from '../helpers/render.ts';
 import {
   Film,
   PathTracer,
@@ -220,12 +220,7 @@ function renderAdaptive(
   regions: Region[],
   samples: number[],
 ): void {
-  const film = new Film(width, height);
-  tracer.renderRows(film, 0, height, 0, Math.min(passes, ADAPTIVE_PILOT), stats);
-  if (passes > ADAPTIVE_PILOT) {
-    tracer.sampleMap = buildSampleMap(film, new Uint8Array(width * height));
-    tracer.renderRows(film, 0, height, ADAPTIVE_PILOT, passes, stats);
-  }
+  const film = renderAdaptiveFilm(tracer, new Film(width, height), passes, stats);
   pixel.set(film.mean());
   for (let ri = 0; ri < regions.length; ri++) {
     const reg = regions[ri];

@@ -12,7 +12,6 @@ import { readFileSync } from 'node:fs';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import {
   ADAPTIVE_PILOT,
-  buildSampleMap,
   DEFAULT_SAMPLER,
   Film,
   PathTracer,
@@ -33,6 +32,7 @@ import {
   type JobConfig,
 } from '../../../workers/browser/render-protocol.ts';
 import { bundleWorker } from '../../helpers/bundle-worker.ts';
+import { renderAdaptiveFilm } from '../../helpers/render.ts';
 import { differingWords, mulberry32 } from '../../helpers/faults.ts';
 import { NodeWebWorker } from '../../../bench/node-web-worker.ts';
 
@@ -64,14 +64,8 @@ function reference(aux: boolean, adaptive = false, spp = SPP_UNIFORM): Film {
     seed: SEED,
     camera: scene.camera,
   });
-  if (adaptive) {
-    // As `pathwise render --adaptive on`: the pilot, its map, the passes after it.
-    tracer.renderRows(film, 0, HEIGHT, 0, ADAPTIVE_PILOT, new RenderStats());
-    tracer.sampleMap = buildSampleMap(film, new Uint8Array(WIDTH * HEIGHT));
-    tracer.renderRows(film, 0, HEIGHT, ADAPTIVE_PILOT, ADAPTIVE_SPP, new RenderStats());
-  } else {
-    tracer.renderRows(film, 0, HEIGHT, 0, spp, new RenderStats());
-  }
+  if (adaptive) return renderAdaptiveFilm(tracer, film, ADAPTIVE_SPP);
+  tracer.renderRows(film, 0, HEIGHT, 0, spp, new RenderStats());
   return film;
 }
 
