@@ -356,17 +356,16 @@ async function renderCli(model, o, work) {
  * Renders each model through <pathwise-view> in headless Chromium: the Vite dev server
  * of this checkout (with its cross-origin isolation headers) serves the widget from the
  * sources and the model files from tests/corpus/; Debian's Chromium is driven by
- * playwright-core with the flags of tests/helpers/chromium.ts.
+ * playwright-core as the tests drive it (scripts/chromium.mjs).
  */
 async function renderBrowser(models, o, log) {
   const results = new Map();
-  const chromiumPath = process.env.CHROMIUM_PATH ?? '/usr/bin/chromium';
-  if (!existsSync(chromiumPath)) {
-    for (const m of models) results.set(m.name, { ok: false, error: `${chromiumPath} missing` });
+  const { CHROMIUM, launchChromium } = await import('./chromium.mjs');
+  if (!existsSync(CHROMIUM)) {
+    for (const m of models) results.set(m.name, { ok: false, error: `${CHROMIUM} missing` });
     return results;
   }
   const { createServer } = await import('vite');
-  const { chromium } = await import('playwright-core');
   const cacheDir = mkdtempSync(join(tmpdir(), 'pathwise-vite-'));
   const server = await createServer({
     root,
@@ -376,18 +375,7 @@ async function renderBrowser(models, o, log) {
   });
   await server.listen();
   const url = server.resolvedUrls.local[0];
-  const browser = await chromium.launch({
-    executablePath: chromiumPath,
-    args: [
-      '--no-sandbox',
-      '--disable-gpu',
-      '--disable-background-networking',
-      '--no-first-run',
-      '--disable-quic',
-      '--disable-component-update',
-      '--disable-sync',
-    ],
-  });
+  const browser = await launchChromium();
   try {
     for (const m of models) {
       log(`chromium: ${m.name}`);

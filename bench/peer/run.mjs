@@ -20,10 +20,10 @@ import { mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'nod
 import { loadavg, tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { build as esbuild } from 'esbuild';
-import { chromium } from 'playwright-core';
 import { build, preview } from 'vite';
 import { blockMare, machineInfo, median, readPfm, relMse, ROOT } from '../lib.mjs';
 import { pathwiseProbe } from './pathwise-probe.js';
+import { CHROMIUM_ARGS, launchChromium } from '../../scripts/chromium.mjs';
 
 const args = process.argv.slice(2);
 const arg = (name, fallback) => {
@@ -248,21 +248,9 @@ const server = await preview({
 });
 const url = server.resolvedUrls.local[0];
 
-// The project's Chromium flags (tests/helpers/chromium.ts). With them WebGL2
+// The project's Chromium and flags (scripts/chromium.mjs). With them WebGL2
 // is ANGLE on SwiftShader (Vulkan), software, for both tracers alike.
-const CHROMIUM_ARGS = [
-  '--no-sandbox',
-  '--disable-gpu',
-  '--disable-background-networking',
-  '--no-first-run',
-  '--disable-quic',
-  '--disable-component-update',
-  '--disable-sync',
-];
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM_PATH ?? '/usr/bin/chromium',
-  args: CHROMIUM_ARGS,
-});
+const browser = await launchChromium();
 
 /** relMSE over the pixels that do not see the emitter directly (lib.mjs's relMse on them). */
 function relMseMasked(rgb, scene) {

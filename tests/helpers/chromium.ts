@@ -1,26 +1,18 @@
 /**
  * Debian's Chromium driven by playwright-core, shared by the browser and
- * widget tests (Playwright cannot download its own browser here). The flags
- * keep a headless, sandbox-less Chromium from reaching out to the network.
+ * widget tests (Playwright cannot download its own browser here): the path,
+ * flags and launch of scripts/chromium.mjs, which the benchmarks use too,
+ * with a clear error where the browser is missing.
  */
 import { existsSync } from 'node:fs';
-import { chromium, type Browser } from 'playwright-core';
+import type { Browser } from 'playwright-core';
+import { CHROMIUM, CHROMIUM_ARGS, launchChromium as launch } from '../../scripts/chromium.mjs';
 
-export const CHROMIUM = process.env.CHROMIUM_PATH ?? '/usr/bin/chromium';
-
-export const CHROMIUM_ARGS = [
-  '--no-sandbox',
-  '--disable-gpu',
-  '--disable-background-networking',
-  '--no-first-run',
-  '--disable-quic',
-  '--disable-component-update',
-  '--disable-sync',
-];
+export { CHROMIUM, CHROMIUM_ARGS };
 
 export function launchChromium(): Promise<Browser> {
   if (!existsSync(CHROMIUM)) {
     throw new Error(`${CHROMIUM} is missing: apt-get install -y chromium (or set CHROMIUM_PATH)`);
   }
-  return chromium.launch({ executablePath: CHROMIUM, args: CHROMIUM_ARGS });
+  return launch();
 }
