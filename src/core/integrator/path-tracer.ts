@@ -10,7 +10,7 @@ import { Hit, Ray } from '../geometry/ray.ts';
 import { intersectScene } from '../accel/trace.ts';
 import { EnvironmentSample } from '../lights/environment-map.ts';
 import { LightSample } from '../lights/lights.ts';
-import type { LightBvh } from '../lights/light-bvh.ts';
+import { LIGHT_SPLIT, type LightBvh } from '../lights/light-bvh.ts';
 import { TriangleSurface } from './triangle-surface.ts';
 import { GltfWork } from './gltf-surface.ts';
 import { DIM_PER_BOUNCE, DEFAULT_SAMPLER, Sampler } from '../sampling/sampler.ts';
@@ -35,15 +35,20 @@ export type TracerOptions = Pick<RenderSettings, 'width' | 'height' | 'maxBounce
   Partial<RenderSettings> & {
     camera: CameraDesc;
     /**
-     * How next-event estimation chooses a light: by the light BVH (the default, and
-     * what every render uses), or by power alone, kept to measure the BVH against
-     * (bench/many-lights.ts) and for the validation that compares the two.
+     * How next-event estimation chooses its lights: by the light BVH with splitting
+     * (the default, and what every render uses), by the light BVH one light at a time,
+     * or by power alone; the last two are kept to measure against (bench/many-lights.ts)
+     * and for the validation that compares them.
      */
     lightSampler?: LightSamplerKind;
   };
 
-/** Light choice of next-event estimation (see TracerOptions.lightSampler). */
-export type LightSamplerKind = 'bvh' | 'power';
+/**
+ * Light choice of next-event estimation (see TracerOptions.lightSampler): 'split', up
+ * to LIGHT_SPLIT lights per vertex through the light BVH (light-bvh.ts chooseSplit);
+ * 'bvh', one through it; 'power', one by power.
+ */
+export type LightSamplerKind = 'split' | 'bvh' | 'power';
 
 export class PathTracer {
   readonly scene: CompiledScene;
@@ -55,6 +60,8 @@ export class PathTracer {
   readonly sampler: Sampler;
   /** The scene's light BVH, or null where lights are chosen by power (trace-path.ts). */
   readonly lightBvh: LightBvh | null;
+  /** The most lights next-event estimation samples at a vertex through the light BVH. */
+  readonly lightSplit: number;
   /** Radiance of the last traced path. */
   lr = 0;
   lg = 0;
@@ -90,6 +97,7 @@ export class PathTracer {
     this.maxBounces = options.maxBounces;
     this.estimator = options.estimator ?? 'nee-mis';
     this.lightBvh = options.lightSampler === 'power' ? null : scene.lightBvh();
+    this.lightSplit = options.lightSampler === 'bvh' ? 1 : LIGHT_SPLIT;
     this.sampler = new Sampler(options.seed ?? 0, options.sampler ?? DEFAULT_SAMPLER);
     this.camera = new Camera(options.camera, options.width, options.height);
   }

@@ -91,6 +91,10 @@ const PI_OVER_2 = Math.PI / 2;
 /** Russian roulette begins once a path has scattered this many times. */
 const ROULETTE_DEPTH = 3;
 
+/** The R2 sequence's step (Roberts 2018): 1/g and 1/g² for the plastic number g. */
+const R2_A0 = 0.7548776662466927;
+const R2_A1 = 0.5698402909980532;
+
 /**
  * Traces sample `sampleIndex` of pixel (px, py); the radiance lands in
  * this.lr, this.lg, this.lb. PathTracer's `trace` method (path-tracer.ts
@@ -121,6 +125,7 @@ export function trace(
   const fv = this.fv;
   const nee = this.estimator === 'nee-mis' && lights !== null;
   const maxBounces = this.maxBounces;
+  const lightSplit = this.lightSplit;
   // glTF: null in scenes without glTF shapes, which then never take its branches.
   const gltf = scene.gltf;
   const alphaShadows = gltf !== null && gltf.hasAlpha;
@@ -336,6 +341,7 @@ export function trace(
                 prevNz,
                 d,
                 cosO,
+                lightSplit,
               );
         w = (prevPdf * prevPdf) / (prevPdf * prevPdf + pl * pl);
       }
@@ -442,188 +448,209 @@ export function trace(
     // Next-event estimation.
     if (sampleLights) {
       const ls = this.ls;
-      // The choice: by the light BVH at this point (−1 when no light can reach it), or
-      // by power; either way ls.pick is its probability.
-      let l: number;
-      if (lightBvh === null) {
-        l = lights!.choose(u[DIM_LIGHT_CHOICE]);
-        ls.pick = lights!.prob[l];
-        ls.triangle = -1;
-      } else {
-        l = lightBvh.choose(u[DIM_LIGHT_CHOICE], x, y, z, nx, ny, nz, ls) ? ls.light : -1;
+      // The choice: by the light BVH at this point, up to lightSplit lights from the
+      // subtrees of its cut (light-bvh.ts chooseSplit), or one light by power. Each
+      // light is chosen with probability pick, and each adds its own estimate.
+      let chosen = 1;
+      let lp = -1;
+      if (lightBvh === null) lp = lights!.choose(u[DIM_LIGHT_CHOICE]);
+      else {
+        chosen = lightBvh.chooseSplit(u[DIM_LIGHT_CHOICE], x, y, z, nx, ny, nz, lightSplit);
       }
-      // The sampled direction, the shadow ray's far end and the density.
-      let sampled = false;
-      let wix = 0,
-        wiy = 0,
-        wiz = 0;
-      let lpx = 0,
-        lpy = 0,
-        lpz = 0;
-      let lpdf = 0;
-      let infinite = false;
-      // A punctual light (lights/punctual.ts): no BSDF-sampled ray finds it, so its
-      // sample's MIS weight is 1 (pbr-book 4e §13.4: pdf_bsdf counts as 0).
-      let delta = false;
-      if (l < 0) {
-        // No light sample at this vertex.
-      } else if (lights!.kind[l] === SHAPE_QUAD) {
-        // sampleLight's quad case (and finishAreaSample) written out,
-        // the same arithmetic: the call was not inlined.
-        const o = lights!.shape[l] * QUAD_STRIDE;
-        const u0 = u[DIM_LIGHT_POINT],
-          u1 = u[DIM_LIGHT_POINT + 1];
-        const qx = quads[o + Q_CORNER] + u0 * quads[o + Q_U] + u1 * quads[o + Q_V];
-        const qy = quads[o + Q_CORNER + 1] + u0 * quads[o + Q_U + 1] + u1 * quads[o + Q_V + 1];
-        const qz = quads[o + Q_CORNER + 2] + u0 * quads[o + Q_U + 2] + u1 * quads[o + Q_V + 2];
-        const qnx = quads[o + Q_NORMAL],
-          qny = quads[o + Q_NORMAL + 1],
-          qnz = quads[o + Q_NORMAL + 2];
-        wix = qx - x;
-        wiy = qy - y;
-        wiz = qz - z;
-        const d2 = wix * wix + wiy * wiy + wiz * wiz;
-        if (d2 > 0) {
-          const dist = Math.sqrt(d2);
-          wix /= dist;
-          wiy /= dist;
-          wiz /= dist;
-          const cosLight = -(qnx * wix + qny * wiy + qnz * wiz);
-          if (cosLight > 0) {
-            const lift = lights!.offset[l];
-            lpx = qx + lift * qnx;
-            lpy = qy + lift * qny;
-            lpz = qz + lift * qnz;
-            lpdf = (ls.pick * d2) / (quads[o + Q_AREA] * cosLight);
-            sampled = lpdf < Infinity;
+      for (let c = 0; c < chosen; c++) {
+        let l: number;
+        if (lightBvh === null) {
+          l = lp;
+          ls.pick = lights!.prob[l];
+          ls.triangle = -1;
+        } else {
+          l = lightBvh.chosenLight[c];
+          ls.pick = lightBvh.chosenPick[c];
+          ls.triangle = lightBvh.chosenTriangle[c];
+        }
+        // Each further light's point from the same numbers rotated (Cranley–Patterson
+        // rotation by the R2 sequence's step): still uniform, so each sample unbiased.
+        let lu0 = u[DIM_LIGHT_POINT],
+          lu1 = u[DIM_LIGHT_POINT + 1];
+        if (c > 0) {
+          lu0 += c * R2_A0;
+          lu1 += c * R2_A1;
+          lu0 -= Math.floor(lu0);
+          lu1 -= Math.floor(lu1);
+        }
+        // The sampled direction, the shadow ray's far end and the density.
+        let sampled = false;
+        let wix = 0,
+          wiy = 0,
+          wiz = 0;
+        let lpx = 0,
+          lpy = 0,
+          lpz = 0;
+        let lpdf = 0;
+        let infinite = false;
+        // A punctual light (lights/punctual.ts): no BSDF-sampled ray finds it, so its
+        // sample's MIS weight is 1 (pbr-book 4e §13.4: pdf_bsdf counts as 0).
+        let delta = false;
+        if (l < 0) {
+          // No light sample at this vertex.
+        } else if (lights!.kind[l] === SHAPE_QUAD) {
+          // sampleLight's quad case (and finishAreaSample) written out,
+          // the same arithmetic: the call was not inlined.
+          const o = lights!.shape[l] * QUAD_STRIDE;
+          const u0 = lu0,
+            u1 = lu1;
+          const qx = quads[o + Q_CORNER] + u0 * quads[o + Q_U] + u1 * quads[o + Q_V];
+          const qy = quads[o + Q_CORNER + 1] + u0 * quads[o + Q_U + 1] + u1 * quads[o + Q_V + 1];
+          const qz = quads[o + Q_CORNER + 2] + u0 * quads[o + Q_U + 2] + u1 * quads[o + Q_V + 2];
+          const qnx = quads[o + Q_NORMAL],
+            qny = quads[o + Q_NORMAL + 1],
+            qnz = quads[o + Q_NORMAL + 2];
+          wix = qx - x;
+          wiy = qy - y;
+          wiz = qz - z;
+          const d2 = wix * wix + wiy * wiy + wiz * wiz;
+          if (d2 > 0) {
+            const dist = Math.sqrt(d2);
+            wix /= dist;
+            wiy /= dist;
+            wiz /= dist;
+            const cosLight = -(qnx * wix + qny * wiy + qnz * wiz);
+            if (cosLight > 0) {
+              const lift = lights!.offset[l];
+              lpx = qx + lift * qnx;
+              lpy = qy + lift * qny;
+              lpz = qz + lift * qnz;
+              lpdf = (ls.pick * d2) / (quads[o + Q_AREA] * cosLight);
+              sampled = lpdf < Infinity;
+            }
+          }
+        } else {
+          ls.refX = x;
+          ls.refY = y;
+          ls.refZ = z;
+          ls.u0 = lu0;
+          ls.u1 = lu1;
+          if (sampleLight(lights!, spheres, quads, l, ls)) {
+            sampled = true;
+            wix = ls.wx;
+            wiy = ls.wy;
+            wiz = ls.wz;
+            lpx = ls.px;
+            lpy = ls.py;
+            lpz = ls.pz;
+            lpdf = ls.pdf;
+            infinite = ls.distance === Infinity;
+            delta = lights!.kind[l] >= LIGHT_POINT;
           }
         }
-      } else {
-        ls.refX = x;
-        ls.refY = y;
-        ls.refZ = z;
-        ls.u0 = u[DIM_LIGHT_POINT];
-        ls.u1 = u[DIM_LIGHT_POINT + 1];
-        if (sampleLight(lights!, spheres, quads, l, ls)) {
-          sampled = true;
-          wix = ls.wx;
-          wiy = ls.wy;
-          wiz = ls.wz;
-          lpx = ls.px;
-          lpy = ls.py;
-          lpz = ls.pz;
-          lpdf = ls.pdf;
-          infinite = ls.distance === Infinity;
-          delta = lights!.kind[l] >= LIGHT_POINT;
-        }
-      }
-      if (sampled) {
-        const lwiz = wix * sx + wiy * sy + wiz * sz;
-        // A frame facing wo sees light only above it; a transmissive glTF surface
-        // (geometric side) reflects below it too when the path is inside.
-        if (geometricSide ? lwiz !== 0 : lwiz > 0) {
-          let fr: number, fg: number, fb: number, pb: number;
-          if (mtype === MATERIAL_DIFFUSE) {
-            // diffuseEval written out (diffuse.ts).
-            if (lwoz <= 0 || lwiz <= 0) {
-              fr = 0;
-              fg = 0;
-              fb = 0;
-              pb = 0;
-            } else {
-              fr = materials[mo + M_COLOR] * INV_PI;
-              fg = materials[mo + M_COLOR + 1] * INV_PI;
-              fb = materials[mo + M_COLOR + 2] * INV_PI;
-              pb = lwiz * INV_PI;
-            }
-          } else {
-            bq.wix = wix * fsx + wiy * fsy + wiz * fsz;
-            bq.wiy = wix * ftx + wiy * fty + wiz * ftz;
-            bq.wiz = lwiz;
-            bsdfEval(materials, m, bq, fv);
-            fr = fv.r;
-            fg = fv.g;
-            fb = fv.b;
-            pb = fv.pdf;
-          }
-          if (fr !== 0 || fg !== 0 || fb !== 0) {
-            // Both ends lifted off their surfaces (see lights.ts): the
-            // segment between them crosses neither. The origin leaves by
-            // the geometric side wi is on.
-            const sr = this.shadowRay;
-            const lift = wix * nx + wiy * ny + wiz * nz >= 0 ? scale : -scale;
-            const ox = x + nx * lift;
-            const oy = y + ny * lift;
-            const oz = z + nz * lift;
-            let len = Infinity;
-            if (infinite) {
-              sr.dx = wix;
-              sr.dy = wiy;
-              sr.dz = wiz;
-            } else {
-              const ex = lpx - ox;
-              const ey = lpy - oy;
-              const ez = lpz - oz;
-              len = Math.sqrt(ex * ex + ey * ey + ez * ez);
-              sr.dx = ex / len;
-              sr.dy = ey / len;
-              sr.dz = ez / len;
-            }
-            sr.ox = ox;
-            sr.oy = oy;
-            sr.oz = oz;
-            sr.tMax = len;
-            segments++;
-            const visible =
-              len > 0
-                ? alphaShadows
-                  ? shadowTransmittance(scene, gltf!, sr, this.gw)
-                  : occluded(scene, sr)
-                    ? 0
-                    : 1
-                : 0;
-            if (visible > 0) {
-              let er: number, eg: number, eb: number;
-              // Not a shape (the environment, a punctual light): sampleLight wrote what arrives.
-              if (lights!.kind[l] >= LIGHT_ENVIRONMENT) {
-                er = ls.r;
-                eg = ls.g;
-                eb = ls.b;
+        if (sampled) {
+          const lwiz = wix * sx + wiy * sy + wiz * sz;
+          // A frame facing wo sees light only above it; a transmissive glTF surface
+          // (geometric side) reflects below it too when the path is inside.
+          if (geometricSide ? lwiz !== 0 : lwiz > 0) {
+            let fr: number, fg: number, fb: number, pb: number;
+            if (mtype === MATERIAL_DIFFUSE) {
+              // diffuseEval written out (diffuse.ts).
+              if (lwoz <= 0 || lwiz <= 0) {
+                fr = 0;
+                fg = 0;
+                fb = 0;
+                pb = 0;
               } else {
-                const lmi = lights!.material[l];
-                const lm = lmi * MATERIAL_STRIDE;
-                if (materials[lm + M_TYPE] === MATERIAL_GLTF) {
-                  // Emission varies over the mesh: looked up at the sampled point.
-                  const gw = this.gw;
-                  gltfLightEmission(
-                    scene,
-                    gltf!,
-                    ls.triangle,
-                    ls.b1,
-                    ls.b2,
-                    gltfRow(materials, lmi),
-                    gw,
-                  );
-                  er = gw.emission.r;
-                  eg = gw.emission.g;
-                  eb = gw.emission.b;
+                fr = materials[mo + M_COLOR] * INV_PI;
+                fg = materials[mo + M_COLOR + 1] * INV_PI;
+                fb = materials[mo + M_COLOR + 2] * INV_PI;
+                pb = lwiz * INV_PI;
+              }
+            } else {
+              bq.wix = wix * fsx + wiy * fsy + wiz * fsz;
+              bq.wiy = wix * ftx + wiy * fty + wiz * ftz;
+              bq.wiz = lwiz;
+              bsdfEval(materials, m, bq, fv);
+              fr = fv.r;
+              fg = fv.g;
+              fb = fv.b;
+              pb = fv.pdf;
+            }
+            if (fr !== 0 || fg !== 0 || fb !== 0) {
+              // Both ends lifted off their surfaces (see lights.ts): the
+              // segment between them crosses neither. The origin leaves by
+              // the geometric side wi is on.
+              const sr = this.shadowRay;
+              const lift = wix * nx + wiy * ny + wiz * nz >= 0 ? scale : -scale;
+              const ox = x + nx * lift;
+              const oy = y + ny * lift;
+              const oz = z + nz * lift;
+              let len = Infinity;
+              if (infinite) {
+                sr.dx = wix;
+                sr.dy = wiy;
+                sr.dz = wiz;
+              } else {
+                const ex = lpx - ox;
+                const ey = lpy - oy;
+                const ez = lpz - oz;
+                len = Math.sqrt(ex * ex + ey * ey + ez * ez);
+                sr.dx = ex / len;
+                sr.dy = ey / len;
+                sr.dz = ez / len;
+              }
+              sr.ox = ox;
+              sr.oy = oy;
+              sr.oz = oz;
+              sr.tMax = len;
+              segments++;
+              const visible =
+                len > 0
+                  ? alphaShadows
+                    ? shadowTransmittance(scene, gltf!, sr, this.gw)
+                    : occluded(scene, sr)
+                      ? 0
+                      : 1
+                  : 0;
+              if (visible > 0) {
+                let er: number, eg: number, eb: number;
+                // Not a shape (the environment, a punctual light): sampleLight wrote what arrives.
+                if (lights!.kind[l] >= LIGHT_ENVIRONMENT) {
+                  er = ls.r;
+                  eg = ls.g;
+                  eb = ls.b;
                 } else {
-                  er = materials[lm + M_EMISSION];
-                  eg = materials[lm + M_EMISSION + 1];
-                  eb = materials[lm + M_EMISSION + 2];
+                  const lmi = lights!.material[l];
+                  const lm = lmi * MATERIAL_STRIDE;
+                  if (materials[lm + M_TYPE] === MATERIAL_GLTF) {
+                    // Emission varies over the mesh: looked up at the sampled point.
+                    const gw = this.gw;
+                    gltfLightEmission(
+                      scene,
+                      gltf!,
+                      ls.triangle,
+                      ls.b1,
+                      ls.b2,
+                      gltfRow(materials, lmi),
+                      gw,
+                    );
+                    er = gw.emission.r;
+                    eg = gw.emission.g;
+                    eb = gw.emission.b;
+                  } else {
+                    er = materials[lm + M_EMISSION];
+                    eg = materials[lm + M_EMISSION + 1];
+                    eb = materials[lm + M_EMISSION + 2];
+                  }
                 }
+                const pl = lpdf;
+                const w = (pl / (pl * pl + (delta ? 0 : pb * pb))) * Math.abs(lwiz) * visible;
+                if (inMedium && !infinite) {
+                  // The shadow ray runs inside the absorbing solid too.
+                  er *= Math.exp(-sar * len);
+                  eg *= Math.exp(-sag * len);
+                  eb *= Math.exp(-sab * len);
+                }
+                lr += br * fr * er * w;
+                lg += bg * fg * eg * w;
+                lb += bb * fb * eb * w;
               }
-              const pl = lpdf;
-              const w = (pl / (pl * pl + (delta ? 0 : pb * pb))) * Math.abs(lwiz) * visible;
-              if (inMedium && !infinite) {
-                // The shadow ray runs inside the absorbing solid too.
-                er *= Math.exp(-sar * len);
-                eg *= Math.exp(-sag * len);
-                eb *= Math.exp(-sab * len);
-              }
-              lr += br * fr * er * w;
-              lg += bg * fg * eg * w;
-              lb += bb * fb * eb * w;
             }
           }
         }

@@ -31,6 +31,7 @@ export function lightPdf(
   nz: number,
   t: number,
   cosLight: number,
+  split = 1,
 ): number {
   const s = lights.shape[l];
   const kind = lights.kind[l];
@@ -39,7 +40,7 @@ export function lightPdf(
   if (bvh === null) choose = lights.prob[l];
   else {
     prim = bvh.primOf(l, kind === SHAPE_TRIANGLE ? triangle : -1);
-    choose = bvh.pmf(prim, x, y, z, nx, ny, nz);
+    choose = bvh.pmf(prim, x, y, z, nx, ny, nz, split);
   }
   if (!(choose > 0)) return 0;
   if (kind === SHAPE_QUAD) {

@@ -3,7 +3,9 @@
  * its `pmf` says (Pearson's χ² at several reference points, with the false-alarm rate
  * below), the densities MIS reads back (`lightPdf`, `environmentLightPdf` given the
  * BVH) equal those of the samples drawn through it for every kind of emitter, and the
- * shares of the emitters sum to the probability of choosing one at all.
+ * shares of the emitters sum to the probability of choosing one at all. Splitting
+ * (`chooseSplit`) chooses each emitter with the probability its `pmf` gives, and MIS
+ * reads the same densities back.
  *
  * False alarms: each χ² test rejects at p < 1e-4 (Bonferroni over the 8 points keeps
  * the file's rate below 1e-3); the numbers are fixed hashes, so it cannot flake.
@@ -19,6 +21,7 @@ import {
 } from '../../../src/core/geometry/ray.ts';
 import { QUAD_STRIDE, Q_NORMAL } from '../../../src/core/geometry/shapes.ts';
 import { LightSample, sampleLight } from '../../../src/core/lights/lights.ts';
+import { LIGHT_SPLIT } from '../../../src/core/lights/light-bvh.ts';
 import { environmentLightPdf, lightPdf } from '../../../src/core/lights/light-pdf.ts';
 import { hashToUnit, sampleKey } from '../../../src/core/rng/pcg.ts';
 import { chi2Test } from '../../helpers/chi2.ts';
@@ -211,6 +214,144 @@ describe('light BVH', () => {
     for (const kind of [SHAPE_SPHERE, SHAPE_QUAD, SHAPE_TRIANGLE, LIGHT_ENVIRONMENT, LIGHT_POINT]) {
       expect(checked.get(kind) ?? 0, `kind ${kind}`).toBeGreaterThan(100);
     }
+  });
+
+  for (const withInfinite of [false, true]) {
+    const what = withInfinite ? 'with a map and a sun' : 'bounded lights only';
+    it(`splits: each light is among the chosen with the probability pmf gives (${what})`, () => {
+      // Each emitter is chosen at most once per call, so its count over n calls is
+      // binomial(n, pmf): a two-sided z test per emitter expected at least 20 times,
+      // |z| < 5.3 (false alarm 1.2e-7 each; with at most 8 × 2 × 150 emitters and the
+      // estimates below, the file's rate stays below 1e-3). The numbers are fixed
+      // hashes, so it cannot flake. And Σ w / pick over the chosen, for weights w, has
+      // the mean Σ w over the emitters pmf does not rule out (|z| < 5.3 again).
+      const scene = manyLightScene(withInfinite);
+      const bvh = scene.lightBvh()!;
+      const n = 40_000;
+      let split = 0;
+      for (const max of [4, LIGHT_SPLIT]) {
+        for (const [i, [x, y, z, nx, ny, nz]] of POINTS.entries()) {
+          const cells = bvh.count + bvh.infinite.length;
+          const picks = new Float64Array(cells);
+          const weight = new Float64Array(cells);
+          let exact = 0;
+          for (let p = 0; p < cells; p++) {
+            picks[p] = p < bvh.count ? bvh.pmf(p, x, y, z, nx, ny, nz, max) : bvh.infinitePick;
+            weight[p] = 0.5 + hashToUnit(sampleKey(29, p, 0), 0);
+            if (picks[p] > 0) exact += weight[p];
+          }
+          const observed = new Float64Array(cells);
+          let mismatched = 0;
+          let chosen = 0;
+          let sum = 0;
+          let sum2 = 0;
+          for (let s = 0; s < n; s++) {
+            const u = hashToUnit(sampleKey(17, i, s), 0);
+            const k = bvh.chooseSplit(u, x, y, z, nx, ny, nz, max);
+            let est = 0;
+            for (let c = 0; c < k; c++) {
+              const l = bvh.chosenLight[c];
+              const inf = bvh.infinite.indexOf(l);
+              const p = inf >= 0 ? bvh.count + inf : bvh.primOf(l, bvh.chosenTriangle[c]);
+              if (bvh.chosenPick[c] !== picks[p]) mismatched++;
+              observed[p]++;
+              est += weight[p] / bvh.chosenPick[c];
+            }
+            chosen += k;
+            sum += est;
+            sum2 += est * est;
+          }
+          // The probability each choice reports is pmf's, to the bit.
+          expect(mismatched, `point ${i}, max ${max}`).toBe(0);
+          let tested = 0;
+          for (let p = 0; p < cells; p++) {
+            if (picks[p] === 0) {
+              expect(observed[p], `emitter ${p} has pmf 0`).toBe(0);
+              continue;
+            }
+            const e = n * picks[p];
+            if (e < 20) continue;
+            const zp = (observed[p] - e) / Math.sqrt(e * (1 - Math.min(picks[p], 1 - 1e-12)));
+            expect(Math.abs(zp), `point ${i}, max ${max}, emitter ${p}`).toBeLessThan(5.3);
+            tested++;
+          }
+          expect(tested, `point ${i}`).toBeGreaterThan(10);
+          const mean = sum / n;
+          const se = Math.sqrt(Math.max(0, sum2 / n - mean * mean) / n);
+          expect(Math.abs(mean - exact), `point ${i}, max ${max}: ${mean} ± ${se}`).toBeLessThan(
+            5.3 * se + 1e-9 * exact,
+          );
+          expect(chosen / n).toBeLessThanOrEqual(max);
+          if (chosen / n > 1.5) split++;
+        }
+      }
+      // Splitting happens: at several points more than one light is sampled on average.
+      expect(split).toBeGreaterThan(4);
+    });
+  }
+
+  it('gives MIS the density of each light a split chooses', () => {
+    const scene = manyLightScene(true);
+    const bvh = scene.lightBvh()!;
+    const lights = scene.lights!;
+    const ls = new LightSample();
+    let checked = 0;
+    let several = 0;
+    for (let i = 0; i < 5_000; i++) {
+      const key = sampleKey(31, i, 0);
+      const x = 4 * hashToUnit(key, 0) - 2;
+      const y = 0.01 + 2.8 * hashToUnit(key, 1);
+      const z = 4 * hashToUnit(key, 2) - 2;
+      const a = 2 * Math.PI * hashToUnit(key, 3);
+      const nx = Math.cos(a) * 0.6;
+      const nz = Math.sin(a) * 0.6;
+      const ny = 0.8;
+      const k = bvh.chooseSplit(hashToUnit(key, 4), x, y, z, nx, ny, nz, LIGHT_SPLIT);
+      if (k > 1) several++;
+      for (let c = 0; c < k; c++) {
+        const l = bvh.chosenLight[c];
+        const kind = lights.kind[l];
+        if (kind !== SHAPE_QUAD && kind !== SHAPE_TRIANGLE && kind !== SHAPE_SPHERE) continue;
+        ls.light = l;
+        ls.triangle = bvh.chosenTriangle[c];
+        ls.pick = bvh.chosenPick[c];
+        ls.refX = x;
+        ls.refY = y;
+        ls.refZ = z;
+        ls.u0 = hashToUnit(key, 5 + 2 * c);
+        ls.u1 = hashToUnit(key, 6 + 2 * c);
+        if (!sampleLight(lights, scene.spheres, scene.quads, l, ls)) continue;
+        let cos: number;
+        if (kind === SHAPE_QUAD) {
+          const o = lights.shape[l] * QUAD_STRIDE + Q_NORMAL;
+          cos = -(scene.quads[o] * ls.wx + scene.quads[o + 1] * ls.wy + scene.quads[o + 2] * ls.wz);
+        } else if (kind === SHAPE_TRIANGLE) {
+          const ms = lights.meshSample;
+          cos = -(ms.nx * ls.wx + ms.ny * ls.wy + ms.nz * ls.wz);
+        } else cos = 1;
+        const pdf = lightPdf(
+          lights,
+          bvh,
+          scene.spheres,
+          scene.quads,
+          l,
+          ls.triangle,
+          x,
+          y,
+          z,
+          nx,
+          ny,
+          nz,
+          ls.distance,
+          cos,
+          LIGHT_SPLIT,
+        );
+        expect(Math.abs(pdf / ls.pdf - 1), `light ${l} (kind ${kind})`).toBeLessThan(1e-9);
+        checked++;
+      }
+    }
+    expect(checked).toBeGreaterThan(2_000);
+    expect(several).toBeGreaterThan(500);
   });
 
   it('is not built for a single light, where the choice by power is the same', () => {
