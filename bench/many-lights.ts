@@ -1,22 +1,24 @@
 /**
  * Many-light sampling at equal time (issue 23, goal 1): the room lit by N small
- * emitters (bench/scenes.mjs `manyLights`), rendered in this process on one thread
- * with next-event estimation choosing its light by the light BVH
- * (src/core/lights/light-bvh.ts) and, as before it, by power alone (`lightSampler:
- * 'power'`). Each render adds 1-spp passes until --seconds have passed; its relMSE
- * against the reference (mean over pixels and channels of (x − ref)² / (ref² + 0.01),
- * as bench/denoise-time.ts) is then measured. Rounds alternate which sampler goes
- * first and use fresh seeds; the table gives each round and the median ratio of
- * relMSE (power / BVH), measured in this one run.
+ * emitters (bench/scenes.mjs `manyLights`), or any scene file (--scene), rendered in
+ * this process on one thread with next-event estimation choosing its lights three
+ * ways (`lightSampler`): by the light BVH with splitting (the default, up to
+ * LIGHT_SPLIT lights per vertex), by the light BVH one light at a time, and by power
+ * alone. Each render adds 1-spp passes until --seconds have passed; its relMSE against
+ * the reference (mean over pixels and channels of (x − ref)² / (ref² + 0.01), as
+ * bench/denoise-time.ts) is then measured. Rounds rotate which sampler goes first and
+ * use fresh seeds; the table gives each round and the median ratios of relMSE,
+ * measured in this one run.
  *
- *   npm run build:cli   (not needed: this runs the TypeScript core directly)
  *   node scripts/run-ts.mjs bench/many-lights.ts --reference REF.pfm
- *        [--count 10000] [--seconds 20] [--rounds 3] [--width 128] [--height 96] [--bounces B]
+ *        [--count 10000 | --scene FILE.json] [--seconds 20] [--rounds 3] [--bounces B]
  *
- * REF.pfm: the scene rendered long; bench/results/many-lights/reference.pfm (its README
- * says how it was made and checked against Mitsuba 3). Not a test.
+ * The image size is the reference's. REF.pfm for the hall: bench/results/many-lights/
+ * reference.pfm (its README says how it was made and checked against Mitsuba 3). Not a
+ * test.
  */
 import { readFileSync } from 'node:fs';
+import { dirname, resolve } from 'node:path';
 import {
   Film,
   PathTracer,
@@ -26,6 +28,8 @@ import {
   parseScene,
 } from '../src/core/index.ts';
 import type { LightSamplerKind } from '../src/core/index.ts';
+import { nodeSceneFiles } from '../src/cli/scene-files.ts';
+import { resolveSceneFiles } from '../src/core/loading.ts';
 import { manyLights } from './scenes.mjs';
 import { relMse } from './lib.mjs';
 
@@ -37,17 +41,20 @@ const flag = (name: string, dflt: string): string => {
 const count = Number(flag('count', '10000'));
 const seconds = Number(flag('seconds', '20'));
 const rounds = Number(flag('rounds', '3'));
-const width = Number(flag('width', '128'));
-const height = Number(flag('height', '96'));
+const sceneFile = flag('scene', '');
 const refFile = flag('reference', '');
 const bouncesFlag = flag('bounces', '');
 if (refFile === '') throw new Error('--reference REF.pfm is required');
 const ref = decodePfm(readFileSync(refFile));
-if (ref.width !== width || ref.height !== height) {
-  throw new Error(`reference is ${ref.width}×${ref.height}, not ${width}×${height}`);
-}
+const { width, height } = ref;
 
-const scene = parseScene(JSON.stringify(manyLights(count)));
+const scene =
+  sceneFile === ''
+    ? parseScene(JSON.stringify(manyLights(count)))
+    : await resolveSceneFiles(
+        parseScene(readFileSync(sceneFile, 'utf8')),
+        nodeSceneFiles(dirname(resolve(sceneFile))),
+      );
 if (bouncesFlag !== '') scene.settings.maxBounces = Number(bouncesFlag);
 const t0 = performance.now();
 const compiled = compileScene(scene);
@@ -86,8 +93,10 @@ function render(sampler: LightSamplerKind, seed: number): Run {
   return { sampler, spp, seconds: elapsed, error: relMse(film.mean(), ref.rgb) };
 }
 
-// Warm-up: both samplers' code paths compiled before the clock matters.
-for (const s of ['bvh', 'power'] as const) {
+const SAMPLERS: LightSamplerKind[] = ['split', 'bvh', 'power'];
+
+// Warm-up: every sampler's code path compiled before the clock matters.
+for (const s of SAMPLERS) {
   const tracer = new PathTracer(compiled, {
     width: 16,
     height: 12,
@@ -100,26 +109,32 @@ for (const s of ['bvh', 'power'] as const) {
   for (let k = 0; k < 8; k++) tracer.renderRows(film, 0, 12, k, k + 1, new RenderStats());
 }
 
+const median = (v: number[]): number => v.slice().sort((a, b) => a - b)[v.length >> 1]!;
 const rows: string[] = [];
-const ratios: number[] = [];
+const vsPower: number[] = [];
+const vsBvh: number[] = [];
 for (let round = 0; round < rounds; round++) {
-  const order: LightSamplerKind[] = round % 2 === 0 ? ['power', 'bvh'] : ['bvh', 'power'];
+  // Rotate the order, so that no sampler always runs first (or last) in a round.
+  const order = SAMPLERS.map((_, k) => SAMPLERS[(k + round) % SAMPLERS.length]!);
   const runs = {} as Record<LightSamplerKind, Run>;
   for (const s of order) runs[s] = render(s, 1000 + round);
-  const ratio = runs.power.error / runs.bvh.error;
-  ratios.push(ratio);
+  vsPower.push(runs.power.error / runs.split.error);
+  vsBvh.push(runs.bvh.error / runs.split.error);
   rows.push(
-    `| ${round + 1} | ${runs.power.spp} | ${runs.power.error.toExponential(2)} | ` +
-      `${runs.bvh.spp} | ${runs.bvh.error.toExponential(2)} | ${ratio.toFixed(1)}× |`,
+    `| ${round + 1} | ` +
+      SAMPLERS.map((s) => `${runs[s].spp} | ${runs[s].error.toExponential(2)}`).join(' | ') +
+      ` | ${vsPower[round]!.toFixed(1)}× | ${vsBvh[round]!.toFixed(1)}× |`,
   );
 }
-ratios.sort((a, b) => a - b);
+const what = sceneFile === '' ? `${count} emitters` : sceneFile;
 process.stdout.write(
-  `${count} emitters, ${width}×${height}, ${seconds} s per render, 1 thread; ` +
+  `${what}, ${width}×${height}, ${seconds} s per render, 1 thread; ` +
     `scene compile ${compileMs.toFixed(0)} ms, light BVH build ${buildMs.toFixed(0)} ms ` +
     `(${lightBvh.count} emitters, depth ${lightBvh.depth})\n\n` +
-    `| round | power: spp | power: relMSE | BVH: spp | BVH: relMSE | relMSE power / BVH |\n` +
-    `|---|---|---|---|---|---|\n` +
+    `| round | split: spp | split: relMSE | BVH: spp | BVH: relMSE | power: spp | power: relMSE | ` +
+    `relMSE power / split | relMSE BVH / split |\n` +
+    `|---|---|---|---|---|---|---|---|---|\n` +
     rows.join('\n') +
-    `\n\nmedian ratio ${ratios[Math.floor(ratios.length / 2)]!.toFixed(1)}×\n`,
+    `\n\nmedian ratios: power / split ${median(vsPower).toFixed(1)}×, ` +
+    `BVH / split ${median(vsBvh).toFixed(1)}×\n`,
 );
