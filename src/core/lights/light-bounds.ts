@@ -160,8 +160,10 @@ export function deriveBounds(b: Float64Array, o: number, d: Float64Array, od: nu
 }
 
 /**
- * The importance of record `o` (its derived record `od` of `d`) to the point (x, y, z)
- * with surface normal (nx, ny, nz) (all zero: no surface), pbrt-v4
+ * The importance of record `o` (its derived record `od` of `d`) to the point p = (x, y,
+ * z, nx, ny, nz): (x, y, z) with surface normal (nx, ny, nz) (all zero: no surface). The
+ * point comes in a typed array because a call V8 does not inline boxes each double
+ * argument on the heap, and the light BVH makes dozens of these calls per vertex. pbrt-v4
  * `LightBounds::Importance`: phi × cos θ′ / d², where θ′ is the smallest angle the
  * emitters' normals can make with the direction to the point, and, at a surface,
  * × cos θ′ᵢ, the largest cosine the incident direction can make with its normal. 0 when
@@ -176,15 +178,16 @@ export function importance(
   o: number,
   d: Float64Array,
   od: number,
-  x: number,
-  y: number,
-  z: number,
-  nx: number,
-  ny: number,
-  nz: number,
+  p: Float64Array,
 ): number {
   const phi = b[o + LB_PHI];
   if (!(phi > 0)) return 0;
+  const x = p[0],
+    y = p[1],
+    z = p[2];
+  const nx = p[3],
+    ny = p[4],
+    nz = p[5];
   const r2 = d[od + 3];
   let wx = x - d[od],
     wy = y - d[od + 1],

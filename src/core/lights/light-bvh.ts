@@ -101,6 +101,13 @@ export class LightBvh {
   /** The leaf node of each emitter. */
   readonly leafOf: Int32Array;
   readonly depth: number;
+  /**
+   * The shading point every query reads: (x, y, z) and its normal (nx, ny, nz), all
+   * zero where there is no surface. The caller writes it before `choose`,
+   * `chooseSplit` or `pmf`: in a typed array, not as six arguments, because V8 boxes
+   * each double argument of a call it does not inline, and these calls are not.
+   */
+  readonly point = new Float64Array(6);
   /** Scratch path of pmf (one BVH per thread's light list). */
   private readonly path: Int32Array;
   /** What childShares writes: the left and right child's share of the last node asked. */
@@ -153,16 +160,7 @@ export class LightBvh {
    * Chooses a light for the point (x, y, z) with normal (nx, ny, nz) from u in [0, 1).
    * Returns false when none can contribute (then out is not written).
    */
-  choose(
-    u: number,
-    x: number,
-    y: number,
-    z: number,
-    nx: number,
-    ny: number,
-    nz: number,
-    out: LightChoice,
-  ): boolean {
+  choose(u: number, out: LightChoice): boolean {
     const ni = this.infinite.length;
     const pInf = ni * this.infinitePick;
     if (u < pInf) {
@@ -175,9 +173,9 @@ export class LightBvh {
     if (this.count === 0) return false;
     u = Math.min((u - pInf) / (1 - pInf), ONE_MINUS_EPSILON);
     if (this.child[0] < 0) {
-      if (!(importance(this.nodes, 0, this.derived, 0, x, y, z, nx, ny, nz) > 0)) return false;
+      if (!(importance(this.nodes, 0, this.derived, 0, this.point) > 0)) return false;
     }
-    return this.descend(0, this.bvhPick, u, x, y, z, nx, ny, nz, out);
+    return this.descend(0, this.bvhPick, u, out);
   }
 
   /**
@@ -189,19 +187,10 @@ export class LightBvh {
    * `pmf(prim, …, max)` gives, and the sum over the chosen lights of f / pick is an
    * unbiased estimate of the sum over all of them. With max 1 it is `choose`.
    */
-  chooseSplit(
-    u: number,
-    x: number,
-    y: number,
-    z: number,
-    nx: number,
-    ny: number,
-    nz: number,
-    max: number,
-  ): number {
+  chooseSplit(u: number, max: number): number {
     const ch = this.choice;
     if (max <= 1 || u < this.infinite.length * this.infinitePick) {
-      if (!this.choose(u, x, y, z, nx, ny, nz, ch)) return 0;
+      if (!this.choose(u, ch)) return 0;
       this.chosenLight[0] = ch.light;
       this.chosenTriangle[0] = ch.triangle;
       this.chosenPick[0] = ch.pick;
@@ -210,10 +199,10 @@ export class LightBvh {
     if (this.count === 0) return 0;
     const pInf = this.infinite.length * this.infinitePick;
     u = Math.min((u - pInf) / (1 - pInf), ONE_MINUS_EPSILON);
-    const n = this.cut(x, y, z, nx, ny, nz, max);
+    const n = this.cut(max);
     let k = 0;
     for (let j = 0; j < n; j++) {
-      if (!this.descend(this.cutNode[j], this.bvhPick, u, x, y, z, nx, ny, nz, ch)) continue;
+      if (!this.descend(this.cutNode[j], this.bvhPick, u, ch)) continue;
       this.chosenLight[k] = ch.light;
       this.chosenTriangle[k] = ch.triangle;
       this.chosenPick[k] = ch.pick;
@@ -229,21 +218,17 @@ export class LightBvh {
    * until none is left or the cut holds `max` nodes. Writes cutNode and returns the
    * count. A function of the point and `max` alone, so `pmf` rebuilds the same cut.
    */
-  private cut(
-    x: number,
-    y: number,
-    z: number,
-    nx: number,
-    ny: number,
-    nz: number,
-    max: number,
-  ): number {
+  private cut(max: number): number {
+    const p = this.point;
+    const x = p[0],
+      y = p[1],
+      z = p[2];
     const nodes = this.nodes;
     const derived = this.derived;
     const child = this.child;
     const cutNode = this.cutNode;
     const cutImp = this.cutImp;
-    const i0 = importance(nodes, 0, derived, 0, x, y, z, nx, ny, nz);
+    const i0 = importance(nodes, 0, derived, 0, p);
     if (!(i0 > 0)) return 0;
     cutNode[0] = 0;
     cutImp[0] = i0;
@@ -267,19 +252,8 @@ export class LightBvh {
       if (best < 0) break;
       const node = cutNode[best];
       const c = child[node];
-      const a = importance(
-        nodes,
-        (node + 1) * LB_STRIDE,
-        derived,
-        (node + 1) * LD_STRIDE,
-        x,
-        y,
-        z,
-        nx,
-        ny,
-        nz,
-      );
-      const b = importance(nodes, c * LB_STRIDE, derived, c * LD_STRIDE, x, y, z, nx, ny, nz);
+      const a = importance(nodes, (node + 1) * LB_STRIDE, derived, (node + 1) * LD_STRIDE, p);
+      const b = importance(nodes, c * LB_STRIDE, derived, c * LD_STRIDE, p);
       if (a > 0) {
         cutNode[best] = node + 1;
         cutImp[best] = a;
@@ -301,18 +275,7 @@ export class LightBvh {
   }
 
   /** Walks down from `node` (of nonzero importance) with u; see choose. */
-  private descend(
-    node: number,
-    pick: number,
-    u: number,
-    x: number,
-    y: number,
-    z: number,
-    nx: number,
-    ny: number,
-    nz: number,
-    out: LightChoice,
-  ): boolean {
+  private descend(node: number, pick: number, u: number, out: LightChoice): boolean {
     const child = this.child;
     for (;;) {
       const c = child[node];
@@ -323,7 +286,7 @@ export class LightBvh {
         out.pick = pick;
         return true;
       }
-      if (!this.childShares(node, x, y, z, nx, ny, nz)) return false;
+      if (!this.childShares(node)) return false;
       const p0 = this.share0;
       if (u < p0) {
         u = Math.min(u / p0, ONE_MINUS_EPSILON);
@@ -342,35 +305,26 @@ export class LightBvh {
    * emitter `prim` at the point: the same cut, then the same shares below it, multiplied
    * in the same order.
    */
-  pmf(
-    prim: number,
-    x: number,
-    y: number,
-    z: number,
-    nx: number,
-    ny: number,
-    nz: number,
-    max = 1,
-  ): number {
+  pmf(prim: number, max = 1): number {
     const path = this.path;
     let k = 0;
     for (let node = this.leafOf[prim]; node >= 0; node = this.parent[node]) path[k++] = node;
     // i: the path's entry below which the choice is by shares (k − 1: the root).
     let i = k - 1;
     if (max > 1) {
-      const n = this.cut(x, y, z, nx, ny, nz, max);
+      const n = this.cut(max);
       const cutNode = this.cutNode;
       find: for (; i >= 0; i--) {
         for (let j = 0; j < n; j++) if (cutNode[j] === path[i]) break find;
       }
       if (i < 0) return 0;
-    } else if (k === 1 && !(importance(this.nodes, 0, this.derived, 0, x, y, z, nx, ny, nz) > 0)) {
+    } else if (k === 1 && !(importance(this.nodes, 0, this.derived, 0, this.point) > 0)) {
       return 0;
     }
     let pick = this.bvhPick;
     for (; i > 0; i--) {
       const node = path[i];
-      if (!this.childShares(node, x, y, z, nx, ny, nz)) return 0;
+      if (!this.childShares(node)) return 0;
       pick *= path[i - 1] === node + 1 ? this.share0 : this.share1;
     }
     return pick;
@@ -382,31 +336,13 @@ export class LightBvh {
    * and `pmf` both read them from here, so the probability MIS reads is the choice's to
    * the bit. False when neither child can contribute.
    */
-  private childShares(
-    node: number,
-    x: number,
-    y: number,
-    z: number,
-    nx: number,
-    ny: number,
-    nz: number,
-  ): boolean {
+  private childShares(node: number): boolean {
+    const p = this.point;
     const nodes = this.nodes;
     const derived = this.derived;
     const c = this.child[node];
-    let c0 = importance(
-      nodes,
-      (node + 1) * LB_STRIDE,
-      derived,
-      (node + 1) * LD_STRIDE,
-      x,
-      y,
-      z,
-      nx,
-      ny,
-      nz,
-    );
-    let c1 = importance(nodes, c * LB_STRIDE, derived, c * LD_STRIDE, x, y, z, nx, ny, nz);
+    let c0 = importance(nodes, (node + 1) * LB_STRIDE, derived, (node + 1) * LD_STRIDE, p);
+    let c1 = importance(nodes, c * LB_STRIDE, derived, c * LD_STRIDE, p);
     if (c0 === Infinity || c1 === Infinity) {
       // Overflow (a point on a point light, say): the infinite ones share equally.
       c0 = c0 === Infinity ? 1 : 0;

@@ -108,11 +108,12 @@ describe('light BVH', () => {
       const ls = new LightSample();
       const n = 200_000;
       for (const [i, [x, y, z, nx, ny, nz]] of POINTS.entries()) {
+        bvh.point.set([x, y, z, nx, ny, nz]);
         const expected = new Float64Array(cells + 1);
         const picks = new Float64Array(bvh.count);
         let total = 0;
         for (let p = 0; p < bvh.count; p++) {
-          const pick = bvh.pmf(p, x, y, z, nx, ny, nz);
+          const pick = bvh.pmf(p);
           picks[p] = pick;
           expected[p] = n * pick;
           total += pick;
@@ -127,7 +128,7 @@ describe('light BVH', () => {
         let mismatched = 0;
         for (let s = 0; s < n; s++) {
           const u = hashToUnit(sampleKey(7, i, s), 0);
-          if (!bvh.choose(u, x, y, z, nx, ny, nz, ls)) {
+          if (!bvh.choose(u, ls)) {
             observed[cells]++;
             continue;
           }
@@ -164,7 +165,7 @@ describe('light BVH', () => {
       const nx = Math.cos(a) * 0.6;
       const nz = Math.sin(a) * 0.6;
       const ny = 0.8;
-      if (!bvh.choose(hashToUnit(key, 4), x, y, z, nx, ny, nz, ls)) continue;
+      if (!(bvh.point.set([x, y, z, nx, ny, nz]), bvh.choose(hashToUnit(key, 4), ls))) continue;
       const l = ls.light;
       ls.refX = x;
       ls.refY = y;
@@ -231,12 +232,14 @@ describe('light BVH', () => {
       let split = 0;
       for (const max of [4, LIGHT_SPLIT]) {
         for (const [i, [x, y, z, nx, ny, nz]] of POINTS.entries()) {
+          bvh.point.set([x, y, z, nx, ny, nz]);
+          bvh.point.set([x, y, z, nx, ny, nz]);
           const cells = bvh.count + bvh.infinite.length;
           const picks = new Float64Array(cells);
           const weight = new Float64Array(cells);
           let exact = 0;
           for (let p = 0; p < cells; p++) {
-            picks[p] = p < bvh.count ? bvh.pmf(p, x, y, z, nx, ny, nz, max) : bvh.infinitePick;
+            picks[p] = p < bvh.count ? bvh.pmf(p, max) : bvh.infinitePick;
             weight[p] = 0.5 + hashToUnit(sampleKey(29, p, 0), 0);
             if (picks[p] > 0) exact += weight[p];
           }
@@ -247,7 +250,7 @@ describe('light BVH', () => {
           let sum2 = 0;
           for (let s = 0; s < n; s++) {
             const u = hashToUnit(sampleKey(17, i, s), 0);
-            const k = bvh.chooseSplit(u, x, y, z, nx, ny, nz, max);
+            const k = bvh.chooseSplit(u, max);
             let est = 0;
             for (let c = 0; c < k; c++) {
               const l = bvh.chosenLight[c];
@@ -306,7 +309,8 @@ describe('light BVH', () => {
       const nx = Math.cos(a) * 0.6;
       const nz = Math.sin(a) * 0.6;
       const ny = 0.8;
-      const k = bvh.chooseSplit(hashToUnit(key, 4), x, y, z, nx, ny, nz, LIGHT_SPLIT);
+      const k =
+        (bvh.point.set([x, y, z, nx, ny, nz]), bvh.chooseSplit(hashToUnit(key, 4), LIGHT_SPLIT));
       if (k > 1) several++;
       for (let c = 0; c < k; c++) {
         const l = bvh.chosenLight[c];
