@@ -455,13 +455,7 @@ export function trace(
       let lp = -1;
       if (lightBvh === null) lp = lights!.choose(u[DIM_LIGHT_CHOICE]);
       else {
-        const lq = lightBvh.point;
-        lq[0] = x;
-        lq[1] = y;
-        lq[2] = z;
-        lq[3] = nx;
-        lq[4] = ny;
-        lq[5] = nz;
+        lightBvh.setPoint(x, y, z, nx, ny, nz);
         chosen = lightBvh.chooseSplit(u[DIM_LIGHT_CHOICE], lightSplit);
       }
       for (let c = 0; c < chosen; c++) {

@@ -103,9 +103,10 @@ export class LightBvh {
   readonly depth: number;
   /**
    * The shading point every query reads: (x, y, z) and its normal (nx, ny, nz), all
-   * zero where there is no surface. The caller writes it before `choose`,
-   * `chooseSplit` or `pmf`: in a typed array, not as six arguments, because V8 boxes
-   * each double argument of a call it does not inline, and these calls are not.
+   * zero where there is no surface. The caller sets it (`setPoint`, a call small enough
+   * to inline) before `choose`, `chooseSplit` or `pmf`: these read it from a typed array,
+   * not as six arguments, because V8 boxes each double argument of a call it does not
+   * inline, and the traversal's calls are not.
    */
   readonly point = new Float64Array(6);
   /** Scratch path of pmf (one BVH per thread's light list). */
@@ -149,6 +150,17 @@ export class LightBvh {
     }
     this.depth = depth;
     this.path = new Int32Array(depth + 1);
+  }
+
+  /** Sets the point every query reads (see `point`). */
+  setPoint(x: number, y: number, z: number, nx: number, ny: number, nz: number): void {
+    const p = this.point;
+    p[0] = x;
+    p[1] = y;
+    p[2] = z;
+    p[3] = nx;
+    p[4] = ny;
+    p[5] = nz;
   }
 
   /** The emitter of light-list entry l (its triangle t for a mesh; else t is ignored). */

@@ -40,13 +40,7 @@ export function lightPdf(
   if (bvh === null) choose = lights.prob[l];
   else {
     prim = bvh.primOf(l, kind === SHAPE_TRIANGLE ? triangle : -1);
-    const q = bvh.point;
-    q[0] = x;
-    q[1] = y;
-    q[2] = z;
-    q[3] = nx;
-    q[4] = ny;
-    q[5] = nz;
+    bvh.setPoint(x, y, z, nx, ny, nz);
     choose = bvh.pmf(prim, split);
   }
   if (!(choose > 0)) return 0;

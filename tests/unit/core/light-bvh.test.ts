@@ -96,6 +96,50 @@ const POINTS: [number, number, number, number, number, number][] = [
   [-1, 0.3, -1.9, 0, 0, 1],
 ];
 
+/**
+ * What MIS reads back (`lightPdf`) for area-light sample `ls` of light l, drawn from the
+ * point (x, y, z) with normal n: the emitter's cosine as the integrator computes it where
+ * a ray hits (a sphere seen from outside: lightPdf does not read it).
+ */
+function misPdf(
+  scene: ReturnType<typeof manyLightScene>,
+  l: number,
+  ls: LightSample,
+  p: readonly number[],
+  split = 1,
+): number {
+  const lights = scene.lights!;
+  const kind = lights.kind[l];
+  let cos = 1;
+  if (kind === SHAPE_QUAD) {
+    const o = lights.shape[l] * QUAD_STRIDE + Q_NORMAL;
+    cos = -(scene.quads[o] * ls.wx + scene.quads[o + 1] * ls.wy + scene.quads[o + 2] * ls.wz);
+  } else if (kind === SHAPE_TRIANGLE) {
+    const ms = lights.meshSample;
+    cos = -(ms.nx * ls.wx + ms.ny * ls.wy + ms.nz * ls.wz);
+  }
+  const [x, y, z, nx, ny, nz] = p as [number, number, number, number, number, number];
+  const bvh = scene.lightBvh();
+  const s = scene.spheres;
+  return lightPdf(
+    lights,
+    bvh,
+    s,
+    scene.quads,
+    l,
+    ls.triangle,
+    x,
+    y,
+    z,
+    nx,
+    ny,
+    nz,
+    ls.distance,
+    cos,
+    split,
+  );
+}
+
 describe('light BVH', () => {
   for (const withInfinite of [false, true]) {
     const what = withInfinite ? 'with a map and a sun' : 'bounded lights only';
@@ -108,7 +152,7 @@ describe('light BVH', () => {
       const ls = new LightSample();
       const n = 200_000;
       for (const [i, [x, y, z, nx, ny, nz]] of POINTS.entries()) {
-        bvh.point.set([x, y, z, nx, ny, nz]);
+        bvh.setPoint(x, y, z, nx, ny, nz);
         const expected = new Float64Array(cells + 1);
         const picks = new Float64Array(bvh.count);
         let total = 0;
@@ -165,7 +209,7 @@ describe('light BVH', () => {
       const nx = Math.cos(a) * 0.6;
       const nz = Math.sin(a) * 0.6;
       const ny = 0.8;
-      if (!(bvh.point.set([x, y, z, nx, ny, nz]), bvh.choose(hashToUnit(key, 4), ls))) continue;
+      if (!(bvh.setPoint(x, y, z, nx, ny, nz), bvh.choose(hashToUnit(key, 4), ls))) continue;
       const l = ls.light;
       ls.refX = x;
       ls.refY = y;
@@ -183,31 +227,7 @@ describe('light BVH', () => {
         checked.set(kind, (checked.get(kind) ?? 0) + 1);
         continue;
       } else {
-        // The emitter's cosine as the integrator computes it where a ray hits.
-        let cos: number;
-        if (kind === SHAPE_QUAD) {
-          const o = lights.shape[l] * QUAD_STRIDE + Q_NORMAL;
-          cos = -(scene.quads[o] * ls.wx + scene.quads[o + 1] * ls.wy + scene.quads[o + 2] * ls.wz);
-        } else if (kind === SHAPE_TRIANGLE) {
-          const ms = lights.meshSample;
-          cos = -(ms.nx * ls.wx + ms.ny * ls.wy + ms.nz * ls.wz);
-        } else cos = 1; // a sphere seen from outside: lightPdf does not read it
-        pdf = lightPdf(
-          lights,
-          bvh,
-          scene.spheres,
-          scene.quads,
-          l,
-          ls.triangle,
-          x,
-          y,
-          z,
-          nx,
-          ny,
-          nz,
-          ls.distance,
-          cos,
-        );
+        pdf = misPdf(scene, l, ls, [x, y, z, nx, ny, nz]);
       }
       expect(Math.abs(pdf / ls.pdf - 1), `light ${l} (kind ${kind})`).toBeLessThan(1e-9);
       checked.set(kind, (checked.get(kind) ?? 0) + 1);
@@ -232,8 +252,8 @@ describe('light BVH', () => {
       let split = 0;
       for (const max of [4, LIGHT_SPLIT]) {
         for (const [i, [x, y, z, nx, ny, nz]] of POINTS.entries()) {
-          bvh.point.set([x, y, z, nx, ny, nz]);
-          bvh.point.set([x, y, z, nx, ny, nz]);
+          bvh.setPoint(x, y, z, nx, ny, nz);
+          bvh.setPoint(x, y, z, nx, ny, nz);
           const cells = bvh.count + bvh.infinite.length;
           const picks = new Float64Array(cells);
           const weight = new Float64Array(cells);
@@ -310,7 +330,7 @@ describe('light BVH', () => {
       const nz = Math.sin(a) * 0.6;
       const ny = 0.8;
       const k =
-        (bvh.point.set([x, y, z, nx, ny, nz]), bvh.chooseSplit(hashToUnit(key, 4), LIGHT_SPLIT));
+        (bvh.setPoint(x, y, z, nx, ny, nz), bvh.chooseSplit(hashToUnit(key, 4), LIGHT_SPLIT));
       if (k > 1) several++;
       for (let c = 0; c < k; c++) {
         const l = bvh.chosenLight[c];
@@ -325,31 +345,7 @@ describe('light BVH', () => {
         ls.u0 = hashToUnit(key, 5 + 2 * c);
         ls.u1 = hashToUnit(key, 6 + 2 * c);
         if (!sampleLight(lights, scene.spheres, scene.quads, l, ls)) continue;
-        let cos: number;
-        if (kind === SHAPE_QUAD) {
-          const o = lights.shape[l] * QUAD_STRIDE + Q_NORMAL;
-          cos = -(scene.quads[o] * ls.wx + scene.quads[o + 1] * ls.wy + scene.quads[o + 2] * ls.wz);
-        } else if (kind === SHAPE_TRIANGLE) {
-          const ms = lights.meshSample;
-          cos = -(ms.nx * ls.wx + ms.ny * ls.wy + ms.nz * ls.wz);
-        } else cos = 1;
-        const pdf = lightPdf(
-          lights,
-          bvh,
-          scene.spheres,
-          scene.quads,
-          l,
-          ls.triangle,
-          x,
-          y,
-          z,
-          nx,
-          ny,
-          nz,
-          ls.distance,
-          cos,
-          LIGHT_SPLIT,
-        );
+        const pdf = misPdf(scene, l, ls, [x, y, z, nx, ny, nz], LIGHT_SPLIT);
         expect(Math.abs(pdf / ls.pdf - 1), `light ${l} (kind ${kind})`).toBeLessThan(1e-9);
         checked++;
       }
