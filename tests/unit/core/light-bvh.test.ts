@@ -96,6 +96,19 @@ const POINTS: [number, number, number, number, number, number][] = [
   [-1, 0.3, -1.9, 0, 0, 1],
 ];
 
+/** A point in the room with a normal tilted 37° from up, from the hash key. */
+function randomPoint(key: number): [number, number, number, number, number, number] {
+  const a = 2 * Math.PI * hashToUnit(key, 3);
+  return [
+    4 * hashToUnit(key, 0) - 2,
+    0.01 + 2.8 * hashToUnit(key, 1),
+    4 * hashToUnit(key, 2) - 2,
+    Math.cos(a) * 0.6,
+    0.8,
+    Math.sin(a) * 0.6,
+  ];
+}
+
 /**
  * What MIS reads back (`lightPdf`) for area-light sample `ls` of light l, drawn from the
  * point (x, y, z) with normal n: the emitter's cosine as the integrator computes it where
@@ -202,14 +215,10 @@ describe('light BVH', () => {
     const checked = new Map<number, number>();
     for (let i = 0; i < 20_000; i++) {
       const key = sampleKey(13, i, 0);
-      const x = 4 * hashToUnit(key, 0) - 2;
-      const y = 0.01 + 2.8 * hashToUnit(key, 1);
-      const z = 4 * hashToUnit(key, 2) - 2;
-      const a = 2 * Math.PI * hashToUnit(key, 3);
-      const nx = Math.cos(a) * 0.6;
-      const nz = Math.sin(a) * 0.6;
-      const ny = 0.8;
-      if (!(bvh.setPoint(x, y, z, nx, ny, nz), bvh.choose(hashToUnit(key, 4), ls))) continue;
+      const point = randomPoint(key);
+      const [x, y, z, nx, ny, nz] = point;
+      bvh.setPoint(x, y, z, nx, ny, nz);
+      if (!bvh.choose(hashToUnit(key, 4), ls)) continue;
       const l = ls.light;
       ls.refX = x;
       ls.refY = y;
@@ -227,7 +236,7 @@ describe('light BVH', () => {
         checked.set(kind, (checked.get(kind) ?? 0) + 1);
         continue;
       } else {
-        pdf = misPdf(scene, l, ls, [x, y, z, nx, ny, nz]);
+        pdf = misPdf(scene, l, ls, point);
       }
       expect(Math.abs(pdf / ls.pdf - 1), `light ${l} (kind ${kind})`).toBeLessThan(1e-9);
       checked.set(kind, (checked.get(kind) ?? 0) + 1);
@@ -322,15 +331,10 @@ describe('light BVH', () => {
     let several = 0;
     for (let i = 0; i < 5_000; i++) {
       const key = sampleKey(31, i, 0);
-      const x = 4 * hashToUnit(key, 0) - 2;
-      const y = 0.01 + 2.8 * hashToUnit(key, 1);
-      const z = 4 * hashToUnit(key, 2) - 2;
-      const a = 2 * Math.PI * hashToUnit(key, 3);
-      const nx = Math.cos(a) * 0.6;
-      const nz = Math.sin(a) * 0.6;
-      const ny = 0.8;
-      const k =
-        (bvh.setPoint(x, y, z, nx, ny, nz), bvh.chooseSplit(hashToUnit(key, 4), LIGHT_SPLIT));
+      const point = randomPoint(key);
+      const [x, y, z, nx, ny, nz] = point;
+      bvh.setPoint(x, y, z, nx, ny, nz);
+      const k = bvh.chooseSplit(hashToUnit(key, 4), LIGHT_SPLIT);
       if (k > 1) several++;
       for (let c = 0; c < k; c++) {
         const l = bvh.chosenLight[c];
@@ -345,7 +349,7 @@ describe('light BVH', () => {
         ls.u0 = hashToUnit(key, 5 + 2 * c);
         ls.u1 = hashToUnit(key, 6 + 2 * c);
         if (!sampleLight(lights, scene.spheres, scene.quads, l, ls)) continue;
-        const pdf = misPdf(scene, l, ls, [x, y, z, nx, ny, nz], LIGHT_SPLIT);
+        const pdf = misPdf(scene, l, ls, point, LIGHT_SPLIT);
         expect(Math.abs(pdf / ls.pdf - 1), `light ${l} (kind ${kind})`).toBeLessThan(1e-9);
         checked++;
       }
