@@ -492,9 +492,7 @@ export function trace(
         // A punctual light (lights/punctual.ts): no BSDF-sampled ray finds it, so its
         // sample's MIS weight is 1 (pbr-book 4e §13.4: pdf_bsdf counts as 0).
         let delta = false;
-        if (l < 0) {
-          // No light sample at this vertex.
-        } else if (lights!.kind[l] === SHAPE_QUAD) {
+        if (lights!.kind[l] === SHAPE_QUAD) {
           // sampleLight's quad case (and finishAreaSample) written out,
           // the same arithmetic: the call was not inlined.
           const o = lights!.shape[l] * QUAD_STRIDE;

@@ -169,8 +169,8 @@ export class LightBvh {
   }
 
   /**
-   * Chooses a light for the point (x, y, z) with normal (nx, ny, nz) from u in [0, 1).
-   * Returns false when none can contribute (then out is not written).
+   * Chooses a light for the point (`setPoint`) from u in [0, 1). Returns false when none
+   * can contribute (then out is not written).
    */
   choose(u: number, out: LightChoice): boolean {
     const ni = this.infinite.length;
@@ -196,12 +196,13 @@ export class LightBvh {
    * with the same number u. Writes chosenLight, chosenTriangle and chosenPick (the
    * probability that the light is among those chosen) and returns how many. A light
    * that the point's cut holds in a subtree is then sampled with the probability
-   * `pmf(prim, …, max)` gives, and the sum over the chosen lights of f / pick is an
+   * `pmf(prim, max)` gives, and the sum over the chosen lights of f / pick is an
    * unbiased estimate of the sum over all of them. With max 1 it is `choose`.
    */
   chooseSplit(u: number, max: number): number {
     const ch = this.choice;
-    if (max <= 1 || u < this.infinite.length * this.infinitePick) {
+    const pInf = this.infinite.length * this.infinitePick;
+    if (max <= 1 || u < pInf) {
       if (!this.choose(u, ch)) return 0;
       this.chosenLight[0] = ch.light;
       this.chosenTriangle[0] = ch.triangle;
@@ -209,7 +210,6 @@ export class LightBvh {
       return 1;
     }
     if (this.count === 0) return 0;
-    const pInf = this.infinite.length * this.infinitePick;
     u = Math.min((u - pInf) / (1 - pInf), ONE_MINUS_EPSILON);
     const n = this.cut(max);
     let k = 0;
@@ -225,8 +225,8 @@ export class LightBvh {
 
   /**
    * The cut of the tree splitting makes at the point: starting from the root, the node
-   * of largest importance among those the point sees under a wide angle (half-diagonal
-   * over distance above SPLIT_ANGLE) is replaced by its children of nonzero importance,
+   * of largest importance among those the point sees under a wide angle (squared
+   * half-diagonal over squared distance above SPLIT_ANGLE2) is replaced by its children of nonzero importance,
    * until none is left or the cut holds `max` nodes. Writes cutNode and returns the
    * count. A function of the point and `max` alone, so `pmf` rebuilds the same cut.
    */

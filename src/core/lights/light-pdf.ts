@@ -14,7 +14,8 @@ import type { LightList } from './lights.ts';
  * Solid-angle pdf with which `sampleLight` would have produced the point of
  * light l (triangle `triangle` of a mesh, else −1) hit from (x, y, z) with normal
  * (nx, ny, nz) at distance t with emitter cosine cosLight, the light chosen by `bvh`
- * (null: by power): the density MIS needs when a BSDF-sampled ray lands on an emitter.
+ * (null: by power) among up to `split` lights (LightBvh.chooseSplit): the density MIS
+ * needs when a BSDF-sampled ray lands on an emitter.
  */
 export function lightPdf(
   lights: LightList,
