@@ -132,36 +132,55 @@ export function copyBounds(b: Float64Array, a: number, out: Float64Array, o: num
   for (let k = 0; k < LB_STRIDE; k++) out[o + k] = b[a + k];
 }
 
-/** Numbers per record of `deriveBounds`' output: what `importance` reads besides the bounds. */
-export const LD_STRIDE = 5;
+/**
+ * Numbers per record of `packBounds`' output, everything `importance` reads and nothing
+ * else: the box's centre (IP_CENTRE, 3), its squared half-diagonal (IP_R2), the cone's
+ * axis (IP_W, 3), phi, cos θo, sin θo and cos θe. One record is 96 bytes where the
+ * bounds and what was derived from them took 136 in two arrays: the traversal of a large
+ * light BVH waits on memory more than it computes (BENCHMARKS.md, many lights).
+ */
+export const IP_STRIDE = 12;
+export const IP_CENTRE = 0;
+export const IP_R2 = 3;
+export const IP_W = 4;
+export const IP_PHI = 7;
+export const IP_COS_O = 8;
+export const IP_SIN_O = 9;
+export const IP_COS_E = 10;
 
 /**
- * What `importance` needs of record `o` of `b` that does not depend on the point, computed
- * once (the build's nodes are fixed) into record `od` of `d`: the box's centre, its squared
- * half-diagonal, and sin θo. Centre and half-diagonal as 0.5·lo + 0.5·hi: (lo + hi) / 2
- * would overflow for boxes near the double range.
+ * Record `o` of `b` packed for `importance` into record `od` of `d` (see IP_STRIDE): the
+ * parts that do not depend on the point, computed once since the build's nodes are fixed.
+ * Centre and half-diagonal as 0.5·lo + 0.5·hi: (lo + hi) / 2 would overflow for boxes
+ * near the double range.
  */
-export function deriveBounds(b: Float64Array, o: number, d: Float64Array, od: number): void {
+export function packBounds(b: Float64Array, o: number, d: Float64Array, od: number): void {
   const x0 = b[o + LB_MIN],
     y0 = b[o + LB_MIN + 1],
     z0 = b[o + LB_MIN + 2];
   const x1 = b[o + LB_MAX],
     y1 = b[o + LB_MAX + 1],
     z1 = b[o + LB_MAX + 2];
-  d[od] = 0.5 * x0 + 0.5 * x1;
-  d[od + 1] = 0.5 * y0 + 0.5 * y1;
-  d[od + 2] = 0.5 * z0 + 0.5 * z1;
+  d[od + IP_CENTRE] = 0.5 * x0 + 0.5 * x1;
+  d[od + IP_CENTRE + 1] = 0.5 * y0 + 0.5 * y1;
+  d[od + IP_CENTRE + 2] = 0.5 * z0 + 0.5 * z1;
   const hx = 0.5 * x1 - 0.5 * x0,
     hy = 0.5 * y1 - 0.5 * y0,
     hz = 0.5 * z1 - 0.5 * z0;
-  d[od + 3] = hx * hx + hy * hy + hz * hz;
+  d[od + IP_R2] = hx * hx + hy * hy + hz * hz;
+  d[od + IP_W] = b[o + LB_W];
+  d[od + IP_W + 1] = b[o + LB_W + 1];
+  d[od + IP_W + 2] = b[o + LB_W + 2];
+  d[od + IP_PHI] = b[o + LB_PHI];
   const cosO = b[o + LB_COS_O];
-  d[od + 4] = Math.sqrt(Math.max(0, 1 - cosO * cosO));
+  d[od + IP_COS_O] = cosO;
+  d[od + IP_SIN_O] = Math.sqrt(Math.max(0, 1 - cosO * cosO));
+  d[od + IP_COS_E] = b[o + LB_COS_E];
 }
 
 /**
- * The importance of record `o` (its derived record `od` of `d`) to the point p = (x, y,
- * z, nx, ny, nz): (x, y, z) with surface normal (nx, ny, nz) (all zero: no surface). The
+ * The importance of packed record `o` of `d` (packBounds) to the point p = (x, y, z, nx,
+ * ny, nz): (x, y, z) with surface normal (nx, ny, nz) (all zero: no surface). The
  * point comes in a typed array because a call V8 does not inline boxes each double
  * argument on the heap, and the light BVH makes dozens of these calls per vertex. pbrt-v4
  * `LightBounds::Importance`: phi × cos θ′ / d², where θ′ is the smallest angle the
@@ -173,25 +192,16 @@ export function deriveBounds(b: Float64Array, o: number, d: Float64Array, od: nu
  * half-diagonal (pbrt clamps by the half-diagonal itself, which mixes units) so that
  * points inside a large box do not see it as infinitely important.
  */
-export function importance(
-  b: Float64Array,
-  o: number,
-  d: Float64Array,
-  od: number,
-  p: Float64Array,
-): number {
-  const phi = b[o + LB_PHI];
+export function importance(d: Float64Array, o: number, p: Float64Array): number {
+  const phi = d[o + IP_PHI];
   if (!(phi > 0)) return 0;
-  const x = p[0],
-    y = p[1],
-    z = p[2];
   const nx = p[3],
     ny = p[4],
     nz = p[5];
-  const r2 = d[od + 3];
-  let wx = x - d[od],
-    wy = y - d[od + 1],
-    wz = z - d[od + 2];
+  const r2 = d[o + IP_R2];
+  let wx = p[0] - d[o + IP_CENTRE],
+    wy = p[1] - d[o + IP_CENTRE + 1],
+    wz = p[2] - d[o + IP_CENTRE + 2];
   const dist2 = wx * wx + wy * wy + wz * wz;
   const d2 = Math.max(dist2, r2);
   // The unit direction from the centre to the point (arbitrary at the centre itself).
@@ -206,24 +216,18 @@ export function importance(
     wz = 1;
   }
   // θw: the angle between the cone's axis and that direction.
-  const cosW = b[o + LB_W] * wx + b[o + LB_W + 1] * wy + b[o + LB_W + 2] * wz;
+  const cosW = d[o + IP_W] * wx + d[o + IP_W + 1] * wy + d[o + IP_W + 2] * wz;
   const sinW = Math.sqrt(Math.max(0, 1 - cosW * cosW));
   // θb: half the angle the box subtends from the point, bounded by its bounding
-  // sphere (pbrt-v4 BoundSubtendedDirections); the whole sphere from inside.
-  const inside =
-    x >= b[o + LB_MIN] &&
-    x <= b[o + LB_MAX] &&
-    y >= b[o + LB_MIN + 1] &&
-    y <= b[o + LB_MAX + 1] &&
-    z >= b[o + LB_MIN + 2] &&
-    z <= b[o + LB_MAX + 2];
+  // sphere (pbrt-v4 BoundSubtendedDirections); the whole sphere from inside it. (The box
+  // lies in the sphere, so a point inside the box is inside the sphere too.)
   let cosB = -1;
-  if (!inside && dist2 > r2) cosB = Math.sqrt(Math.max(0, 1 - r2 / dist2));
+  if (dist2 > r2) cosB = Math.sqrt(Math.max(0, 1 - r2 / dist2));
   const sinB = Math.sqrt(Math.max(0, 1 - cosB * cosB));
   // θx = max(0, θw − θo), then θ′ = max(0, θx − θb), in cosines and sines (pbrt's
   // cosSubClamped and sinSubClamped).
-  const cosO = b[o + LB_COS_O];
-  const sinO = d[od + 4];
+  const cosO = d[o + IP_COS_O];
+  const sinO = d[o + IP_SIN_O];
   let cosX: number, sinX: number;
   if (cosW > cosO) {
     cosX = 1;
@@ -233,7 +237,7 @@ export function importance(
     sinX = sinW * cosO - cosW * sinO;
   }
   const cosP = cosX > cosB ? 1 : cosX * cosB + sinX * sinB;
-  if (cosP <= b[o + LB_COS_E]) return 0;
+  if (cosP <= d[o + IP_COS_E]) return 0;
   let result = (phi * cosP) / d2;
   if (nx !== 0 || ny !== 0 || nz !== 0) {
     // θi: the angle between the normal and the direction to the centre, less θb.

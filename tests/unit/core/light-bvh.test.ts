@@ -20,6 +20,7 @@ import {
   SHAPE_TRIANGLE,
 } from '../../../src/core/geometry/ray.ts';
 import { QUAD_STRIDE, Q_NORMAL } from '../../../src/core/geometry/shapes.ts';
+import { MATERIAL_STRIDE, M_EMISSION } from '../../../src/core/bsdf/materials.ts';
 import { LightSample, sampleLight } from '../../../src/core/lights/lights.ts';
 import { LIGHT_SPLIT } from '../../../src/core/lights/light-bvh.ts';
 import { environmentLightPdf, lightPdf } from '../../../src/core/lights/light-pdf.ts';
@@ -83,6 +84,50 @@ function manyLightScene(withInfinite: boolean) {
   if (withInfinite) scene.environmentMap = stripedMap();
   return compileScene(scene);
 }
+
+/**
+ * A ceiling of 400 small lamps facing down, of powers spread over 100×: below a node far
+ * from the point, whose lamps all face one way, the BVH chooses by power (light-bvh.ts,
+ * FAR2), and above it by importance.
+ */
+function lampCeiling() {
+  const shapes: unknown[] = [
+    { type: 'quad', corner: [-2, 0, -2], u: [0, 0, 4], v: [4, 0, 0], material: 'floor' },
+  ];
+  const materials: Record<string, unknown> = {
+    floor: { type: 'diffuse', albedo: [0.5, 0.5, 0.5] },
+  };
+  for (let i = 0; i < 400; i++) {
+    const key = sampleKey(93, i, 0);
+    const x = -2 + 0.2 * (i % 20) + 0.15 * hashToUnit(key, 0);
+    const z = -2 + 0.2 * Math.floor(i / 20) + 0.15 * hashToUnit(key, 1);
+    const e = 100 ** hashToUnit(key, 2);
+    materials[`lamp${i}`] = { type: 'diffuse', albedo: [0, 0, 0], emission: [e, e, e] };
+    // u × v points down.
+    shapes.push({
+      type: 'quad',
+      corner: [x, 3, z],
+      u: [0.04, 0, 0],
+      v: [0, 0, 0.04],
+      material: `lamp${i}`,
+    });
+  }
+  return compileScene(
+    validateScene({
+      format: 'pathwise-scene/1',
+      camera: { position: [0, 1, -4], target: [0, 1, 0], up: [0, 1, 0], fovY: 40 },
+      materials,
+      shapes,
+    }),
+  );
+}
+
+/** The scenes the tests below run on, with their count of bounded emitters. */
+const CASES: { what: string; make: () => ReturnType<typeof compileScene>; count: number }[] = [
+  { what: 'bounded lights only', make: () => manyLightScene(false), count: 145 },
+  { what: 'with a map and a sun', make: () => manyLightScene(true), count: 145 },
+  { what: 'a ceiling of lamps facing down', make: lampCeiling, count: 400 },
+];
 
 /** Reference points with normals: on the floor, in the air, on a wall. */
 const POINTS: [number, number, number, number, number, number][] = [
@@ -154,13 +199,12 @@ function misPdf(
 }
 
 describe('light BVH', () => {
-  for (const withInfinite of [false, true]) {
-    const what = withInfinite ? 'with a map and a sun' : 'bounded lights only';
+  for (const { what, make, count } of CASES) {
     it(`chooses every emitter with the probability pmf gives (χ², ${what})`, () => {
-      const scene = manyLightScene(withInfinite);
+      const scene = make();
       const bvh = scene.lightBvh()!;
       const lights = scene.lights!;
-      expect(bvh.count).toBe(80 + 2 + 60 + 3);
+      expect(bvh.count).toBe(count);
       const cells = bvh.count + bvh.infinite.length;
       const ls = new LightSample();
       const n = 200_000;
@@ -246,8 +290,7 @@ describe('light BVH', () => {
     }
   });
 
-  for (const withInfinite of [false, true]) {
-    const what = withInfinite ? 'with a map and a sun' : 'bounded lights only';
+  for (const { what, make } of CASES) {
     it(`splits: each light is among the chosen with the probability pmf gives (${what})`, () => {
       // Each emitter is chosen at most once per call, so its count over n calls is
       // binomial(n, pmf): a two-sided z test per emitter expected at least 20 times,
@@ -255,7 +298,7 @@ describe('light BVH', () => {
       // estimates below, the file's rate stays below 1e-3). The numbers are fixed
       // hashes, so it cannot flake. And Σ w / pick over the chosen, for weights w, has
       // the mean Σ w over the emitters pmf does not rule out (|z| < 5.3 again).
-      const scene = manyLightScene(withInfinite);
+      const scene = make();
       const bvh = scene.lightBvh()!;
       const n = 40_000;
       let split = 0;
@@ -356,6 +399,30 @@ describe('light BVH', () => {
     }
     expect(checked).toBeGreaterThan(2_000);
     expect(several).toBeGreaterThan(500);
+  });
+
+  it('chooses by power below a far node whose emitters face one way', () => {
+    // From 100 m below the ceiling the root itself is far: every lamp's probability is
+    // its share of the power (to rounding). From the floor, importance decides at the
+    // top, so nearer lamps weigh more than their power (up to 28 % here).
+    const scene = lampCeiling();
+    const bvh = scene.lightBvh()!;
+    const power = (p: number): number => {
+      const m = scene.lights!.material[bvh.primLight[p]!]!;
+      return scene.materials[m * MATERIAL_STRIDE + M_EMISSION]!;
+    };
+    let total = 0;
+    for (let p = 0; p < bvh.count; p++) total += power(p);
+    const worst = (y: number): number => {
+      bvh.setPoint(0.1, y, 0.1, 0, 1, 0);
+      let err = 0;
+      for (let p = 0; p < bvh.count; p++) {
+        err = Math.max(err, Math.abs(bvh.pmf(p) / (power(p) / total) - 1));
+      }
+      return err;
+    };
+    expect(worst(-100)).toBeLessThan(1e-12);
+    expect(worst(0)).toBeGreaterThan(0.1);
   });
 
   it('is not built for a single light, where the choice by power is the same', () => {
