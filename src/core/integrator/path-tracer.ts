@@ -18,7 +18,7 @@ import type { CompiledScene } from '../scene/compile/compile.ts';
 import type { CameraDesc } from '../scene/format/types.ts';
 import type { Estimator, RenderSettings } from '../scene/format/render-settings.ts';
 import { RenderStats } from './render-stats.ts';
-import { trace } from './trace-path.ts';
+import { NEE_RECORD, trace } from './trace-path.ts';
 import { AuxSample, traceAux } from './aux.ts';
 import { ADAPTIVE_PILOT, adaptiveCount } from '../film/adaptive.ts';
 
@@ -74,6 +74,10 @@ export class PathTracer {
   readonly bs = new BsdfSample();
   readonly fv = new BsdfValue();
   readonly ls = new LightSample();
+  /** Splitting's light samples waiting for their shadow rays (NEE_RECORD numbers each). */
+  readonly neeRecords = new Float64Array(LIGHT_SPLIT * NEE_RECORD);
+  /** The render's seed, which also keys the shadow rays' roulette (trace-path.ts). */
+  readonly seed: number;
   readonly es = new EnvironmentSample();
   readonly ts = new TriangleSurface();
   /** This bounce's random numbers (see Sampler.fill). */
@@ -98,7 +102,8 @@ export class PathTracer {
     this.estimator = options.estimator ?? 'nee-mis';
     this.lightBvh = options.lightSampler === 'power' ? null : scene.lightBvh();
     this.lightSplit = options.lightSampler === 'bvh' ? 1 : LIGHT_SPLIT;
-    this.sampler = new Sampler(options.seed ?? 0, options.sampler ?? DEFAULT_SAMPLER);
+    this.seed = options.seed ?? 0;
+    this.sampler = new Sampler(this.seed, options.sampler ?? DEFAULT_SAMPLER);
     this.camera = new Camera(options.camera, options.width, options.height);
   }
 

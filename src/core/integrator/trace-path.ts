@@ -58,6 +58,8 @@ import {
 import { intersectScene, occluded } from '../accel/trace.ts';
 import { SPHERE_HUGE, SPHERE_TINY } from '../geometry/intersect.ts';
 import { sampleLight } from '../lights/lights.ts';
+import { LIGHT_SPLIT } from '../lights/light-bvh.ts';
+import { hashToUnit, sampleKey } from '../rng/pcg.ts';
 import { environmentLightPdf, lightPdf } from '../lights/light-pdf.ts';
 import { completeTriangleHit } from './triangle-surface.ts';
 import { anisotropyToLocal } from '../gltf-material/anisotropy-frame.ts';
@@ -87,6 +89,14 @@ import type { PathTracer, RenderStats } from './path-tracer.ts';
 const INV_PI = 1 / Math.PI;
 const PI_OVER_4 = Math.PI / 4;
 const PI_OVER_2 = Math.PI / 2;
+
+/**
+ * A split light sample's shadow ray is traced for sure when its unoccluded contribution is
+ * at least this share of the vertex's strongest, and else by Russian roulette (below).
+ */
+const SHADOW_RR = 0.25;
+/** Numbers per pending light sample: the shadow ray's origin, direction and length, and what it adds. */
+export const NEE_RECORD = 10;
 
 /** Russian roulette begins once a path has scattered this many times. */
 const ROULETTE_DEPTH = 3;
@@ -168,6 +178,8 @@ export function trace(
     sab = 0;
   // KHR_materials_dispersion: the one colour channel the path carries, once chosen (dispersion.ts).
   let channel = -1;
+  // The key of the shadow rays' roulette (below), hashed when first needed.
+  let pathKey = -1;
 
   for (let depth = 0; ; depth++) {
     if (!intersectScene(scene, ray, hit)) {
@@ -458,6 +470,8 @@ export function trace(
         lightBvh.setPoint(x, y, z, nx, ny, nz);
         chosen = lightBvh.chooseSplit(u[DIM_LIGHT_CHOICE], lightSplit);
       }
+      let pending = 0;
+      let strongest = 0;
       for (let c = 0; c < chosen; c++) {
         let l: number;
         if (lightBvh === null) {
@@ -575,82 +589,153 @@ export function trace(
               // Both ends lifted off their surfaces (see lights.ts): the
               // segment between them crosses neither. The origin leaves by
               // the geometric side wi is on.
-              const sr = this.shadowRay;
               const lift = wix * nx + wiy * ny + wiz * nz >= 0 ? scale : -scale;
               const ox = x + nx * lift;
               const oy = y + ny * lift;
               const oz = z + nz * lift;
               let len = Infinity;
-              if (infinite) {
-                sr.dx = wix;
-                sr.dy = wiy;
-                sr.dz = wiz;
-              } else {
+              let sdx = wix,
+                sdy = wiy,
+                sdz = wiz;
+              if (!infinite) {
                 const ex = lpx - ox;
                 const ey = lpy - oy;
                 const ez = lpz - oz;
                 len = Math.sqrt(ex * ex + ey * ey + ez * ez);
-                sr.dx = ex / len;
-                sr.dy = ey / len;
-                sr.dz = ez / len;
+                sdx = ex / len;
+                sdy = ey / len;
+                sdz = ez / len;
               }
-              sr.ox = ox;
-              sr.oy = oy;
-              sr.oz = oz;
-              sr.tMax = len;
-              segments++;
-              const visible =
-                len > 0
-                  ? alphaShadows
-                    ? shadowTransmittance(scene, gltf!, sr, this.gw)
-                    : occluded(scene, sr)
-                      ? 0
-                      : 1
-                  : 0;
-              if (visible > 0) {
-                let er: number, eg: number, eb: number;
-                // Not a shape (the environment, a punctual light): sampleLight wrote what arrives.
-                if (lights!.kind[l] >= LIGHT_ENVIRONMENT) {
-                  er = ls.r;
-                  eg = ls.g;
-                  eb = ls.b;
+              let er: number, eg: number, eb: number;
+              // Not a shape (the environment, a punctual light): sampleLight wrote what arrives.
+              if (lights!.kind[l] >= LIGHT_ENVIRONMENT) {
+                er = ls.r;
+                eg = ls.g;
+                eb = ls.b;
+              } else {
+                const lmi = lights!.material[l];
+                const lm = lmi * MATERIAL_STRIDE;
+                if (materials[lm + M_TYPE] === MATERIAL_GLTF) {
+                  // Emission varies over the mesh: looked up at the sampled point.
+                  const gw = this.gw;
+                  gltfLightEmission(
+                    scene,
+                    gltf!,
+                    ls.triangle,
+                    ls.b1,
+                    ls.b2,
+                    gltfRow(materials, lmi),
+                    gw,
+                  );
+                  er = gw.emission.r;
+                  eg = gw.emission.g;
+                  eb = gw.emission.b;
                 } else {
-                  const lmi = lights!.material[l];
-                  const lm = lmi * MATERIAL_STRIDE;
-                  if (materials[lm + M_TYPE] === MATERIAL_GLTF) {
-                    // Emission varies over the mesh: looked up at the sampled point.
-                    const gw = this.gw;
-                    gltfLightEmission(
-                      scene,
-                      gltf!,
-                      ls.triangle,
-                      ls.b1,
-                      ls.b2,
-                      gltfRow(materials, lmi),
-                      gw,
-                    );
-                    er = gw.emission.r;
-                    eg = gw.emission.g;
-                    eb = gw.emission.b;
-                  } else {
-                    er = materials[lm + M_EMISSION];
-                    eg = materials[lm + M_EMISSION + 1];
-                    eb = materials[lm + M_EMISSION + 2];
-                  }
+                  er = materials[lm + M_EMISSION];
+                  eg = materials[lm + M_EMISSION + 1];
+                  eb = materials[lm + M_EMISSION + 2];
                 }
-                const pl = lpdf;
-                const w = (pl / (pl * pl + (delta ? 0 : pb * pb))) * Math.abs(lwiz) * visible;
-                if (inMedium && !infinite) {
-                  // The shadow ray runs inside the absorbing solid too.
-                  er *= Math.exp(-sar * len);
-                  eg *= Math.exp(-sag * len);
-                  eb *= Math.exp(-sab * len);
+              }
+              const pl = lpdf;
+              const w = (pl / (pl * pl + (delta ? 0 : pb * pb))) * Math.abs(lwiz);
+              if (inMedium && !infinite) {
+                // The shadow ray runs inside the absorbing solid too.
+                er *= Math.exp(-sar * len);
+                eg *= Math.exp(-sag * len);
+                eb *= Math.exp(-sab * len);
+              }
+              // What this light adds if nothing is in the way.
+              const cr = br * fr * er * w,
+                cg = bg * fg * eg * w,
+                cb = bb * fb * eb * w;
+              if (chosen === 1) {
+                const sr = this.shadowRay;
+                sr.ox = ox;
+                sr.oy = oy;
+                sr.oz = oz;
+                sr.dx = sdx;
+                sr.dy = sdy;
+                sr.dz = sdz;
+                sr.tMax = len;
+                segments++;
+                const visible =
+                  len > 0
+                    ? alphaShadows
+                      ? shadowTransmittance(scene, gltf!, sr, this.gw)
+                      : occluded(scene, sr)
+                        ? 0
+                        : 1
+                    : 0;
+                if (visible > 0) {
+                  lr += cr * visible;
+                  lg += cg * visible;
+                  lb += cb * visible;
                 }
-                lr += br * fr * er * w;
-                lg += bg * fg * eg * w;
-                lb += bb * fb * eb * w;
+              } else {
+                // Splitting: the shadow rays wait for the roulette below.
+                const o = pending * NEE_RECORD;
+                const rec = this.neeRecords;
+                rec[o] = ox;
+                rec[o + 1] = oy;
+                rec[o + 2] = oz;
+                rec[o + 3] = sdx;
+                rec[o + 4] = sdy;
+                rec[o + 5] = sdz;
+                rec[o + 6] = len;
+                rec[o + 7] = cr;
+                rec[o + 8] = cg;
+                rec[o + 9] = cb;
+                const c = cr + cg + cb;
+                if (c > strongest) strongest = c;
+                pending++;
               }
             }
+          }
+        }
+      }
+      if (pending > 0) {
+        // Russian roulette on the shadow rays of the weak lights (pbr-book 4e §14.1.5 on
+        // roulette; here per light sample, as Conty Estevez and Kulla's splitting leaves
+        // many whose unoccluded contribution is a small share of the vertex's): a light
+        // whose contribution c is under SHADOW_RR times the strongest's traces its ray
+        // with probability q = c / (SHADOW_RR · strongest) and counts 1/q times. The
+        // number that decides is hashed from the pixel, sample, depth and light, so it is
+        // independent of everything q depends on and the same in every worker layout.
+        const rec = this.neeRecords;
+        const floor = SHADOW_RR * strongest;
+        for (let j = 0; j < pending; j++) {
+          const o = j * NEE_RECORD;
+          const c = rec[o + 7] + rec[o + 8] + rec[o + 9];
+          let inv = 1;
+          if (c < floor) {
+            const q = c / floor;
+            if (pathKey === -1) pathKey = sampleKey(this.seed, py * this.width + px, sampleIndex);
+            if (!(hashToUnit(pathKey, depth * LIGHT_SPLIT + j) < q)) continue;
+            inv = 1 / q;
+          }
+          const sr = this.shadowRay;
+          sr.ox = rec[o];
+          sr.oy = rec[o + 1];
+          sr.oz = rec[o + 2];
+          sr.dx = rec[o + 3];
+          sr.dy = rec[o + 4];
+          sr.dz = rec[o + 5];
+          const len = rec[o + 6];
+          sr.tMax = len;
+          segments++;
+          const visible =
+            len > 0
+              ? alphaShadows
+                ? shadowTransmittance(scene, gltf!, sr, this.gw)
+                : occluded(scene, sr)
+                  ? 0
+                  : 1
+              : 0;
+          if (visible > 0) {
+            const v = visible * inv;
+            lr += rec[o + 7] * v;
+            lg += rec[o + 8] * v;
+            lb += rec[o + 9] * v;
           }
         }
       }
