@@ -95,6 +95,8 @@ const PI_OVER_2 = Math.PI / 2;
  * at least this share of the vertex's strongest, and else by Russian roulette (below).
  */
 const SHADOW_RR = 0.25;
+/** Salts the seed of the roulette's key, apart from the sampler's (below). */
+const SHADOW_RR_SALT = 0x2c1b3c6d;
 /** Numbers per pending light sample: the shadow ray's origin, direction and length, and what it adds. */
 export const NEE_RECORD = 10;
 
@@ -699,8 +701,9 @@ export function trace(
         // many whose unoccluded contribution is a small share of the vertex's): a light
         // whose contribution c is under SHADOW_RR times the strongest's traces its ray
         // with probability q = c / (SHADOW_RR · strongest) and counts 1/q times. The
-        // number that decides is hashed from the pixel, sample, depth and light, so it is
-        // independent of everything q depends on and the same in every worker layout.
+        // number that decides is hashed from the salted seed, pixel, sample, depth and
+        // light, so it is independent of everything q depends on and the same in every
+        // worker layout.
         const rec = this.neeRecords;
         const floor = SHADOW_RR * strongest;
         for (let j = 0; j < pending; j++) {
@@ -709,7 +712,12 @@ export function trace(
           let inv = 1;
           if (c < floor) {
             const q = c / floor;
-            if (pathKey === -1) pathKey = sampleKey(this.seed, py * this.width + px, sampleIndex);
+            // Its own key (the seed salted): the sampler hashes sampleKey(seed, …) into
+            // the dimensions it does not stratify (sampler.ts), so the same key would
+            // hand the roulette a number the light choice or point also used.
+            if (pathKey === -1) {
+              pathKey = sampleKey(this.seed ^ SHADOW_RR_SALT, py * this.width + px, sampleIndex);
+            }
             if (!(hashToUnit(pathKey, depth * LIGHT_SPLIT + j) < q)) continue;
             inv = 1 / q;
           }
