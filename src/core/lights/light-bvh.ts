@@ -110,8 +110,6 @@ export class LightBvh {
   readonly infinitePick: number;
   /** Probability of choosing the BVH (1 − n · infinitePick). */
   readonly bvhPick: number;
-  /** Node bounds, LB_STRIDE numbers per node; node 0 is the root. */
-  readonly nodes: Float64Array;
   /** What importance reads, IP_STRIDE numbers per node (packBounds). */
   readonly packed: Float64Array;
   /** Per node: the right child (the left is the next node), or −1 − the emitter at a leaf. */
@@ -155,17 +153,19 @@ export class LightBvh {
     this.infinitePick = ni > 0 ? 1 / (ni + (n > 0 ? 1 : 0)) : 0;
     this.bvhPick = n > 0 ? 1 - ni * this.infinitePick : 0;
     const nodeCount = Math.max(0, 2 * n - 1);
-    this.nodes = new Float64Array(nodeCount * LB_STRIDE);
+    // Node bounds, LB_STRIDE numbers per node (node 0 is the root): the build's alone.
+    // Traversal reads the packed records, so these go once packed.
+    const nodes = new Float64Array(nodeCount * LB_STRIDE);
     this.child = new Int32Array(nodeCount);
     this.parent = new Int32Array(nodeCount).fill(-1);
     this.leafOf = new Int32Array(n);
     const order = new Int32Array(n);
     for (let i = 0; i < n; i++) order[i] = i;
-    const b = new Builder(input.bounds, order, this);
+    const b = new Builder(input.bounds, order, nodes, this);
     const depth = n > 0 ? b.build(0, n, 0) : 0;
     this.packed = new Float64Array(nodeCount * IP_STRIDE);
     for (let k = 0; k < nodeCount; k++) {
-      packBounds(this.nodes, k * LB_STRIDE, this.packed, k * IP_STRIDE);
+      packBounds(nodes, k * LB_STRIDE, this.packed, k * IP_STRIDE);
     }
     this.depth = depth;
     this.path = new Int32Array(depth + 1);
@@ -417,6 +417,7 @@ class Builder {
   constructor(
     private readonly prims: Float64Array,
     private readonly order: Int32Array,
+    private readonly nodes: Float64Array,
     private readonly bvh: LightBvh,
   ) {
     this.scratch = new Int32Array(order.length);
@@ -425,7 +426,7 @@ class Builder {
   /** Builds the node for order[start, end); returns the subtree's depth. */
   build(start: number, end: number, depth: number): number {
     const node = this.next++;
-    const nodes = this.bvh.nodes;
+    const nodes = this.nodes;
     const o = node * LB_STRIDE;
     const prims = this.prims;
     const order = this.order;
