@@ -95,8 +95,19 @@ const PI_OVER_2 = Math.PI / 2;
  * at least this share of the vertex's strongest, and else by Russian roulette (below).
  */
 const SHADOW_RR = 0.25;
-/** Salts the seed of the roulette's key, apart from the sampler's (below). */
+/** Salts the seed of the roulette's key, apart from the sampler's (shadowRouletteKey). */
 const SHADOW_RR_SALT = 0x2c1b3c6d;
+
+/**
+ * The key of a path's shadow-ray roulette: light j at depth d decides with
+ * hashToUnit(key, d · LIGHT_SPLIT + j). Its own key, the seed salted: the sampler hashes
+ * sampleKey(seed, …) into the dimensions it does not stratify (sampler.ts), so that key
+ * would hand the roulette a number the light choice or point also used, and bias it
+ * (tests/statistical/shadow-roulette.test.ts).
+ */
+export function shadowRouletteKey(seed: number, pixelIndex: number, sampleIndex: number): number {
+  return sampleKey(seed ^ SHADOW_RR_SALT, pixelIndex, sampleIndex);
+}
 /** Numbers per pending light sample: the shadow ray's origin, direction and length, and what it adds. */
 export const NEE_RECORD = 10;
 
@@ -712,11 +723,8 @@ export function trace(
           let inv = 1;
           if (c < floor) {
             const q = c / floor;
-            // Its own key (the seed salted): the sampler hashes sampleKey(seed, …) into
-            // the dimensions it does not stratify (sampler.ts), so the same key would
-            // hand the roulette a number the light choice or point also used.
             if (pathKey === -1) {
-              pathKey = sampleKey(this.seed ^ SHADOW_RR_SALT, py * this.width + px, sampleIndex);
+              pathKey = shadowRouletteKey(this.seed, py * this.width + px, sampleIndex);
             }
             if (!(hashToUnit(pathKey, depth * LIGHT_SPLIT + j) < q)) continue;
             inv = 1 / q;
