@@ -54,20 +54,28 @@ for (const isolated of [true, false]) {
           timeout: 60_000,
         });
         await page.click('#renderer');
-        await page.waitForFunction(
-          () => ((window as any).example.view()?.progress?.spp ?? 0) >= 2,
+        // The full film's own passes, read with the image in one turn: the last progress
+        // event may be the quick preview film's, or come from before a restart, while
+        // the full film the PFM holds has nothing yet (it failed so once on a loaded
+        // machine: an image of mean 0).
+        const firstHandle = await page.waitForFunction(
+          () => {
+            const view = (window as any).example.view();
+            const c = view?.controller;
+            if (!c || !(c.progress() >= 2)) return null;
+            const pfm: Uint8Array = view.toPFM();
+            return { camera: c.getCamera(), pfm: Array.from(pfm) };
+          },
           null,
           {
             timeout: 90_000,
             polling: 100,
           },
         );
-        const first = await page.evaluate(() => {
-          const view = (window as any).example.view();
-          const camera = view.controller.getCamera();
-          const pfm: Uint8Array = view.toPFM();
-          return { camera, pfm: Array.from(pfm) };
-        });
+        const first = (await firstHandle.jsonValue()) as {
+          camera: { position: number[] };
+          pfm: number[];
+        };
         // Lit, and not uniform: the image mean is well above black.
         const image = decodeLinear(first.pfm);
         expect(image.mean).toBeGreaterThan(0.05);
