@@ -76,8 +76,6 @@ export class PathTracer {
   readonly ls = new LightSample();
   /** Splitting's light samples waiting for their shadow rays (NEE_RECORD numbers each). */
   readonly neeRecords = new Float64Array(LIGHT_SPLIT * NEE_RECORD);
-  /** The render's seed, which also keys the shadow rays' roulette (trace-path.ts). */
-  readonly seed: number;
   readonly es = new EnvironmentSample();
   readonly ts = new TriangleSurface();
   /** This bounce's random numbers (see Sampler.fill). */
@@ -102,8 +100,7 @@ export class PathTracer {
     this.estimator = options.estimator ?? 'nee-mis';
     this.lightBvh = options.lightSampler === 'power' ? null : scene.lightBvh();
     this.lightSplit = options.lightSampler === 'bvh' ? 1 : LIGHT_SPLIT;
-    this.seed = options.seed ?? 0;
-    this.sampler = new Sampler(this.seed, options.sampler ?? DEFAULT_SAMPLER);
+    this.sampler = new Sampler(options.seed ?? 0, options.sampler ?? DEFAULT_SAMPLER);
     this.camera = new Camera(options.camera, options.width, options.height);
   }
 

@@ -619,6 +619,30 @@ export function trace(
                 sdy = ey / len;
                 sdz = ez / len;
               }
+              // One light sample: its ray is traced now, and an occluded one stops here,
+              // before its emission is looked up (a texture, for glTF). Several (splitting):
+              // the rays wait for the roulette below, which needs what each would add.
+              let visible = 1;
+              if (chosen === 1) {
+                const sr = this.shadowRay;
+                sr.ox = ox;
+                sr.oy = oy;
+                sr.oz = oz;
+                sr.dx = sdx;
+                sr.dy = sdy;
+                sr.dz = sdz;
+                sr.tMax = len;
+                segments++;
+                visible =
+                  len > 0
+                    ? alphaShadows
+                      ? shadowTransmittance(scene, gltf!, sr, this.gw)
+                      : occluded(scene, sr)
+                        ? 0
+                        : 1
+                    : 0;
+                if (!(visible > 0)) continue;
+              }
               let er: number, eg: number, eb: number;
               // Not a shape (the environment, a punctual light): sampleLight wrote what arrives.
               if (lights!.kind[l] >= LIGHT_ENVIRONMENT) {
@@ -662,30 +686,10 @@ export function trace(
                 cg = bg * fg * eg * w,
                 cb = bb * fb * eb * w;
               if (chosen === 1) {
-                const sr = this.shadowRay;
-                sr.ox = ox;
-                sr.oy = oy;
-                sr.oz = oz;
-                sr.dx = sdx;
-                sr.dy = sdy;
-                sr.dz = sdz;
-                sr.tMax = len;
-                segments++;
-                const visible =
-                  len > 0
-                    ? alphaShadows
-                      ? shadowTransmittance(scene, gltf!, sr, this.gw)
-                      : occluded(scene, sr)
-                        ? 0
-                        : 1
-                    : 0;
-                if (visible > 0) {
-                  lr += cr * visible;
-                  lg += cg * visible;
-                  lb += cb * visible;
-                }
+                lr += cr * visible;
+                lg += cg * visible;
+                lb += cb * visible;
               } else {
-                // Splitting: the shadow rays wait for the roulette below.
                 const o = pending * NEE_RECORD;
                 const rec = this.neeRecords;
                 rec[o] = ox;
@@ -724,7 +728,7 @@ export function trace(
           if (c < floor) {
             const q = c / floor;
             if (pathKey === -1) {
-              pathKey = shadowRouletteKey(this.seed, py * this.width + px, sampleIndex);
+              pathKey = shadowRouletteKey(sampler.seed, py * this.width + px, sampleIndex);
             }
             if (!(hashToUnit(pathKey, depth * LIGHT_SPLIT + j) < q)) continue;
             inv = 1 / q;

@@ -245,9 +245,9 @@ export class LightBvh {
   /**
    * The cut of the tree splitting makes at the point: starting from the root, the node
    * of largest importance among those the point sees under a wide angle (squared
-   * half-diagonal over squared distance above SPLIT_ANGLE2) is replaced by its children of nonzero importance,
-   * until none is left or the cut holds `max` nodes. Writes cutNode and returns the
-   * count. A function of the point and `max` alone, so `pmf` rebuilds the same cut.
+   * half-diagonal over squared distance above SPLIT_ANGLE2) is replaced by its children
+   * of nonzero importance, until none is left or the cut holds `max` nodes. Writes
+   * cutNode and returns the count. A function of the point and `max` alone, so `pmf` rebuilds the same cut.
    */
   private cut(max: number): number {
     const p = this.point;
@@ -372,21 +372,20 @@ export class LightBvh {
     const packed = this.packed;
     const c = this.child[node];
     const od = node * IP_STRIDE;
-    const dx = p[0] - packed[od + IP_CENTRE],
-      dy = p[1] - packed[od + IP_CENTRE + 1],
-      dz = p[2] - packed[od + IP_CENTRE + 2];
-    if (
-      packed[od + IP_COS_O] >= NARROW &&
-      packed[od + IP_R2] < FAR2 * (dx * dx + dy * dy + dz * dz)
-    ) {
-      // Far and facing one way: by power (see FAR2).
-      const f0 = packed[(node + 1) * IP_STRIDE + IP_PHI];
-      const f1 = packed[c * IP_STRIDE + IP_PHI];
-      const fs = f0 + f1;
-      if (fs > 0 && fs < Infinity) {
-        this.share0 = f0 / fs;
-        this.share1 = f1 / fs;
-        return true;
+    if (packed[od + IP_COS_O] >= NARROW) {
+      const dx = p[0] - packed[od + IP_CENTRE],
+        dy = p[1] - packed[od + IP_CENTRE + 1],
+        dz = p[2] - packed[od + IP_CENTRE + 2];
+      if (packed[od + IP_R2] < FAR2 * (dx * dx + dy * dy + dz * dz)) {
+        // Far and facing one way: by power (see FAR2).
+        const f0 = packed[(node + 1) * IP_STRIDE + IP_PHI];
+        const f1 = packed[c * IP_STRIDE + IP_PHI];
+        const fs = f0 + f1;
+        if (fs > 0 && fs < Infinity) {
+          this.share0 = f0 / fs;
+          this.share1 = f1 / fs;
+          return true;
+        }
       }
     }
     let c0 = importance(packed, (node + 1) * IP_STRIDE, p);

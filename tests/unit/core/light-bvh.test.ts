@@ -305,7 +305,6 @@ describe('light BVH', () => {
       for (const max of [4, LIGHT_SPLIT]) {
         for (const [i, [x, y, z, nx, ny, nz]] of POINTS.entries()) {
           bvh.setPoint(x, y, z, nx, ny, nz);
-          bvh.setPoint(x, y, z, nx, ny, nz);
           const cells = bvh.count + bvh.infinite.length;
           const picks = new Float64Array(cells);
           const weight = new Float64Array(cells);
