@@ -3,9 +3,9 @@
 #   - the ceiling: bench/ceiling.c (a dependent chain of double multiply-adds and square
 #     roots, no memory traffic) in 1, 8 and 16 independent processes started together,
 #     3 rounds: if 16 run as fast as 1, the cores do not share execution units or clock;
-#   - strong scaling of a ~10-second render, as bench/device-strong.sh: Cornell 512×512,
-#     pathwise 256 spp on 16 threads against 16 spp on 1, the native anchor 1024 against
-#     64 spp, alternating, 3 rounds;
+#   - strong scaling of a ~10-second render, bench/device-rounds.sh (as in
+#     bench/device-strong.sh): Cornell 512×512, pathwise 256 spp on 16 threads against
+#     16 spp on 1, the native anchor 1024 against 64 spp, alternating, 3 rounds;
 #   - bench:core (its last table is the whole-process 1-spp render of 10,000 spheres).
 # The device takes at most 64 MiB of working tree per call, and the tree (about 47 MiB on
 # disk) plus Node (about 20 MiB as `xz --x86 -9e`) is more. So Node travels in two calls
@@ -36,20 +36,8 @@ for r in 1 2 3; do
     log "ceiling n=$n $t"
   done
 done
-S=scenes/cornell.json
-log "strong scaling, cornell 512x512"
-for r in 1 2 3; do
-  for who in p16 p1 n16 n1; do
-    case $who in
-      p16) j=$(node bin/pathwise.js render $S --width 512 --height 512 --spp 256 --threads 16 --json --out /tmp/a.pfm) ;;
-      p1) j=$(node bin/pathwise.js render $S --width 512 --height 512 --spp 16 --threads 1 --json --out /tmp/a.pfm) ;;
-      n16) j=$($PT $S --width 512 --height 512 --spp 1024 --threads 16 --quiet --out /tmp/n.pfm) ;;
-      n1) j=$($PT $S --width 512 --height 512 --spp 64 --threads 1 --quiet --out /tmp/n.pfm) ;;
-    esac
-    echo "{\"round\":$r,\"run\":\"$who\",\"r\":$j}" >> "$OUT/strong.jsonl"
-    log "$who $(cat /proc/loadavg)"
-  done
-done
+. bench/device-rounds.sh
+strong_rounds
 log "bench:core"
 node bench/core.mjs --reps 3 --native $PT --out "$OUT/core.json" >&2
 log "done"

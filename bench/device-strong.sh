@@ -25,20 +25,8 @@ nproc >&2
 lscpu > "$OUT/lscpu.txt" 2>&1
 cat /proc/loadavg >&2
 
-S=scenes/cornell.json
-log "strong scaling, cornell 512x512"
-for r in 1 2 3; do
-  for who in p16 p1 n16 n1; do
-    case $who in
-      p16) j=$(node bin/pathwise.js render $S --width 512 --height 512 --spp 256 --threads 16 --json --out /tmp/a.pfm) ;;
-      p1) j=$(node bin/pathwise.js render $S --width 512 --height 512 --spp 16 --threads 1 --json --out /tmp/a.pfm) ;;
-      n16) j=$($PT $S --width 512 --height 512 --spp 1024 --threads 16 --quiet --out /tmp/n.pfm) ;;
-      n1) j=$($PT $S --width 512 --height 512 --spp 64 --threads 1 --quiet --out /tmp/n.pfm) ;;
-    esac
-    echo "{\"round\":$r,\"run\":\"$who\",\"r\":$j}" >> "$OUT/strong.jsonl"
-    log "$who $(cat /proc/loadavg)"
-  done
-done
+. bench/device-rounds.sh
+strong_rounds
 
 log "independent processes"
 node bench/processes.mjs --spp 16 --out "$OUT/processes.json" >&2
