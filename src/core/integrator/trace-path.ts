@@ -108,7 +108,11 @@ const SHADOW_RR_SALT = 0x2c1b3c6d;
 export function shadowRouletteKey(seed: number, pixelIndex: number, sampleIndex: number): number {
   return sampleKey(seed ^ SHADOW_RR_SALT, pixelIndex, sampleIndex);
 }
-/** Numbers per pending light sample: the shadow ray's origin, direction and length, and what it adds. */
+
+/**
+ * Numbers per pending light sample: the shadow ray's origin, direction and length, and
+ * what it adds.
+ */
 export const NEE_RECORD = 10;
 
 /** Russian roulette begins once a path has scattered this many times. */

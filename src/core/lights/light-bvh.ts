@@ -247,7 +247,8 @@ export class LightBvh {
    * of largest importance among those the point sees under a wide angle (squared
    * half-diagonal over squared distance above SPLIT_ANGLE2) is replaced by its children
    * of nonzero importance, until none is left or the cut holds `max` nodes. Writes
-   * cutNode and returns the count. A function of the point and `max` alone, so `pmf` rebuilds the same cut.
+   * cutNode and returns the count. A function of the point and `max` alone, so `pmf`
+   * rebuilds the same cut.
    */
   private cut(max: number): number {
     const p = this.point;
